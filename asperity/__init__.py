@@ -1,0 +1,32 @@
+"""asperity: direction-dependent friction from surface textures.
+
+The package import is kept light: numerical modules (numba kernels, matplotlib)
+are imported only when first used.  Public names are resolved lazily.
+"""
+from __future__ import annotations
+
+import importlib
+
+__version__ = "0.1.0"
+
+_LAZY = {
+    "WedgeTexture": "asperity.texture",
+    "GaussianWedgeTexture": "asperity.texture",
+    "load_texture": "asperity.texture",
+    "compute_H": "asperity.closed_form",
+    "compute_reservoir": "asperity.closed_form",
+    "compute_axis_coefficients": "asperity.closed_form",
+    "SpringModel": "asperity.springs",
+    "simulate_sliding": "asperity.springs",
+    "AsperityError": "asperity.errors",
+    "InputError": "asperity.errors",
+}
+
+__all__ = ["__version__", *_LAZY]
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'asperity' has no attribute {name!r}")
+    return getattr(importlib.import_module(module), name)
