@@ -361,3 +361,92 @@ def _result(st, psi, model, sums, status, lock_seg, N, n_steps, m) -> SlidingRes
     frac = float(tot[4] / tot[3]) if tot[3] > 0 else 0.0
     return SlidingResult(psi, p, float(p @ s), float(p @ sp), float(normal_stress), False, -1,
                          N, n_steps, frac, st.set_valued, "")
+
+
+def simulate_reservoir(texture, psi, model: SpringModel = SpringModel(),
+                       contact: str = "all-faces") -> Reservoir:
+    """Reservoir points p(psi) from the spring simulation, as closed_form.Reservoir.
+
+    psi : (m,) radians.  Self-locking rows hold inf; ``set_valued`` as in the closed form
+    (windward regime, sliding exactly along the ridges).
+    """
+    psi = np.atleast_1d(np.asarray(psi, dtype=float))
+    if psi.ndim != 1:
+        raise InputError(f"psi must be a 1-D array of angles, got shape {psi.shape}")
+    if not np.all(np.isfinite(psi)):
+        raise InputError("psi must be finite (radians)")
+    res = [simulate_sliding(texture, float(a), model, contact) for a in psi]
+    return Reservoir(psi=psi, p=np.array([r.p for r in res]).reshape(-1, 2),
+                     locked=np.array([r.locked for r in res], dtype=bool),
+                     locked_face=np.array([r.locked_face for r in res], dtype=np.int64),
+                     set_valued=np.array([r.set_valued for r in res], dtype=bool),
+                     contact=contact)
+
+
+def simulate_loading_curve(texture, psi: float, model: SpringModel, distance: float | None = None,
+                           n_steps: int = 2000, contact: str = "all-faces") -> LoadingCurve:
+    """Tangential force-displacement curve from rest to full sliding (finite k_f only).
+
+    The body starts at rest (step 0: every tip lands under its base and relaxes into its
+    cone, so tips on faces steeper than their friction angle slide down first); then it
+    moves by ``distance`` along s(psi) in ``n_steps`` steps: n_steps//2 equal steps over
+    the first 3 elastic slip lengths (stick to full sliding), the rest equal steps over
+    the remaining distance (uniform steps if the distance is shorter than 6 slip lengths).  While every tip in
+    contact sticks, d sigma_t / d u = density k_f x (fraction of tips in contact): the
+    model's k_t = density k_f when all tips touch (preload > 0).  Default distance:
+    3 elastic slip lengths (module docstring) plus one period of the profile along t_a
+    (L/|cos psi|, at most 10 L), over which ``mu_steady`` is averaged.
+    """
+    from . import _spring_kernels as K
+
+    psi = _check_psi(psi)
+    model = _check_model(model)
+    if model.rigid:
+        raise InputError("k_f must be finite for a loading curve (k_f = inf has no elastic stage)")
+    n_steps = check_int("n_steps", n_steps, 2, 100_000_000)
+    st = _setup(texture, psi, model, contact)
+    L_s = min(st.period / abs(st.c), 10.0 * st.period) if abs(st.c) > 0.1 else 10.0 * st.period
+    if distance is None:
+        distance = 3.0 * _slip_length(st, model) + L_s
+    else:
+        distance = check_range("distance", distance, 0.0, None, low_open=True, unit="m")
+        if not math.isfinite(distance):
+            raise InputError(f"distance must be finite, got {distance:g}")
+    N = model.n_springs * st.n_pitch
+    W = st.period / N
+    X0 = (np.arange(N) + 0.5) * W
+    # displacement grid: half the steps over the stick-to-slide transition (3 slip
+    # lengths) so that the elastic stage is resolved, the other half over the rest
+    d3 = 3.0 * _slip_length(st, model)
+    if d3 < 0.5 * distance and n_steps >= 4:
+        n1 = n_steps // 2
+        d = np.concatenate([np.linspace(0.0, d3, n1 + 1),
+                            np.linspace(d3, distance, n_steps - n1 + 1)[1:]])
+    else:
+        d = np.linspace(0.0, distance, n_steps + 1)
+    dz_scale = model.k_n * (st.zs.max() - st.z_rest)
+    _, steps, status, lock_seg, _ = K.run_elastic(
+        st.xs, st.zs, st.seg_mu, st.seg_loaded, X0, d * st.c, d * st.sn, model.k_n, model.k_f,
+        st.z_rest, st.c, 1, True, LOCK_FORCE_RATIO * dz_scale)
+    bad = status[(status != 0) & (status != 1)]
+    if bad.size:
+        raise InputError(f"spring simulation failed at psi = {math.degrees(psi):g} deg: "
+                         f"{_STATUS_TEXT.get(int(bad[0]), 'status %d' % bad[0])}")
+    tot = steps.sum(axis=0)  # (n_steps + 1, 5)
+    s = np.array([st.c, st.sn])
+    sp = np.array([-st.sn, st.c])
+    scale = model.density / N
+    sig_t = -scale * tot[:, :2] @ s
+    sig_l = -scale * tot[:, :2] @ sp
+    sig_n = scale * tot[:, 2]
+    frac = np.divide(tot[:, 4], tot[:, 3], out=np.zeros(tot.shape[0]), where=tot[:, 3] > 0)
+    frac[0] = 0.0  # rest state: the relaxation of step 0 is not part of the motion
+    k_meas = float((sig_t[1] - sig_t[0]) / (d[1] - d[0]))
+    locked = bool(np.any(status == 1))
+    last = d > distance - min(L_s, distance) + 1e-12 * distance
+    w = np.gradient(d)[last]  # travel-weighted average over the last period
+    num, den = (w * sig_t[last]).sum(), (w * sig_n[last]).sum()
+    mu_steady = math.inf if locked or not den > 0 else float(num / den)
+    face = _face_of_segment(st, lock_seg[status == 1]) if locked else -1
+    return LoadingCurve(psi, d, sig_t, sig_l, sig_n, frac, model.k_t, k_meas, mu_steady,
+                        locked, face)
