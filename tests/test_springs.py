@@ -145,7 +145,7 @@ def test_loading_curve():
     assert np.all(f[-100:] > 0.99)
     for a in (lc.tangential_stress, lc.lateral_stress, lc.normal_stress, f):
         assert np.all(np.isfinite(a))
-    # the tangential stress never exceeds the plateau by more than the elastic overshoot
+    # at rest every tip sits with d = 0 (tan 5 deg < mu): no tangential stress
     assert lc.tangential_stress[0] == pytest.approx(0.0, abs=1e-9 * lc.normal_stress[0])
 
 
