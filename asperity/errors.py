@@ -32,8 +32,8 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
         raise InputError(f"{name} must be a number, got {value!r}") from None
     if isinstance(value, bool):
         raise InputError(f"{name} must be a number, got {value!r}")
-    lo = "(" if low_open else "["
-    hi = ")" if high_open else "]"
+    lo = "(" if low_open or low is None else "["
+    hi = ")" if high_open or high is None else "]"
     rng = f"{lo}{'-inf' if low is None else _fmt(low)}, {'inf' if high is None else _fmt(high)}{hi}"
     u = f" {unit}" if unit else ""
     if x != x:  # NaN

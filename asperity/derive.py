@@ -1,0 +1,198 @@
+"""Texture -> directional friction: the computation behind ``asperity derive``.
+
+:func:`derive` evaluates the reservoir p(psi) of a texture over ``n_directions`` equally
+spaced sliding directions by the closed form or the spring simulation, with the axis
+coefficients and all diagnostics, and :func:`to_json` turns the result into the
+documented JSON object (self-locking values are ``null``, never NaN or Infinity).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import __version__
+from .closed_form import (CONTACT_REGIMES, Reservoir, compute_axis_coefficients,
+                          compute_reservoir, directions)
+from .diagnostics import (Admissibility, Associativity, check_admissibility,
+                          check_associativity, closed_form_dT_dpsi, find_self_locking)
+from .errors import InputError, check_int
+
+METHODS = ("closed-form", "springs")
+
+
+@dataclass(frozen=True)
+class Derivation:
+    texture: object
+    contact: str
+    method: str
+    reservoir: Reservoir
+    axes: dict                       # mu_a_plus, mu_a_minus, mu_b_plus, mu_b_minus
+    self_locking: list
+    admissibility: Admissibility
+    associativity: Associativity
+    springs: dict | None = None      # spring model and agreement with the closed form
+    closed_form: Reservoir | None = field(default=None, repr=False)
+
+
+def derive(texture, contact: str = "all-faces", method: str = "closed-form",
+           n_directions: int = 72, model=None) -> Derivation:
+    """Directional friction of ``texture`` over ``n_directions`` sliding directions.
+
+    method "springs" runs the spring-on-wedge simulation (``model``: a SpringModel, the
+    default one if None) for every direction and for the four axis directions, and
+    reports its largest relative deviation from the closed form.
+    """
+    if contact not in CONTACT_REGIMES:
+        raise InputError(f"contact must be one of {', '.join(CONTACT_REGIMES)}, got {contact!r}")
+    if method not in METHODS:
+        raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    n = check_int("directions", n_directions, 8, 100_000)
+    psi = directions(n)
+    names = texture.faces().names
+    cf = compute_reservoir(texture, psi, contact)
+    if method == "closed-form":
+        res = cf
+        axes = compute_axis_coefficients(texture, contact)
+        dT, defined = closed_form_dT_dpsi(lambda q: compute_reservoir(texture, q, contact), psi)
+        assoc = check_associativity(res, dT, defined)
+        springs = None
+    else:
+        from .springs import SpringModel, simulate_reservoir
+        model = SpringModel() if model is None else model
+        res = simulate_reservoir(texture, psi, model, contact)
+        ax = simulate_reservoir(texture, np.array([0.0, np.pi, 0.5 * np.pi, 1.5 * np.pi]),
+                                model, contact)
+        t = ax.tangential
+        axes = {"mu_a_plus": float(t[0]), "mu_a_minus": float(t[1]),
+                "mu_b_plus": float(t[2]), "mu_b_minus": float(t[3])}
+        assoc = check_associativity(res)
+        springs = {"model": _model_dict(model), "max_relative_deviation_from_closed_form":
+                   relative_deviation(res, cf)}
+    return Derivation(texture, contact, method, res, axes, find_self_locking(res, names),
+                      check_admissibility(res), assoc, springs, cf)
+
+
+def relative_deviation(a: Reservoir, b: Reservoir) -> float | None:
+    """max over directions of |p_a - p_b| / |p_b| where neither self-locks (None if none)."""
+    ok = ~(a.locked | b.locked | a.set_valued | b.set_valued)
+    if not ok.any():
+        return None
+    d = np.hypot(*(a.p[ok] - b.p[ok]).T) / np.maximum(np.hypot(*b.p[ok].T), 1e-300)
+    return float(d.max())
+
+
+def _model_dict(model) -> dict:
+    from dataclasses import asdict
+    return {k: (None if isinstance(v, float) and math.isinf(v) else v)
+            for k, v in asdict(model).items()}
+
+
+def _num(x: float) -> float | None:
+    """JSON number, or null for an infinite value (self-locking)."""
+    return float(x) if math.isfinite(x) else None
+
+
+def to_json(d: Derivation) -> dict:
+    """The JSON object printed by ``asperity derive --json`` (keys documented in README)."""
+    r = d.reservoir
+    T, L = r.tangential, r.lateral
+    dirs = []
+    for k in range(r.psi.size):
+        locked = bool(r.locked[k])
+        dirs.append({
+            "psi_deg": round(float(np.degrees(r.psi[k])), 10),
+            "p": None if locked else [float(r.p[k, 0]), float(r.p[k, 1])],
+            "tangential": None if locked else float(T[k]),
+            "lateral": None if locked else float(L[k]),
+            "self_locking": locked,
+            "set_valued": bool(r.set_valued[k]),
+        })
+    out = {
+        "asperity_version": __version__,
+        "texture": d.texture.to_dict(),
+        "contact": d.contact,
+        "method": d.method,
+        **{k: _num(v) for k, v in d.axes.items()},
+        "admissible": d.admissibility.admissible,
+        "min_dissipation": _num(d.admissibility.min_dissipation),
+        "self_locking": d.self_locking,
+        "associativity": {
+            "associated": d.associativity.associated,
+            "max_abs_L_minus_dT_dpsi": d.associativity.max_deviation,
+            "max_abs_lateral": d.associativity.max_lateral,
+            "psi_deg_of_max": d.associativity.psi_max_deg
+            if math.isfinite(d.associativity.psi_max_deg) else None,
+        },
+        "directions": dirs,
+    }
+    if d.springs is not None:
+        out["springs"] = d.springs
+    return out
+
+
+def format_text(d: Derivation) -> str:
+    """Human-readable summary for the terminal."""
+    def f(x):
+        return "inf (self-locking)" if not math.isfinite(x) else f"{x:.6f}"
+    tex = d.texture
+    lines = [f"texture: {tex.kind}  alpha={tex.alpha_deg:g} deg  beta={tex.beta_deg:g} deg  "
+             f"mu_alpha={tex.mu_alpha:g}  mu_beta={tex.mu_beta:g}",
+             f"contact: {d.contact}   method: {d.method}   directions: {d.reservoir.psi.size}",
+             "",
+             f"  mu_a+ (slide along +t_a) = {f(d.axes['mu_a_plus'])}",
+             f"  mu_a- (slide along -t_a) = {f(d.axes['mu_a_minus'])}",
+             f"  mu_b+ (slide along +t_b) = {f(d.axes['mu_b_plus'])}",
+             f"  mu_b- (slide along -t_b) = {f(d.axes['mu_b_minus'])}",
+             ""]
+    a = d.admissibility
+    lines.append(f"admissible (p.s >= 0 for all directions): {'yes' if a.admissible else 'NO'}"
+                 + (f"  (min p.s = {a.min_dissipation:.4g} at psi = {a.psi_min_deg:g} deg)"
+                    if math.isfinite(a.min_dissipation) else ""))
+    s = d.associativity
+    lines.append(f"associated (L = dT/dpsi): {'yes' if s.associated else 'no'}; "
+                 f"max |L - dT/dpsi| = {s.max_deviation:.4g}, max |L| = {s.max_lateral:.4g}")
+    if d.self_locking:
+        faces = sorted({e['face'] for e in d.self_locking})
+        lines.append(f"SELF-LOCKING in {len(d.self_locking)} of {d.reservoir.psi.size} directions, "
+                     f"psi in {_runs(d.reservoir)} (face {', '.join(faces)}): "
+                     "the tips cannot climb, friction is unbounded there")
+    else:
+        lines.append("self-locking: none")
+    if d.reservoir.set_valued.any():
+        lines.append("set-valued (windward, sliding along the ridges) at psi = " + ", ".join(
+            f"{x:g}" for x in np.degrees(d.reservoir.psi[d.reservoir.set_valued])) + " deg")
+    if d.springs is not None:
+        dev = d.springs["max_relative_deviation_from_closed_form"]
+        lines.append(f"spring simulation: max |p_springs - p_closed| / |p_closed| = "
+                     f"{dev:.3g}" if dev is not None else "spring simulation: no comparable direction")
+    return "\n".join(lines)
+
+
+def _runs(res: Reservoir) -> str:
+    """Self-locking directions as circular runs: '[-40, 40] deg, [170, 190] deg'."""
+    lk = res.locked
+    n = lk.size
+    deg = np.degrees(res.psi)
+    if lk.all():
+        return "all directions"
+    start = int(np.flatnonzero(~lk)[0])          # begin scanning at a free direction
+    runs, cur = [], None
+    for j in range(1, n + 1):
+        k = (start + j) % n
+        if lk[k]:
+            cur = [k, k] if cur is None else [cur[0], k]
+        elif cur is not None:
+            runs.append(cur)
+            cur = None
+    def ang(k):
+        a = deg[k]
+        return a - 360.0 if a > 180.0 else a
+    out = []
+    for a, b in runs:
+        lo, hi = ang(a), ang(b)
+        if hi < lo:
+            lo, hi = deg[a], deg[b] + 360.0 if deg[b] < deg[a] else deg[b]
+        out.append(f"[{lo:g}, {hi:g}] deg")
+    return ", ".join(out)
