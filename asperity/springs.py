@@ -117,7 +117,7 @@ class SpringModel:
     density: float = 1.0e10
     preload: float = 0.0
     n_springs: int = 64
-    steps_per_period: int = 2000
+    steps_per_period: int = 8000
 
     def __post_init__(self):
         def finite_pos(name):

@@ -1,0 +1,76 @@
+"""The command line run in-process through its real parser."""
+import json
+from pathlib import Path
+
+import pytest
+
+from asperity.cli.main import main
+
+SURF = Path(__file__).resolve().parents[1] / "surfaces"
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_derive_json_keys_and_values(capsys):
+    code, out, _ = run(capsys, "derive", "--alpha", "30", "--beta", "10", "--mu-alpha", "0.1",
+                       "--mu-beta", "0.2", "--json", "--directions", "36")
+    assert code == 0
+    d = json.loads(out)
+    for k in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus", "admissible", "self_locking",
+              "directions"):
+        assert k in d
+    assert d["mu_a_plus"] == pytest.approx(0.185697, abs=1e-6)
+    assert len(d["directions"]) == 36
+    assert set(d["directions"][0]) >= {"psi_deg", "p", "tangential", "lateral"}
+
+
+def test_derive_file_self_locking_reported_not_nan(capsys):
+    code, out, _ = run(capsys, "derive", str(SURF / "self-locking.toml"), "--json")
+    assert code == 0
+    assert "NaN" not in out and "Infinity" not in out
+    d = json.loads(out)
+    assert d["mu_a_plus"] is None
+    assert d["self_locking"] and d["self_locking"][0]["face"] == "alpha"
+
+
+def test_derive_springs_agree_with_closed_form(capsys):
+    code, out, _ = run(capsys, "derive", str(SURF / "wedge-asymmetric.toml"), "--method", "springs",
+                       "--directions", "8", "--k-f", "inf", "--n-springs", "4096", "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert d["springs"]["max_relative_deviation_from_closed_form"] < 1e-3
+    assert d["mu_a_plus"] == pytest.approx(0.185697, rel=1e-3)
+
+
+def test_derive_plot_written(tmp_path, capsys):
+    png = tmp_path / "r.png"
+    code, _, _ = run(capsys, "derive", str(SURF / "wedge-symmetric-30.toml"), "--contact", "windward",
+                     "--plot", str(png))
+    assert code == 0 and png.stat().st_size > 10_000
+    assert not list(tmp_path.glob(".*part"))
+
+
+@pytest.mark.parametrize("argv,msg", [
+    (["--alpha", "95", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.1"], "--alpha must be in (0, 90)"),
+    (["--alpha", "30", "--beta", "10", "--mu-alpha", "-1", "--mu-beta", "0.1"], "--mu-alpha must be in [0"),
+    (["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1"], "missing --mu-beta"),
+    ([], "no texture"),
+])
+def test_derive_errors_one_line(capsys, argv, msg):
+    code, out, err = run(capsys, "derive", *argv)
+    assert code == 1
+    assert msg in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_texture_file_errors(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[texture]\nkind="wedge"\nalpha_deg=30\nbeta_deg=10\nmu_alpha=0.1\nmu_beta=0.1\ncolour=1\n')
+    code, _, err = run(capsys, "derive", str(bad))
+    assert code == 1 and "unknown key texture.colour" in err
+    bad.write_text('[texture]\nkind="wedge"\nalpha_deg=30\nmu_alpha=0.1\nmu_beta=0.1\n')
+    code, _, err = run(capsys, "derive", str(bad))
+    assert code == 1 and "missing key texture.beta_deg" in err
