@@ -322,6 +322,13 @@ def simulate_sliding(texture, psi: float, model: SpringModel = SpringModel(),
     m = -(-model.steps_per_period // model.n_springs)
     pitch = st.period / st.n_pitch
     ac = abs(st.c)
+    if ac * pitch * m <= W:
+        # (nearly) along the ridges the body does not travel across the texture: only
+        # the springs' positions sample the period, so use steps_per_period of them per
+        # pitch (one window step) instead of n_springs.
+        N = max(N, model.steps_per_period * st.n_pitch)
+        W = st.period / N
+        m = 1
     ds = pitch if ac * pitch * m <= W else W / (m * ac)
     X0 = (np.arange(N) + 0.5) * W
     if model.rigid:
