@@ -18,6 +18,9 @@ _LAZY = {
     "compute_axis_coefficients": "asperity.closed_form",
     "SpringModel": "asperity.springs",
     "simulate_sliding": "asperity.springs",
+    "simulate_reservoir": "asperity.springs",
+    "simulate_loading_curve": "asperity.springs",
+    "derive": "asperity.derive",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }
