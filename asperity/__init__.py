@@ -20,7 +20,6 @@ _LAZY = {
     "simulate_sliding": "asperity.springs",
     "simulate_reservoir": "asperity.springs",
     "simulate_loading_curve": "asperity.springs",
-    "derive": "asperity.derive",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }
