@@ -116,7 +116,8 @@ class Reservoir:
         return out
 
 
-def _check_contact(contact: str) -> str:
+def check_contact(contact: str) -> str:
+    """Return ``contact`` if it is a known contact regime, else raise InputError."""
     if contact not in CONTACT_REGIMES:
         raise InputError(f"contact must be one of {', '.join(CONTACT_REGIMES)}, got {contact!r}")
     return contact
@@ -133,7 +134,7 @@ def compute_face_reservoir(gradient, mu, weight, psi, contact: str = "all-faces"
 
     Memory is O(n m); this is the reference implementation used for wedge textures.
     """
-    _check_contact(contact)
+    check_contact(contact)
     g = np.atleast_2d(np.asarray(gradient, dtype=float))
     mu = np.atleast_1d(np.asarray(mu, dtype=float))
     w = np.atleast_1d(np.asarray(weight, dtype=float))

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import __version__
-from .closed_form import (CONTACT_REGIMES, Reservoir, compute_axis_coefficients,
+from .closed_form import (Reservoir, check_contact, compute_axis_coefficients,
                           compute_reservoir, directions)
 from .diagnostics import (Admissibility, Associativity, check_admissibility,
                           check_associativity, closed_form_dT_dpsi, find_self_locking)
@@ -44,8 +44,7 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
     default one if None) for every direction and for the four axis directions, and
     reports its largest relative deviation from the closed form.
     """
-    if contact not in CONTACT_REGIMES:
-        raise InputError(f"contact must be one of {', '.join(CONTACT_REGIMES)}, got {contact!r}")
+    check_contact(contact)
     if method not in METHODS:
         raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
     n = check_int("directions", n_directions, 8, 100_000)

@@ -84,7 +84,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from .closed_form import LEVEL_SLOPE_TOL, LOCK_TOL, Reservoir, _check_contact
+from .closed_form import LEVEL_SLOPE_TOL, LOCK_TOL, Reservoir, check_contact
 from .errors import InputError, check_int, check_range
 
 #: horizontal force of one tip, in units of k_n (z_max - z_r), above which the tip is
@@ -159,10 +159,8 @@ class SpringModel:
         for key in d:
             if key not in allowed:
                 raise InputError(f"unknown key springs.{key}; allowed: {', '.join(allowed)}")
-        try:
-            return cls(**d)
-        except InputError as exc:
-            raise InputError(f"springs.{exc}") from None
+        from .texture import build_from_table
+        return build_from_table(cls, d, "springs")
 
 
 @dataclass(frozen=True)
@@ -242,7 +240,7 @@ def _check_psi(psi) -> float:
 
 
 def _setup(texture, psi: float, model: SpringModel, contact: str) -> _Setup:
-    _check_contact(contact)
+    check_contact(contact)
     if not hasattr(texture, "profile"):
         raise InputError(f"texture must be a WedgeTexture or GaussianWedgeTexture, "
                          f"got {type(texture).__name__}")

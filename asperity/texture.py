@@ -279,11 +279,16 @@ def texture_from_dict(d: dict, where: str = "texture") -> Texture:
     if missing:
         raise TextureFileError(f"missing key {where}.{missing[0]} (kind {kind!r} needs "
                                f"{', '.join(required)})")
-    kwargs = {k: v for k, v in d.items() if k != "kind"}
+    return build_from_table(cls, {k: v for k, v in d.items() if k != "kind"}, where,
+                            TextureFileError)
+
+
+def build_from_table(cls, d: dict, where: str, error=InputError):
+    """``cls(**d)``, with a field error re-raised as ``error`` prefixed by the table name."""
     try:
-        return cls(**kwargs)
+        return cls(**d)
     except InputError as exc:
-        raise TextureFileError(f"{where}.{exc}") from None
+        raise error(f"{where}.{exc}") from None
 
 
 @dataclass(frozen=True)
