@@ -93,6 +93,12 @@ class Reservoir:
     set_valued: np.ndarray
     contact: str
 
+    def take(self, index) -> "Reservoir":
+        """The directions ``index`` (a slice or index array) of this reservoir."""
+        return Reservoir(psi=self.psi[index], p=self.p[index], locked=self.locked[index],
+                         locked_face=self.locked_face[index], set_valued=self.set_valued[index],
+                         contact=self.contact)
+
     @property
     def s(self) -> np.ndarray:
         """(m, 2) unit sliding directions."""
@@ -186,10 +192,29 @@ def compute_face_reservoir(gradient, mu, weight, psi, contact: str = "all-faces"
                      set_valued=set_valued, contact=contact)
 
 
-def compute_reservoir(texture, psi, contact: str = "all-faces") -> Reservoir:
-    """Reservoir points p(psi) of a texture (anything with ``faces()``), psi in radians."""
-    f = texture.faces()
-    return compute_face_reservoir(f.gradient, f.mu, f.weight, psi, contact)
+#: from this many faces on, reservoirs are computed by the streamed numba facet kernel
+FACET_KERNEL_MIN_FACES = 64
+
+
+def compute_faces_reservoir(faces, psi, contact: str = "all-faces", progress=None) -> Reservoir:
+    """Reservoir points of :class:`~asperity.texture.Faces`: the NumPy reference for a few
+    faces (wedge textures), the parallel streamed kernel for many (surfaces); both give
+    the same result.  ``progress(fraction)`` is called during long kernel runs."""
+    n = faces.gradient.shape[0]
+    if n < FACET_KERNEL_MIN_FACES:
+        return compute_face_reservoir(faces.gradient, faces.mu, faces.weight, psi, contact)
+    from .facet_reservoir import compute_facet_reservoir
+    mu = faces.mu
+    if mu.strides == (0,):                       # uniform friction broadcast over the facets
+        mu = float(mu[0])
+    return compute_facet_reservoir(faces.gradient[:, 0], faces.gradient[:, 1], mu,
+                                   faces.weight, psi, contact, progress=progress)
+
+
+def compute_reservoir(texture, psi, contact: str = "all-faces", progress=None) -> Reservoir:
+    """Reservoir points p(psi) of a texture or surface (anything with ``faces()``), psi in
+    radians."""
+    return compute_faces_reservoir(texture.faces(), psi, contact, progress)
 
 
 def directions(n: int) -> np.ndarray:

@@ -13,10 +13,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import __version__
-from .closed_form import (Reservoir, check_contact, compute_axis_coefficients,
-                          compute_reservoir, directions)
-from .diagnostics import (Admissibility, Associativity, check_admissibility,
-                          check_associativity, closed_form_dT_dpsi, find_self_locking)
+from .closed_form import Reservoir, check_contact, compute_faces_reservoir, directions
+from .diagnostics import (DERIVATIVE_STEP, Admissibility, Associativity, check_admissibility,
+                          check_associativity, dT_dpsi_from, find_self_locking)
 from .errors import InputError, check_int
 
 METHODS = ("closed-form", "springs")
@@ -34,43 +33,86 @@ class Derivation:
     associativity: Associativity
     springs: dict | None = None      # spring model and agreement with the closed form
     closed_form: Reservoir | None = field(default=None, repr=False)
+    principal_direction_deg: float = 0.0   # t_a in the x-y frame (surfaces: found)
+    anisotropy: float = 0.0          # (max T - min T) / mean T over the directions
 
 
 def derive(texture, contact: str = "all-faces", method: str = "closed-form",
-           n_directions: int = 72, model=None) -> Derivation:
+           n_directions: int = 72, model=None, progress=None) -> Derivation:
     """Directional friction of ``texture`` over ``n_directions`` sliding directions.
 
-    method "springs" runs the spring-on-wedge simulation (``model``: a SpringModel, the
-    default one if None) for every direction and for the four axis directions, and
-    reports its largest relative deviation from the closed form.
+    ``texture``: a wedge texture (frame t_a, t_b given: the principal direction is 0) or a
+    :class:`~asperity.surface.FacetSurface` (frame x, y of the file: the principal
+    direction is found, see :func:`principal_direction`, and mu_a+/- are taken along and
+    against it, mu_b+/- at +90 deg from it).
+
+    method "springs" (wedge textures only) runs the spring-on-wedge simulation
+    (``model``: a SpringModel, the default one if None) for every direction and for the
+    four axis directions, and reports its largest relative deviation from the closed form.
+    ``progress(fraction)`` is called during long facet computations.
     """
     check_contact(contact)
     if method not in METHODS:
         raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
     n = check_int("directions", n_directions, 8, 100_000)
+    surface = getattr(texture, "kind", "") == "surface"
+    if surface and method != "closed-form":
+        raise InputError("method springs needs a wedge texture; surfaces use the facet closed form")
     psi = directions(n)
-    names = texture.faces().names
-    cf = compute_reservoir(texture, psi, contact)
+    faces = texture.faces()
+    h = DERIVATIVE_STEP
+    # the directions, their +-h neighbours for dT/dpsi: one pass over the facets
+    both = compute_faces_reservoir(faces, np.concatenate([psi, psi + h, psi - h]), contact,
+                                   progress)
+    cf = both.take(slice(0, n))
+    theta = principal_direction(cf) if surface else 0.0
+    axis_psi = theta + np.array([0.0, np.pi, 0.5 * np.pi, 1.5 * np.pi])
     if method == "closed-form":
         res = cf
-        axes = compute_axis_coefficients(texture, contact)
-        dT, defined = closed_form_dT_dpsi(lambda q: compute_reservoir(texture, q, contact), psi)
-        assoc = check_associativity(res, dT, defined)
+        t = compute_faces_reservoir(faces, axis_psi, contact).tangential
+        assoc = check_associativity(res, *dT_dpsi_from(both.take(slice(n, 2 * n)),
+                                                       both.take(slice(2 * n, 3 * n))))
         springs = None
     else:
         from .springs import SpringModel, simulate_reservoir
         model = SpringModel() if model is None else model
         res = simulate_reservoir(texture, psi, model, contact)
-        ax = simulate_reservoir(texture, np.array([0.0, np.pi, 0.5 * np.pi, 1.5 * np.pi]),
-                                model, contact)
-        t = ax.tangential
-        axes = {"mu_a_plus": float(t[0]), "mu_a_minus": float(t[1]),
-                "mu_b_plus": float(t[2]), "mu_b_minus": float(t[3])}
+        t = simulate_reservoir(texture, axis_psi, model, contact).tangential
         assoc = check_associativity(res)
         springs = {"model": _model_dict(model), "max_relative_deviation_from_closed_form":
                    relative_deviation(res, cf)}
-    return Derivation(texture, contact, method, res, axes, find_self_locking(res, names),
-                      check_admissibility(res), assoc, springs, cf)
+    axes = {"mu_a_plus": float(t[0]), "mu_a_minus": float(t[1]),
+            "mu_b_plus": float(t[2]), "mu_b_minus": float(t[3])}
+    return Derivation(texture, contact, method, res, axes, find_self_locking(res, faces.names),
+                      check_admissibility(res), assoc, springs, cf,
+                      principal_direction_deg=math.degrees(theta),
+                      anisotropy=anisotropy(res))
+
+
+def principal_direction(res: Reservoir) -> float:
+    """Principal direction (radians, in [0, pi)) of a reservoir over a uniform full turn of
+    directions: the axis of largest friction, the phase of the second Fourier harmonic of
+    T(psi) = p . s (a sliding direction and its reverse count alike; self-locking
+    directions count as the largest finite friction).  Across the lay of a textured
+    surface; 0 for the wedge textures' t_a when mu_a > mu_b."""
+    T = res.tangential
+    ok = np.isfinite(T)
+    if not ok.any():
+        return 0.0
+    T = np.where(ok, T, T[ok].max())
+    c2 = np.sum(T * np.exp(-2j * res.psi))
+    if abs(c2) <= 1e-14 * np.sum(np.abs(T)):
+        return 0.0
+    return float(np.mod(0.5 * np.angle(c2), np.pi))
+
+
+def anisotropy(res: Reservoir) -> float:
+    """(max T - min T) / mean T over the directions that do not self-lock (0 if none)."""
+    T = res.tangential
+    T = T[np.isfinite(T)]
+    if T.size == 0 or T.mean() <= 0:
+        return 0.0
+    return float((T.max() - T.min()) / T.mean())
 
 
 def relative_deviation(a: Reservoir, b: Reservoir) -> float | None:
@@ -114,6 +156,8 @@ def to_json(d: Derivation) -> dict:
         "contact": d.contact,
         "method": d.method,
         **{k: _num(v) for k, v in d.axes.items()},
+        "principal_direction_deg": d.principal_direction_deg,
+        "anisotropy": d.anisotropy,
         "admissible": d.admissibility.admissible,
         "min_dissipation": _num(d.admissibility.min_dissipation),
         "self_locking": d.self_locking,
@@ -126,6 +170,9 @@ def to_json(d: Derivation) -> dict:
         },
         "directions": dirs,
     }
+    if getattr(d.texture, "kind", "") == "surface":
+        out["n_facets"] = d.texture.n_facets
+        out["n_undefined"] = d.texture.n_undefined
     if d.springs is not None:
         out["springs"] = d.springs
     return out
@@ -136,14 +183,23 @@ def format_text(d: Derivation) -> str:
     def f(x):
         return "inf (self-locking)" if not math.isfinite(x) else f"{x:.6f}"
     tex = d.texture
-    lines = [f"texture: {tex.kind}  alpha={tex.alpha_deg:g} deg  beta={tex.beta_deg:g} deg  "
-             f"mu_alpha={tex.mu_alpha:g}  mu_beta={tex.mu_beta:g}",
-             f"contact: {d.contact}   method: {d.method}   directions: {d.reservoir.psi.size}",
-             "",
-             f"  mu_a+ (slide along +t_a) = {f(d.axes['mu_a_plus'])}",
-             f"  mu_a- (slide along -t_a) = {f(d.axes['mu_a_minus'])}",
-             f"  mu_b+ (slide along +t_b) = {f(d.axes['mu_b_plus'])}",
-             f"  mu_b- (slide along -t_b) = {f(d.axes['mu_b_minus'])}",
+    if getattr(tex, "kind", "") == "surface":
+        th = d.principal_direction_deg
+        head = [tex.describe(),
+                f"contact: {d.contact}   directions: {d.reservoir.psi.size}",
+                f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
+                f"from +x; anisotropy (max T - min T)/mean T = {d.anisotropy:.4f}"]
+        a, b = f"{th:.1f} deg", f"{(th + 90) % 360:.1f} deg"
+    else:
+        head = [f"texture: {tex.kind}  alpha={tex.alpha_deg:g} deg  beta={tex.beta_deg:g} deg  "
+                f"mu_alpha={tex.mu_alpha:g}  mu_beta={tex.mu_beta:g}",
+                f"contact: {d.contact}   method: {d.method}   directions: {d.reservoir.psi.size}"]
+        a, b = "t_a", "t_b"
+    lines = head + ["",
+             f"  mu_a+ (slide along +{a}) = {f(d.axes['mu_a_plus'])}",
+             f"  mu_a- (slide along -{a}) = {f(d.axes['mu_a_minus'])}",
+             f"  mu_b+ (slide along +{b}) = {f(d.axes['mu_b_plus'])}",
+             f"  mu_b- (slide along -{b}) = {f(d.axes['mu_b_minus'])}",
              ""]
     a = d.admissibility
     lines.append(f"admissible (p.s >= 0 for all directions): {'yes' if a.admissible else 'NO'}"

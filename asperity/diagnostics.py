@@ -103,7 +103,12 @@ def closed_form_dT_dpsi(evaluate, psi: np.ndarray) -> tuple[np.ndarray, np.ndarr
     False if either neighbour self-locks or is set-valued (a jump of the reservoir).
     """
     h = DERIVATIVE_STEP
-    rp, rm = evaluate(psi + h), evaluate(psi - h)
+    return dT_dpsi_from(evaluate(psi + h), evaluate(psi - h))
+
+
+def dT_dpsi_from(rp: Reservoir, rm: Reservoir) -> tuple[np.ndarray, np.ndarray]:
+    """Central difference of T between reservoirs at psi + DERIVATIVE_STEP and psi - it."""
+    h = DERIVATIVE_STEP
     defined = ~(rp.locked | rm.locked | rp.set_valued | rm.set_valued)
     dT = np.where(defined, (np.where(defined, rp.tangential, 0) - np.where(defined, rm.tangential, 0))
                   / (2 * h), 0.0)
