@@ -49,12 +49,12 @@ FASTMATH = {"reassoc", "nsz", "arcp"}
 
 
 @njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def _sweep_all(gx, gy, a, mu, w, lo, hi, c, s, tol, stol):
-    """(sum w hx/fz, sum w hy/fz, non-locking count) over facets lo..hi-1, all loaded."""
+def _sweep_all(gx, gy, a, mu, w, c, s, tol, stol):
+    """(sum w hx/fz, sum w hy/fz, non-locking count) over the facets given, all loaded."""
     px = 0.0
     py = 0.0
     nok = 0.0
-    for i in range(lo, hi):
+    for i in range(gx.size):
         g1 = gx[i]
         g2 = gy[i]
         m = mu[i]
@@ -72,14 +72,14 @@ def _sweep_all(gx, gy, a, mu, w, lo, hi, c, s, tol, stol):
 
 
 @njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def _sweep_all_mu(gx, gy, a, m, w, lo, hi, c, s, tol, stol):
+def _sweep_all_mu(gx, gy, a, m, w, c, s, tol, stol):
     """:func:`_sweep_all` with one friction coefficient ``m`` for every facet."""
     px = 0.0
     py = 0.0
     nok = 0.0
     mc = m * c
     ms = m * s
-    for i in range(lo, hi):
+    for i in range(gx.size):
         g1 = gx[i]
         g2 = gy[i]
         wi = w[i]
@@ -96,14 +96,14 @@ def _sweep_all_mu(gx, gy, a, m, w, lo, hi, c, s, tol, stol):
 
 
 @njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def _sweep_windward(gx, gy, a, mu, w, lo, hi, c, s, tol, stol):
+def _sweep_windward(gx, gy, a, mu, w, c, s, tol, stol):
     """(sum w hx/fz, sum w hy/fz, sum w, non-locking count, windward count), windward."""
     px = 0.0
     py = 0.0
     ww = 0.0
     nok = 0.0
     nw = 0.0
-    for i in range(lo, hi):
+    for i in range(gx.size):
         g1 = gx[i]
         g2 = gy[i]
         m = mu[i]
@@ -126,7 +126,7 @@ def _sweep_windward(gx, gy, a, mu, w, lo, hi, c, s, tol, stol):
 
 
 @njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def _sweep_windward_mu(gx, gy, a, m, w, lo, hi, c, s, tol, stol):
+def _sweep_windward_mu(gx, gy, a, m, w, c, s, tol, stol):
     """:func:`_sweep_windward` with one friction coefficient ``m`` for every facet."""
     px = 0.0
     py = 0.0
@@ -135,7 +135,7 @@ def _sweep_windward_mu(gx, gy, a, m, w, lo, hi, c, s, tol, stol):
     nw = 0.0
     mc = m * c
     ms = m * s
-    for i in range(lo, hi):
+    for i in range(gx.size):
         g1 = gx[i]
         g2 = gy[i]
         wi = w[i]
@@ -232,20 +232,22 @@ def facet_sweep(gx, gy, a, mu, mu_uniform, w, cs, ss, mode, tol, stol,
                 nlock = 0.0
                 if mode == MODE_ALL:
                     if mu_uniform:
-                        px, py, nok = _sweep_all_mu(gx, gy, a, mu[0], w, lo, hi, c, s, tol, stol)
+                        px, py, nok = _sweep_all_mu(gx[lo:hi], gy[lo:hi], a[lo:hi], mu[0],
+                                                     w[lo:hi], c, s, tol, stol)
                     else:
-                        px, py, nok = _sweep_all(gx, gy, a, mu, w, lo, hi, c, s, tol, stol)
+                        px, py, nok = _sweep_all(gx[lo:hi], gy[lo:hi], a[lo:hi], mu[lo:hi],
+                                                  w[lo:hi], c, s, tol, stol)
                     acc[t, j, ACC_PX] += px
                     acc[t, j, ACC_PY] += py
                     nlock = (hi - lo) - nok
                     acc[t, j, ACC_NLOAD] += hi - lo
                 elif mode == MODE_WINDWARD:
                     if mu_uniform:
-                        px, py, ww, nok, nwind = _sweep_windward_mu(gx, gy, a, mu[0], w, lo, hi,
-                                                                    c, s, tol, stol)
+                        px, py, ww, nok, nwind = _sweep_windward_mu(
+                            gx[lo:hi], gy[lo:hi], a[lo:hi], mu[0], w[lo:hi], c, s, tol, stol)
                     else:
-                        px, py, ww, nok, nwind = _sweep_windward(gx, gy, a, mu, w, lo, hi,
-                                                                 c, s, tol, stol)
+                        px, py, ww, nok, nwind = _sweep_windward(
+                            gx[lo:hi], gy[lo:hi], a[lo:hi], mu[lo:hi], w[lo:hi], c, s, tol, stol)
                     acc[t, j, ACC_PX] += px
                     acc[t, j, ACC_PY] += py
                     acc[t, j, ACC_W] += ww
@@ -268,3 +270,31 @@ def facet_sweep(gx, gy, a, mu, mu_uniform, w, cs, ss, mode, tol, stol,
                         if i >= 0:
                             first[t, j] = i
             lo = hi
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def prepare(gx, gy, mu, w, a):
+    """Fill ``a = 1/sqrt(1 + gx*gx + gy*gy)`` (rounded as the NumPy reference) and count
+    (non-finite gradients, bad mu (non-finite or < 0), bad weights (non-finite or < 0),
+    positive weights).  ``mu`` has one element or n."""
+    n = gx.size
+    bad_g = 0
+    bad_w = 0
+    npos = 0
+    for i in prange(n):
+        g1 = gx[i]
+        g2 = gy[i]
+        wi = w[i]
+        if not (math.isfinite(g1) and math.isfinite(g2)):
+            bad_g += 1
+        if not (math.isfinite(wi) and wi >= 0.0):
+            bad_w += 1
+        if wi > 0.0:
+            npos += 1
+        a[i] = 1.0 / math.sqrt(1.0 + g1 * g1 + g2 * g2)
+    bad_mu = 0
+    for i in prange(mu.size):
+        m = mu[i]
+        if not (math.isfinite(m) and m >= 0.0):
+            bad_mu += 1
+    return bad_g, bad_mu, bad_w, npos

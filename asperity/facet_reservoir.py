@@ -28,16 +28,17 @@ from .errors import InputError
 #: facets per cache chunk of the numba kernel (5 float64 streams of 1024 = 40 kB: L1/L2)
 CHUNK = 1024
 #: target facet-directions per kernel call when batching directions automatically
-BATCH_WORK = 1 << 27
+BATCH_WORK = 1 << 30
 #: below this many facets per thread the kernel splits directions instead of facets
 MIN_FACETS_PER_WORKER = 8192
+
 
 class _Facets:
     """Validated, contiguous float64 facet data (zero-weight facets removed)."""
 
     __slots__ = ("gx", "gy", "a", "mu", "mu_uniform", "w", "idx", "wsum", "n_in")
 
-    def __init__(self, gx, gy, mu, weight):
+    def __init__(self, gx, gy, mu, weight, engine="numba"):
         gx = _vector("gx", gx)
         gy = _vector("gy", gy)
         n = gx.shape[0]
@@ -59,27 +60,37 @@ class _Facets:
             if mu_arr.shape != (n,):
                 raise InputError(f"mu must be a number or an array of shape ({n},), "
                                  f"got shape {mu_arr.shape}")
-        if not (np.isfinite(gx).all() and np.isfinite(gy).all()):
-            raise InputError("gx and gy must be finite")
-        if not np.isfinite(mu_arr).all() or (mu_arr < 0).any():
+        gx = np.ascontiguousarray(gx)
+        gy = np.ascontiguousarray(gy)
+        w = np.ascontiguousarray(w)
+        mu_arr = np.ascontiguousarray(mu_arr)
+        if engine == "numba":
+            from ._facet_kernels import prepare
+            a = np.empty(n)
+            bad_g, bad_mu, bad_w, npos = prepare(gx, gy, mu_arr, w, a)
+        else:
+            bad_g = int(np.count_nonzero(~(np.isfinite(gx) & np.isfinite(gy))))
+            bad_mu = int(np.count_nonzero(~(np.isfinite(mu_arr) & (mu_arr >= 0))))
+            bad_w = int(np.count_nonzero(~(np.isfinite(w) & (w >= 0))))
+            npos = int(np.count_nonzero(w > 0))
+            with np.errstate(all="ignore"):
+                # the reference's 1/nrm, nrm = sqrt(1 + gx*gx + gy*gy), bitwise
+                a = 1.0 / np.sqrt(1.0 + gx * gx + gy * gy)
+        if bad_g:
+            raise InputError(f"gx and gy must be finite ({bad_g} facets are not)")
+        if bad_mu:
             raise InputError("mu must be finite and >= 0")
-        if not np.isfinite(w).all() or (w < 0).any() or not (w > 0).any():
+        if bad_w or npos == 0:
             raise InputError("weight must be finite, >= 0 and not all zero")
-        keep = w > 0
-        if keep.all():
+        if npos == n:
             idx = np.empty(0, dtype=np.int64)
         else:
-            idx = np.flatnonzero(keep).astype(np.int64)
-            gx, gy, w = gx[idx], gy[idx], w[idx]
+            idx = np.flatnonzero(w > 0).astype(np.int64)
+            gx, gy, w, a = gx[idx], gy[idx], w[idx], a[idx]
             if not mu_uniform:
                 mu_arr = mu_arr[idx]
-        self.gx = np.ascontiguousarray(gx)
-        self.gy = np.ascontiguousarray(gy)
-        self.w = np.ascontiguousarray(w)
-        self.mu = np.ascontiguousarray(mu_arr)
+        self.gx, self.gy, self.w, self.a, self.mu = gx, gy, w, a, mu_arr
         self.mu_uniform = mu_uniform
-        # the reference's 1/nrm, nrm = sqrt(1 + gx*gx + gy*gy), bitwise
-        self.a = 1.0 / np.sqrt(1.0 + self.gx * self.gx + self.gy * self.gy)
         self.idx = idx
         self.wsum = float(self.w.sum())
         self.n_in = n
@@ -224,7 +235,7 @@ def compute_facet_reservoir(gx, gy, mu, weight, psi, contact: str = "all-faces",
     psi      : (m,) float, sliding directions in radians
     contact  : "all-faces" or "windward"
     progress : optional callable(fraction_done) called after each batch of directions
-    batch    : directions per kernel call (default: about 1.3e8 facet-directions a call)
+    batch    : directions per kernel call (default: about 1e9 facet-directions a call)
 
     Same result as :func:`~asperity.closed_form.compute_face_reservoir` (to rounding);
     memory O(n + m * threads).
@@ -322,6 +333,6 @@ def numpy_facet_reservoir(gx, gy, mu, weight, psi, contact: str = "all-faces", *
     """
     check_contact(contact)
     b = _check_callables(progress, batch)
-    fac = _Facets(gx, gy, mu, weight)
+    fac = _Facets(gx, gy, mu, weight, engine="numpy")
     psi = _psi(psi)
     return _run(fac, psi, contact, progress, b, _numpy_pass)
