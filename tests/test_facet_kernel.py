@@ -206,3 +206,16 @@ def test_import_asperity_does_not_import_numba():
     code = "import sys, asperity, asperity.facet_reservoir; print('numba' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_bench_facets_cli_json(capsys):
+    import json
+
+    from asperity.cli.main import main
+    assert main(["bench", "--only", "facets", "--facets", "32", "--directions", "12",
+                 "--numpy-directions", "3", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)["facets"]
+    assert out["facets"] == 2 * 32 * 32 and out["numpy_directions"] == 3
+    for v in out["regimes"].values():
+        assert v["same_flags"] and v["max_rel_diff"] < 1e-12
+        assert v["numba"]["facet_directions_per_second"] > 0

@@ -1,27 +1,57 @@
-"""``asperity bench``: speed figures of the closed form and the spring simulation."""
+"""``asperity bench``: speed figures of the closed form, the spring simulation and the
+streamed facet reservoir."""
 from __future__ import annotations
 
 import json
 
+PARTS = ("closed-form", "springs", "facets")
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("bench", help="print speed figures",
-                       description="Closed-form reservoir evaluations per second and "
-                                   "spring-tip updates per second (compilation excluded).")
+                       description="Closed-form reservoir evaluations per second, "
+                                   "spring-tip updates per second and (with --only facets or "
+                                   "--facets N) facet-directions per second of the facet "
+                                   "kernel against streamed NumPy (compilation excluded).")
     p.add_argument("--seconds", type=float, default=1.0, help="time per measurement (s)")
+    p.add_argument("--only", choices=PARTS, default=None,
+                   help="run one benchmark only (default: closed-form and springs)")
+    p.add_argument("--facets", type=int, default=None, metavar="N",
+                   help="also run the facet benchmark on an N x N grid (2 N^2 facets; "
+                        "default 2048 with --only facets)")
+    p.add_argument("--directions", type=int, default=360,
+                   help="sliding directions of the facet benchmark (default 360)")
+    p.add_argument("--numpy-directions", type=int, default=8,
+                   help="directions timed for the NumPy baseline (default 8)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=main)
 
 
 def main(args) -> int:
-    from ..bench import run
+    from .. import bench
     from ..errors import check_range
-    out = run(check_range("--seconds", args.seconds, 0.05, 600))
+    seconds = check_range("--seconds", args.seconds, 0.05, 600)
+    parts = [args.only] if args.only else ["closed-form", "springs"]
+    if args.facets is not None and "facets" not in parts:
+        parts.append("facets")
+    out = {}
+    if "closed-form" in parts:
+        out["closed_form"] = bench.bench_closed_form(seconds)
+    if "springs" in parts:
+        out["springs"] = bench.bench_springs(seconds)
+    if "facets" in parts:
+        n_grid = int(check_range("--facets", 2048 if args.facets is None else args.facets,
+                                 2, 16384))
+        n_dir = int(check_range("--directions", args.directions, 1, 1_000_000))
+        n_np = int(check_range("--numpy-directions", args.numpy_directions, 1, 1_000_000))
+        out["facets"] = bench.bench_facets(n_grid, n_dir, n_np)
     if args.json:
         print(json.dumps(out, indent=2))
         return 0
-    for k, v in out["closed_form"].items():
+    for k, v in out.get("closed_form", {}).items():
         print(f"closed form, {k:9s}: {v['evaluations_per_second']:.3e} reservoir evaluations/s")
-    for k, v in out["springs"].items():
+    for k, v in out.get("springs", {}).items():
         print(f"springs, {k:23s}: {v['updates_per_second']:.3e} spring-tip updates/s")
+    if "facets" in out:
+        print(bench.format_facets(out["facets"]))
     return 0
