@@ -17,7 +17,6 @@ classified differently by the kernel, which evaluates ``fz`` as ``(a q - mu g.s)
 """
 from __future__ import annotations
 
-import math
 import operator
 
 import numpy as np
