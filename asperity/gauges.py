@@ -598,11 +598,11 @@ def prepare_reservoir(res: Reservoir, evaluate=None) -> ReservoirData:
     if psi.ndim != 1 or psi.size < 8:
         raise InputError(f"a fit needs at least 8 directions, got {psi.size}")
     if res.locked.any():
-        deg = np.degrees(psi[res.locked])
+        from .derive import _runs
         raise InputError(
             f"the texture self-locks in {int(res.locked.sum())} of {psi.size} directions "
-            f"(psi from {deg.min():g} to {deg.max():g} deg): friction is unbounded there and no "
-            "finite friction law can be fitted")
+            f"(psi in {_runs(res)}): friction is unbounded there and no finite friction law "
+            "can be fitted")
     order = np.argsort(np.mod(psi, TWO_PI), kind="stable")
     psi = np.mod(psi[order], TWO_PI)
     p = np.asarray(res.p, dtype=float)[order]

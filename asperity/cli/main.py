@@ -10,6 +10,8 @@ from .. import __version__
 #: subcommand name -> module in asperity.cli (each has add_parser(subparsers) and main(args))
 COMMANDS = {
     "derive": "derive",
+    "fit": "fit",
+    "law": "law",
     "report": "report",
     "bench": "bench",
 }

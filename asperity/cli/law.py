@@ -1,0 +1,92 @@
+"""``asperity law``: evaluate, draw and export the friction law of a gauge file."""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "law", help="evaluate, draw or export a gauge file's friction law",
+        description="Read a gauge file written by `asperity fit` and evaluate its law: --psi "
+                    "gives the friction force p = -lambda_T/lambda_N (per unit normal load) for "
+                    "sliding in direction psi (deg, in the frame of the source: wedge textures "
+                    "from t_a towards t_b, surfaces from +x towards +y), with its tangential "
+                    "and lateral parts and the Walker-Leine alpha. Where the law is set-valued "
+                    "(windward, sliding along the ridges) every force on a segment slides that "
+                    "way: p is the point on the ray of the middle of D's flat edge and the "
+                    "segment's ends are given. Exports: --csv (psi_deg,p_a,p_b in the "
+                    "principal frame, t_a along the gauge's principal direction) and --abaqus "
+                    "(*FRICTION, ANISOTROPIC block of the best symmetric orthotropic ellipse, "
+                    "with a comment line stating what it loses).",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("gauge", metavar="GAUGE.json", help="gauge file written by asperity fit")
+    p.add_argument("--psi", type=float, metavar="DEG", help="sliding direction in degrees")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="draw C, D, the data and the sliding rule")
+    p.add_argument("--csv", metavar="FILE.csv", help="write the polar table psi_deg,p_a,p_b")
+    p.add_argument("--csv-directions", type=int, default=360, metavar="N",
+                   help="directions of the CSV table (4 to 1000000)")
+    p.add_argument("--abaqus", metavar="FILE.inp",
+                   help="write an Abaqus *FRICTION, ANISOTROPIC block (symmetric orthotropic "
+                        "approximation)")
+    p.set_defaults(func=main)
+
+
+def force_json(gl, psi_deg: float) -> dict:
+    """The object printed by ``asperity law --psi DEG --json``."""
+    import numpy as np
+    from ..errors import InputError
+    x = float(psi_deg)
+    if not math.isfinite(x):   # NaN and +-inf
+        raise InputError(f"--psi must be a finite angle in deg, got {x:g}")
+    f = gl.force(np.array([math.radians(x)]))
+    out = {"psi_deg": x, "p": [float(f.p[0, 0]), float(f.p[0, 1])],
+           "tangential": float(f.tangential[0]), "lateral": float(f.lateral[0]),
+           "alpha": float(f.alpha[0]), "set_valued": bool(f.set_valued[0])}
+    if f.set_valued[0]:
+        out["segment"] = [f.p_minus[0].tolist(), f.p_plus[0].tolist()]
+    return out
+
+
+def run(args) -> dict:
+    """Python API of the command: the JSON object it prints with --json."""
+    from ..gauge_file import read_gauge
+    from .fit import summary
+    gl = read_gauge(args.gauge)
+    obj = force_json(gl, args.psi) if args.psi is not None else summary(gl)
+    if args.csv:
+        from ..export import write_csv
+        write_csv(args.csv, gl, args.csv_directions)
+    if args.abaqus:
+        from ..export import write_abaqus
+        write_abaqus(args.abaqus, gl)
+    if args.plot:
+        from ..report_gauges import plot_law
+        plot_law(gl, args.plot)
+    return gl, obj
+
+
+def main(args) -> int:
+    gl, obj = run(args)
+    if args.json:
+        print(json.dumps(obj, indent=2, allow_nan=False))
+    elif args.psi is not None:
+        line = (f"psi = {obj['psi_deg']:g} deg: p = ({obj['p'][0]:.6f}, {obj['p'][1]:.6f})  "
+                f"tangential = {obj['tangential']:.6f}  lateral = {obj['lateral']:.6f}  "
+                f"alpha = {obj['alpha']:.6f}")
+        print(line)
+        if obj["set_valued"]:
+            a, b = obj["segment"]
+            print(f"set-valued: any force on the segment ({a[0]:.6f}, {a[1]:.6f}) -- "
+                  f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
+    else:
+        from .fit import format_fit
+        print(f"gauge file: {args.gauge}")
+        print(format_fit(gl))
+    for flag, what in (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot")):
+        v = getattr(args, flag)
+        if v and not args.json:
+            print(f"{what} written to {v}")
+    return 0
