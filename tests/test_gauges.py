@@ -9,10 +9,9 @@ import pytest
 from asperity.closed_form import Reservoir, compute_reservoir
 from asperity.derive import derive
 from asperity.errors import InputError
-from asperity.gauges import (ConvexSet, StarSet, TruncatedEllipse, WalkerLeineLaw,
-                             angle_between, associated, compare_with_reservoir, coulomb,
-                             fit_derivation, fit_star, fit_truncated_ellipse, polar_angle,
-                             prepare_reservoir, unit)
+from asperity.gauges import (ConvexSet, StarSet, TruncatedEllipse, angle_between, associated,
+                             compare_with_reservoir, coulomb, fit_derivation, fit_star,
+                             fit_truncated_ellipse, prepare_reservoir, unit)
 from asperity.texture import WedgeTexture, load_texture
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
@@ -285,7 +284,8 @@ def _mutate(obj, path, value):
     (["format"], "other", "field format must be 'asperity-gauge'"),
     (["law"], KeyError, "missing field law"),
     (["parameters", "D", "h"], KeyError, "missing field parameters.D.h"),
-    (["parameters", "C", "points", 3, 1], "NaN", "field parameters.C.points[3][1] must be a finite number, got NaN"),
+    (["parameters", "C", "points", 3, 1], "NaN",
+     "field parameters.C.points[3][1] must be a finite number, got NaN"),
     (["fit", "max_radial_error"], "Infinity", "field fit.max_radial_error must be a finite number"),
     (["parameters", "D", "h", 2], -1.0, "field parameters.D.h[2] must be > 0"),
     (["parameters", "D", "h", 5], "abc", "field parameters.D.h[5] must be of type number"),

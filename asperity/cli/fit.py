@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 
 LAWS = {"ellipse": "truncated-ellipse", "star": "star"}
 
@@ -61,8 +62,7 @@ def summary(gl) -> dict:
         out["parameters"] = {**gl.law.C.axes, "theta_rad": gl.law.C.theta}
     else:
         out["parameters"] = {"C_vertices": int(gl.law.C.n), "D_samples": int(gl.law.D.psi.size),
-                             "D_flat_edges_deg": [float(x) for x in
-                                                  (gl.law.D.edges * 180.0 / 3.141592653589793)]}
+                             "D_flat_edges_deg": [math.degrees(x) for x in gl.law.D.edges]}
     return out
 
 
