@@ -100,10 +100,11 @@ def principal_direction(res: Reservoir) -> float:
     if not ok.any():
         return 0.0
     T = np.where(ok, T, T[ok].max())
-    c2 = np.sum(T * np.exp(-2j * res.psi))
+    c2 = np.sum(T * np.exp(2j * res.psi))       # T ~ c0 + c cos 2(psi - theta)
     if abs(c2) <= 1e-14 * np.sum(np.abs(T)):
         return 0.0
-    return float(np.mod(0.5 * np.angle(c2), np.pi))
+    theta = float(np.mod(0.5 * np.angle(c2), np.pi))
+    return 0.0 if np.pi - theta < 1e-12 else theta
 
 
 def anisotropy(res: Reservoir) -> float:

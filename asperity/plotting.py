@@ -78,20 +78,34 @@ def plot_derivation(d, path, *, other=None) -> None:
     from .io import save_figure_atomic
     plt = _plt()
     res = d.reservoir
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.2),
-                                  gridspec_kw={"width_ratios": [1.05, 1]})
+    tex = d.texture
+    surface = getattr(tex, "kind", "") == "surface"
+    if surface and tex.preview is not None:
+        fig, (ax, ax2, ax3) = plt.subplots(1, 3, figsize=(16.5, 5.2),
+                                           gridspec_kw={"width_ratios": [1.05, 1, 0.9]})
+        draw_height_preview(ax3, tex, d.principal_direction_deg)
+    else:
+        fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.2),
+                                      gridspec_kw={"width_ratios": [1.05, 1]})
     if other is not None:
         draw_reservoir(ax, other, faint=True)
     draw_reservoir(ax, res)
     ax.axhline(0, color="0.8", lw=0.5)
     ax.axvline(0, color="0.8", lw=0.5)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(r"$p_a$ (along $t_a$, across the ridges)")
-    ax.set_ylabel(r"$p_b$ (along $t_b$, along the ridges)")
-    tex = d.texture
-    ax.set_title(f"reservoir p(psi), {d.contact}\n"
-                 f"alpha={tex.alpha_deg:g}, beta={tex.beta_deg:g} deg, "
-                 f"mu_alpha={tex.mu_alpha:g}, mu_beta={tex.mu_beta:g}", fontsize=10)
+    if surface:
+        ax.set_xlabel(r"$p_x$")
+        ax.set_ylabel(r"$p_y$")
+        info = tex.info
+        mu = info.get("mu")
+        ax.set_title(f"reservoir p(psi), {d.contact}\n{info.get('source')}, {tex.n_facets} facets, "
+                     + (f"mu={mu:g}" if mu is not None else "friction map"), fontsize=10)
+    else:
+        ax.set_xlabel(r"$p_a$ (along $t_a$, across the ridges)")
+        ax.set_ylabel(r"$p_b$ (along $t_b$, along the ridges)")
+        ax.set_title(f"reservoir p(psi), {d.contact}\n"
+                     f"alpha={tex.alpha_deg:g}, beta={tex.beta_deg:g} deg, "
+                     f"mu_alpha={tex.mu_alpha:g}, mu_beta={tex.mu_beta:g}", fontsize=10)
     ax.plot([], [], color="0.6", lw=0.6, ls=":", label="sliding direction s")
     if res.locked.any():
         ax.plot([], [], color="crimson", lw=2.5, label="self-locking directions")
@@ -108,7 +122,7 @@ def plot_derivation(d, path, *, other=None) -> None:
         for x in deg[res.locked]:
             ax2.axvline(x, color="crimson", alpha=0.25, lw=3)
     ax2.axhline(0, color="0.7", lw=0.5)
-    ax2.set_xlabel("sliding direction psi (deg from t_a)")
+    ax2.set_xlabel("sliding direction psi (deg from " + ("+x)" if surface else "t_a)"))
     ax2.set_ylabel("force / normal load")
     ax2.set_xlim(0, 360)
     ax2.set_xticks(range(0, 361, 45))
@@ -117,8 +131,33 @@ def plot_derivation(d, path, *, other=None) -> None:
     a = d.axes
     def fmt(x):
         return "inf" if not math.isfinite(x) else f"{x:.4f}"
+    if surface:
+        th = d.principal_direction_deg
+        for x in (th, th + 180.0):
+            ax2.axvline(x % 360.0, color="tab:orange", lw=1.0, ls="--")
     ax2.set_title(f"mu_a+={fmt(a['mu_a_plus'])}  mu_a-={fmt(a['mu_a_minus'])}  "
                   f"mu_b+={fmt(a['mu_b_plus'])}  mu_b-={fmt(a['mu_b_minus'])}", fontsize=10)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)
     plt.close(fig)
+
+
+def draw_height_preview(ax, surface, principal_deg: float) -> None:
+    """Height map (or binned mesh heights) in um, with the principal direction t_a
+    (across the lay, largest friction) drawn through the centre."""
+    z = surface.preview
+    lx, ly = surface.extent
+    im = ax.imshow((z - np.nanmean(z)).T * 1e6, origin="lower", cmap="viridis",
+                   extent=(0, lx * 1e3, 0, ly * 1e3), interpolation="nearest")
+    ax.figure.colorbar(im, ax=ax, fraction=0.046, pad=0.04, label="height (um)")
+    cx, cy = 0.5 * lx * 1e3, 0.5 * ly * 1e3
+    r = 0.4 * min(lx, ly) * 1e3
+    t = math.radians(principal_deg)
+    ax.annotate("", xy=(cx + r * math.cos(t), cy + r * math.sin(t)),
+                xytext=(cx - r * math.cos(t), cy - r * math.sin(t)),
+                arrowprops=dict(arrowstyle="->", color="tab:orange", lw=2.0))
+    ax.text(cx + r * math.cos(t), cy + r * math.sin(t), f"  t_a {principal_deg:.1f} deg",
+            color="tab:orange", fontsize=9, fontweight="bold")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title("height map, principal direction t_a", fontsize=10)

@@ -74,3 +74,57 @@ def test_texture_file_errors(tmp_path, capsys):
     bad.write_text('[texture]\nkind="wedge"\nalpha_deg=30\nmu_alpha=0.1\nmu_beta=0.1\n')
     code, _, err = run(capsys, "derive", str(bad))
     assert code == 1 and "missing key texture.beta_deg" in err
+
+
+def _wedge_stl(tmp_path, angle=0.0):
+    import trimesh
+
+    from asperity.surface import wedge_mesh
+    from asperity.texture import WedgeTexture
+    mesh, _ = wedge_mesh(WedgeTexture(30, 30, 0.2, 0.2, height=1e-3), periods=3, angle_deg=angle)
+    path = tmp_path / "wedges.stl"
+    trimesh.Trimesh(mesh.vertices * 1e3, mesh.faces, process=False).export(path)
+    return path
+
+
+def test_derive_surface_file_json_keys(capsys, tmp_path):
+    path = _wedge_stl(tmp_path, angle=25.0)
+    code, out, _ = run(capsys, "derive", str(path), "--unit", "mm", "--mu", "0.2", "--detrend",
+                       "none", "--json", "--directions", "36")
+    assert code == 0
+    d = json.loads(out)
+    assert d["n_facets"] == 12 and d["n_undefined"] == 0
+    assert d["principal_direction_deg"] == pytest.approx(25.0, abs=1e-4)   # float32 STL
+    # symmetric 30/30 wedge, mu 0.2, across the ridges: H(0.2, 30 deg) and H(0.2, -30 deg) averaged
+    import math
+    t = math.tan(math.radians(30))
+    h = 0.5 * ((0.2 + t) / (1 - 0.2 * t) + (0.2 - t) / (1 + 0.2 * t))
+    assert d["mu_a_plus"] == pytest.approx(h, rel=1e-5)
+    assert d["texture"]["kind"] == "mesh" and d["texture"]["n_skipped_vertical"] == 0
+
+
+def test_derive_surface_errors_are_one_line(capsys, tmp_path):
+    path = _wedge_stl(tmp_path)
+    code, out, err = run(capsys, "derive", str(path))
+    assert code == 1 and "unit" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+    code, _, err = run(capsys, "derive", str(path), "--unit", "mm", "--mu", "-1")
+    assert code == 1 and "mu" in err and len(err.strip().splitlines()) == 1
+    code, _, err = run(capsys, "derive", str(path), "--unit", "mm", "--rest-level", "1.0")
+    assert code == 1 and "rest_level" in err
+    code, _, err = run(capsys, "derive", "--alpha", "30", "--beta", "10", "--mu-alpha", "0.1",
+                       "--mu-beta", "0.1", "--mu", "0.2")
+    assert code == 1 and "--mu" in err
+
+
+def test_derive_surface_friction_map_and_plot(capsys, tmp_path):
+    import numpy as np
+    z = np.zeros((6, 5))
+    np.save(tmp_path / "flat.npy", z)
+    np.save(tmp_path / "mu.npy", np.full((6, 5), 0.25))
+    code, out, _ = run(capsys, "derive", str(tmp_path / "flat.npy"), "--unit", "um",
+                       "--pixel-size", "1", "--friction-map", str(tmp_path / "mu.npy"), "--json",
+                       "--plot", str(tmp_path / "flat.png"), "--directions", "8")
+    assert code == 0
+    d = json.loads(out)
+    assert all(x["tangential"] == pytest.approx(0.25, rel=1e-12) for x in d["directions"])
+    assert (tmp_path / "flat.png").stat().st_size > 10_000

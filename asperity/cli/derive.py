@@ -17,22 +17,18 @@ WEDGE_FLAGS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
 def add_parser(sub) -> None:
     p = sub.add_parser(
         "derive", help="direction-dependent friction of a texture",
-        description="Direction-dependent friction of a wedge texture: the reservoir point "
-                    "p(psi) = -lambda_T/lambda_N for every sliding direction psi (from t_a, "
-                    "across the ridges, towards t_b, along them), mu_a+/-, mu_b+/-, and the "
-                    "diagnostics (self-locking, admissibility, associativity). Give a texture "
-                    "file (TOML, see README) or the four wedge flags.",
+        description="Direction-dependent friction of a wedge texture or of any surface: the "
+                    "reservoir point p(psi) = -lambda_T/lambda_N for every sliding direction psi "
+                    "(wedges: from t_a, across the ridges, towards t_b, along them; surfaces: "
+                    "from +x towards +y of the file), mu_a+/- and mu_b+/- (surfaces: along, "
+                    "against and across the principal direction found), and the diagnostics "
+                    "(self-locking, admissibility, associativity). Give a texture file (TOML, "
+                    "see README), the four wedge flags, or a surface file: a triangle mesh "
+                    "(.stl .obj .ply), a height map (.npy, text matrix) or an instrument file "
+                    "(.x3p .mi .sur .opd .datx ..., needs pip install 'asperity[metrology]'); "
+                    "a trailing .gz is read too.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument("texture", nargs="?", help="texture file (.toml)")
-    g = p.add_argument_group("wedge texture given by flags (instead of a file)")
-    g.add_argument("--alpha", type=float, metavar="DEG", help="slope of the face rising towards +t_a, in (0, 90)")
-    g.add_argument("--beta", type=float, metavar="DEG", help="slope of the face falling towards +t_a, in (0, 90)")
-    g.add_argument("--mu-alpha", type=float, metavar="X", help="local friction on the alpha face, >= 0")
-    g.add_argument("--mu-beta", type=float, metavar="Y", help="local friction on the beta face, >= 0")
-    g.add_argument("--height", type=float, metavar="M", help="wedge height in m (the friction does not depend on it)")
-    p.add_argument("--contact", choices=["all-faces", "windward"], default="all-faces",
-                   help="all-faces: compliant springs touch every face; windward: rigid asperities, "
-                        "only faces facing the motion")
+    add_source_arguments(p)
     p.add_argument("--method", choices=["closed-form", "springs"], default="closed-form",
                    help="closed form, or the spring-on-wedge simulation")
     p.add_argument("--directions", type=int, default=72, metavar="N",
@@ -45,14 +41,83 @@ def add_parser(sub) -> None:
     s.add_argument("--n-springs", type=int, metavar="N", help="springs per texture period")
     s.add_argument("--steps-per-period", type=int, metavar="N", help="quasi-static steps per period of travel")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
-    p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
+                                                      "(surfaces: and a height-map preview)")
     p.set_defaults(func=main)
 
 
+SURFACE_FLAGS = ("mu", "friction_map", "unit", "pixel_size", "rest_level", "bearing_fraction")
+
+
+def is_texture_file(path: str) -> bool:
+    return str(path).lower().endswith(".toml")
+
+
+def surface_from_args(args, progress=None):
+    """FacetSurface from a surface file and the surface flags."""
+    from ..surface import load_surface
+    px = args.pixel_size
+    if px is not None and len(px) not in (1, 2):
+        raise InputError(f"--pixel-size takes one value or two (dx dy), got {len(px)}")
+    return load_surface(args.texture, unit=args.unit,
+                        pixel_size=None if px is None else (px[0] if len(px) == 1 else tuple(px)),
+                        height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
+                        friction_map=args.friction_map, rest_level=args.rest_level,
+                        bearing_fraction=args.bearing_fraction)
+
+
+def add_source_arguments(p) -> None:
+    """The texture/surface arguments and --contact, shared by every command that reads one."""
+    p.add_argument("texture", nargs="?", metavar="TEXTURE_OR_SURFACE",
+                   help="texture file (.toml) or surface file (mesh, height map, instrument file)")
+    g = p.add_argument_group("wedge texture given by flags (instead of a file)")
+    g.add_argument("--alpha", type=float, metavar="DEG", help="slope of the face rising towards +t_a, in (0, 90)")
+    g.add_argument("--beta", type=float, metavar="DEG", help="slope of the face falling towards +t_a, in (0, 90)")
+    g.add_argument("--mu-alpha", type=float, metavar="X", help="local friction on the alpha face, >= 0")
+    g.add_argument("--mu-beta", type=float, metavar="Y", help="local friction on the beta face, >= 0")
+    g.add_argument("--height", type=float, metavar="M", help="wedge height in m (the friction does not depend on it)")
+    f = p.add_argument_group("surface files (meshes, height maps, instrument files)")
+    f.add_argument("--mu", type=float, metavar="X",
+                   help="uniform local friction coefficient of the surface, >= 0 (default 0.1)")
+    f.add_argument("--friction-map", metavar="FILE",
+                   help="local friction per pixel (height maps: same grid) or per triangle "
+                        "(meshes), .npy or text; instead of --mu")
+    f.add_argument("--unit", metavar="UNIT",
+                   help="length unit of a file that carries none (meshes, .npy, bare text "
+                        "matrices): m, mm, um or nm; overrides nothing a file states")
+    f.add_argument("--pixel-size", type=float, nargs="+", metavar="D",
+                   help="pixel size (one value, or dx dy) in --unit, for height maps without sizes")
+    f.add_argument("--height-scale", type=float, default=1.0, metavar="F",
+                   help="multiply the heights by F (> 0), e.g. to study a scaled texture")
+    f.add_argument("--detrend", choices=["none", "mean", "plane", "poly2", "poly3"],
+                   default="plane", help="form/tilt removal: least-squares polynomial subtracted "
+                                         "from the heights before triangulation")
+    load = f.add_mutually_exclusive_group()
+    load.add_argument("--rest-level", type=float, metavar="M",
+                      help="spring rest level in m above the detrended mean plane: only points "
+                           "above it carry load, in proportion to their height above it "
+                           "(default: uniform preload, every facet loaded alike)")
+    load.add_argument("--bearing-fraction", type=float, metavar="F",
+                      help="rest level put where a share F in (0, 1] of the projected area is "
+                           "in contact (the load level, as a bearing-area fraction)")
+    p.add_argument("--contact", choices=["all-faces", "windward"], default="all-faces",
+                   help="all-faces: compliant springs touch every face; windward: rigid asperities, "
+                        "only faces facing the motion")
+
+
 def texture_from_args(args):
-    """(texture, springs table) from a texture file or the wedge flags."""
+    """(texture or surface, springs table) from a texture file, the wedge flags or a surface file."""
     from ..texture import WedgeTexture, load_texture_file
     given = {k: getattr(args, k) for k in WEDGE_FLAGS if getattr(args, k) is not None}
+    if args.texture is not None and not is_texture_file(args.texture):
+        if given:
+            flag = "--" + next(iter(given)).replace("_", "-")
+            raise InputError(f"give a surface file or the wedge flags, not both ({flag} with {args.texture})")
+        return surface_from_args(args), {}
+    surface_given = [k for k in SURFACE_FLAGS if getattr(args, k, None) is not None]
+    if surface_given:
+        raise InputError(f"--{surface_given[0].replace('_', '-')} applies to surface files, not to "
+                         "wedge textures")
     if args.texture is not None:
         if given:
             flag = "--" + next(iter(given)).replace("_", "-")
@@ -90,8 +155,37 @@ def run(args) -> dict:
     from ..derive import derive, to_json
     texture, table = texture_from_args(args)
     model = spring_model_from_args(args, table) if args.method == "springs" else None
-    d = derive(texture, args.contact, args.method, args.directions, model)
+    with progress_bar("facets") as progress:
+        d = derive(texture, args.contact, args.method, args.directions, model, progress=progress)
     return d, to_json(d)
+
+
+class progress_bar:
+    """A one-line progress bar on stderr when it is a terminal (a no-op otherwise)."""
+
+    def __init__(self, label: str):
+        import sys
+        self.label = label
+        self.stream = sys.stderr
+        self.on = self.stream.isatty()
+        self.shown = False
+
+    def __call__(self, fraction: float) -> None:
+        if not self.on:
+            return
+        n = int(round(30 * min(max(fraction, 0.0), 1.0)))
+        self.stream.write(f"\r{self.label} [{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %")
+        self.stream.flush()
+        self.shown = True
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self.shown:
+            self.stream.write("\r" + " " * (len(self.label) + 42) + "\r")
+            self.stream.flush()
+        return False
 
 
 def main(args) -> int:

@@ -1,0 +1,150 @@
+"""Any surface -> friction: facet homogenisation checked against the wedge closed form."""
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from asperity.closed_form import compute_reservoir, directions
+from asperity.derive import derive
+from asperity.errors import InputError
+from asperity.surface import mesh_facets, heightmap_facets, wedge_heightmap, wedge_mesh
+from asperity.surface_io import TriangleMesh
+from asperity.texture import GaussianWedgeTexture, WedgeTexture
+
+PSI = directions(72)
+TEXTURES = [WedgeTexture(30, 10, 0.1, 0.2), WedgeTexture(60, 15, 0.3, 0.1),
+            GaussianWedgeTexture(30, 10, 0.1, 0.2, 5e-6, 1e-6, n_wedges=40)]
+
+
+@pytest.mark.parametrize("contact", ["all-faces", "windward"])
+@pytest.mark.parametrize("tex", TEXTURES, ids=["wedge-30-10", "wedge-60-15", "gaussian"])
+def test_wedge_mesh_reproduces_closed_form(tex, contact):
+    mesh, mu = wedge_mesh(tex, periods=3)
+    # the Gaussian texture's flat gaps carry no load: springs at rest on the base line z = 0
+    rest = 0.0 if tex.kind == "gaussian-wedge" else None
+    surf = mesh_facets(mesh, friction_map=mu, rest_level=rest)
+    got, ref = compute_reservoir(surf, PSI, contact), compute_reservoir(tex, PSI, contact)
+    np.testing.assert_array_equal(got.locked, ref.locked)
+    np.testing.assert_array_equal(got.set_valued, ref.set_valued)
+    ok = ~ref.locked
+    np.testing.assert_allclose(got.p[ok], ref.p[ok], rtol=1e-9, atol=1e-12)
+
+
+def test_wedge_mesh_axes_and_principal_direction():
+    tex = WedgeTexture(30, 10, 0.1, 0.2)
+    mesh, mu = wedge_mesh(tex, periods=2)
+    d = derive(mesh_facets(mesh, friction_map=mu), n_directions=72)
+    ref = derive(tex, n_directions=72)
+    assert d.principal_direction_deg == pytest.approx(0.0, abs=1e-9)
+    for k in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"):
+        assert d.axes[k] == pytest.approx(ref.axes[k], rel=1e-9)
+    assert d.admissibility.admissible
+    assert d.associativity.max_deviation == pytest.approx(ref.associativity.max_deviation, rel=1e-5)
+
+
+@pytest.mark.parametrize("angle", [37.0, 123.0])
+def test_rotated_texture_gives_rotated_reservoir(angle):
+    tex = WedgeTexture(30, 10, 0.1, 0.2)
+    mesh, mu = wedge_mesh(tex, periods=2, angle_deg=angle)
+    surf = mesh_facets(mesh, friction_map=mu)
+    phi = math.radians(angle)
+    got = compute_reservoir(surf, PSI + phi, "all-faces").p
+    ref = compute_reservoir(tex, PSI, "all-faces").p
+    rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+    np.testing.assert_allclose(got, ref @ rot.T, rtol=1e-9, atol=1e-12)
+    d = derive(surf, n_directions=72)
+    assert d.principal_direction_deg == pytest.approx(angle % 180.0, abs=1e-6)
+    ref_axes = derive(tex, n_directions=72).axes
+    # the principal direction is an axis: +t_a may come out reversed
+    a = (d.axes["mu_a_plus"], d.axes["mu_a_minus"])
+    assert sorted(a) == pytest.approx(sorted((ref_axes["mu_a_plus"], ref_axes["mu_a_minus"])), rel=1e-6)
+
+
+def _heightmap_error(tex, n, contact, offsets=8):
+    """RMS over directions of |p_map - p_closed| / |p_closed|, averaged over ``offsets``
+    positions of the pixel grid relative to the ridges."""
+    ref = compute_reservoir(tex, PSI, contact).p
+    errs = []
+    for off in (np.arange(offsets) + 0.5) / offsets:
+        hm, mu = wedge_heightmap(tex, n, periods=1, ny=2, offset=off)
+        got = compute_reservoir(heightmap_facets(hm, friction_map=mu), PSI, contact).p
+        errs.append(np.sqrt(np.mean(np.sum((got - ref) ** 2, axis=1) / np.sum(ref ** 2, axis=1))))
+    return float(np.mean(errs))
+
+
+NS = [32, 64, 128, 256, 512]
+
+
+@pytest.mark.parametrize("contact", ["all-faces", "windward"])
+def test_sampled_heightmap_converges_first_order(contact):
+    """Cells straddling a ridge or valley get a blended gradient: their share is O(h), so
+    the error is first order in the pixel size h."""
+    tex = WedgeTexture(30, 10, 0.1, 0.1)
+    err = [_heightmap_error(tex, n, contact) for n in NS]
+    order = -np.polyfit(np.log(NS), np.log(err), 1)[0]
+    assert 0.9 < order < 1.1, (err, order)
+    assert err[-1] < {"all-faces": 1e-3, "windward": 1e-2}[contact], err
+
+
+def test_sampled_heightmap_with_friction_map_converges():
+    """Faces of different friction: facets straddling a face boundary also average the
+    friction of their corners, a second O(h) error whose constant changes sign with the
+    grid, so the convergence is first order on average, not term by term."""
+    tex = WedgeTexture(30, 10, 0.1, 0.2)
+    err = [_heightmap_error(tex, n, "all-faces") for n in NS]
+    order = -np.polyfit(np.log(NS), np.log(err), 1)[0]
+    assert 0.6 < order < 1.4, (err, order)
+    assert err[-1] < 0.1 * err[0]
+
+
+def _plates(mu_top=0.3, mu_bottom=0.1):
+    """Two horizontal unit squares: one at z = 1 (mu_top), one at z = 0 (mu_bottom)."""
+    sq = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    v = np.vstack([np.column_stack([sq, np.ones(4)]), np.column_stack([sq + [2, 0], np.zeros(4)])])
+    f = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]])
+    return TriangleMesh(vertices=v, faces=f, source="plates", n_degenerate=0), \
+        np.array([mu_top, mu_top, mu_bottom, mu_bottom])
+
+
+def test_rest_level_makes_friction_depend_on_load():
+    mesh, mu = _plates()
+    psi = np.radians([0.0, 90.0, 211.0])
+    uniform = compute_reservoir(mesh_facets(mesh, friction_map=mu), psi).tangential
+    np.testing.assert_allclose(uniform, 0.2, rtol=1e-12)
+    light = compute_reservoir(mesh_facets(mesh, friction_map=mu, rest_level=0.5), psi).tangential
+    np.testing.assert_allclose(light, 0.3, rtol=1e-12)           # only the upper plate touches
+    heavy = compute_reservoir(mesh_facets(mesh, friction_map=mu, rest_level=-1.0), psi).tangential
+    np.testing.assert_allclose(heavy, (2 * 0.3 + 1 * 0.1) / 3, rtol=1e-12)  # loads 2 : 1
+    half = mesh_facets(mesh, friction_map=mu, bearing_fraction=0.5)
+    assert half.info["rest_level_m"] == pytest.approx(0.5)
+    np.testing.assert_allclose(compute_reservoir(half, psi).tangential, 0.3, rtol=1e-12)
+    with pytest.raises(InputError, match="rest_level"):
+        mesh_facets(mesh, friction_map=mu, rest_level=2.0)
+
+
+def test_mesh_skips_vertical_and_overhanging_triangles():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0],       # floor, faces up
+                  [0, 0, 1], [1, 0, 1]], float)
+    f = np.array([[0, 1, 2], [1, 3, 2],                                # up
+                  [0, 1, 5],                                           # vertical wall
+                  [0, 2, 1]])                                          # floor seen from below
+    s = mesh_facets(TriangleMesh(vertices=v, faces=f, source="t", n_degenerate=0), mu=0.2)
+    assert s.n_facets == 2
+    assert s.info["n_skipped_vertical"] == 1 and s.info["n_skipped_overhanging"] == 1
+    np.testing.assert_allclose(compute_reservoir(s, PSI).tangential, 0.2, rtol=1e-12)
+
+
+def test_heightmap_undefined_pixels_skip_their_triangles():
+    tex = WedgeTexture(30, 30, 0.2, 0.2)
+    hm, _ = wedge_heightmap(tex, 32, periods=2, ny=8)
+    z = hm.heights.copy()
+    z[5, 3] = np.nan
+    from asperity.surface_io import HeightMap
+    s = heightmap_facets(HeightMap(heights=z, dx=hm.dx, dy=hm.dy, source="t", n_undefined=1),
+                         mu=0.2)
+    assert s.n_undefined == 1
+    assert s.info["n_skipped_undefined"] == 6          # a pixel touches six triangles
+    assert s.n_facets == 2 * (z.shape[0] - 1) * (z.shape[1] - 1) - 6
+    assert np.all(np.isfinite(compute_reservoir(s, PSI).p))

@@ -1,0 +1,73 @@
+"""The measured surfaces of ../shared/data/surfaces give the expected character."""
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from asperity.cli.main import main
+from asperity.closed_form import compute_reservoir
+from asperity.derive import derive
+from asperity.surface import load_surface
+
+DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "surfaces"
+pytestmark = pytest.mark.skipif(not DATA.is_dir(),
+                                reason=f"measured surfaces not found: {DATA} is absent")
+
+
+def _axis_diff(a, b):
+    d = abs(a - b) % 180.0
+    return min(d, 180.0 - d)
+
+
+@pytest.fixture(scope="module")
+def ski():
+    return load_surface(DATA / "SkiInfiniteFocus.x3p")
+
+
+def test_ski_is_anisotropic_across_its_grinding_lay(ski):
+    assert ski.n_undefined == 4272                  # ~0.4 % undefined pixels, counted
+    # the grooves run along the axis of smallest mean squared slope (the lay)
+    g = np.stack([ski.gx, ski.gy])
+    m = (g * ski.weight) @ g.T
+    evals, evecs = np.linalg.eigh(m)
+    lay = np.degrees(np.arctan2(evecs[1, 0], evecs[0, 0])) % 180.0
+    for contact, min_aniso in (("all-faces", 0.03), ("windward", 0.3)):
+        d = derive(ski, contact, n_directions=72)
+        assert _axis_diff(d.principal_direction_deg, lay + 90.0) < 3.0, (d.principal_direction_deg, lay)
+        assert d.anisotropy > min_aniso
+        assert d.axes["mu_a_plus"] > d.axes["mu_b_plus"] and d.axes["mu_a_minus"] > d.axes["mu_b_minus"]
+    assert _axis_diff(lay, 30.0) < 5.0               # the grooves seen in the height map
+
+
+def test_matrix4_grooves_along_y_give_principal_direction_along_x():
+    d = derive(load_surface(DATA / "matrix-4.txt.gz"), "windward", n_directions=72)
+    assert _axis_diff(d.principal_direction_deg, 0.0) < 5.0
+    assert d.anisotropy > 0.15
+
+
+@pytest.mark.parametrize("contact,tol", [("all-faces", 0.06), ("windward", 0.10)])
+def test_matrix3_is_isotropic_within_tolerance(contact, tol):
+    """Isotropic AFM roughness: T varies by less than tol of its mean over all directions
+    (the grooved files vary by 0.19 and 0.41 in the windward regime)."""
+    d = derive(load_surface(DATA / "matrix-3.txt"), contact, n_directions=72)
+    assert d.anisotropy < tol
+
+
+@pytest.mark.parametrize("contact,min_asym", [("all-faces", 0.01), ("windward", 0.3)])
+def test_mi1_terraces_are_asymmetric_along_x(contact, min_asym):
+    """Steep rises, gentle falls along x: sliding towards +x climbs the steep rises."""
+    s = load_surface(DATA / "mi-1.mi", height_scale=20.0)
+    T = compute_reservoir(s, np.array([0.0, np.pi]), contact).tangential
+    assert (T[0] - T[1]) / T.mean() > min_asym, T
+
+
+def test_every_shared_file_goes_through_the_cli(capsys):
+    for name, extra in (("SkiInfiniteFocus.x3p", []), ("mi-1.mi", []), ("matrix-3.txt", []),
+                        ("matrix-4.txt.gz", []), ("example_surface.stl.gz", ["--unit", "mm"])):
+        code = main(["derive", str(DATA / name), "--json", "--directions", "36", *extra])
+        out, err = capsys.readouterr()
+        assert code == 0, err
+        d = json.loads(out)
+        assert d["n_facets"] > 10_000 and d["admissible"] and not d["self_locking"]
+        assert 0.08 < d["mu_a_plus"] < 0.2 and 0.0 <= d["principal_direction_deg"] < 180.0
