@@ -437,6 +437,7 @@ def _parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], i
     text = _decode(data)
     header: dict[str, str] = {}
     rows: list[list[str]] = []
+    linenos: list[int] = []
     n_header = 0
     width = None
     for lineno, raw in enumerate(text.splitlines(), start=1):
@@ -459,14 +460,17 @@ def _parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], i
             raise TextureFileError(f"{name}: line {lineno} has {len(toks)} values, the matrix "
                                    f"rows above have {width}")
         rows.append(toks)
+        linenos.append(lineno)
     if not rows:
         raise TextureFileError(f"{name}: no matrix of numbers found (rows of values separated by "
                                f"blanks, tabs, commas or semicolons)")
     try:
         m = np.array(rows, dtype=np.float64)
     except ValueError:
-        bad = next((t for r in rows for t in r if not _is_number(t)), "?")
-        raise TextureFileError(f"{name}: {bad!r} in the matrix is not a number") from None
+        k, bad = next(((k, t) for k, r in enumerate(rows) for t in r if not _is_number(t)),
+                      (0, "?"))
+        raise TextureFileError(f"{name}: line {linenos[k]}: {bad!r} in the matrix is not a "
+                               f"number") from None
     if np.isinf(m).any():
         raise TextureFileError(f"{name}: the matrix contains infinite values")
     return m, header, n_header
@@ -776,8 +780,9 @@ def _read_with_surfacetopography(data: bytes, suffix: str, gz: bool, name: Path,
         kwargs = {}
         if pick.physical_sizes is None or pick.unit is None:
             if unit is None or pixel_size is None:
-                raise InputError(f"{name}: the file states no pixel size or unit; pass unit "
-                                 f"and pixel_size")
+                fmt = getattr(reader, "_format", None) or type(reader).__name__
+                raise InputError(f"{name}: read as {fmt!r} by SurfaceTopography, which finds no "
+                                 f"pixel size or unit in it; pass unit and pixel_size")
             nxy = pick.nb_grid_pts
             ddx, ddy = _pixel_pair(pixel_size, 1.0)
             kwargs = dict(physical_sizes=(nxy[0] * ddx, nxy[1] * ddy), unit=_st_unit(unit))
