@@ -261,7 +261,8 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0) -> Heigh
                    names such as 'micrometre' too).  Required for meshes, ``.npy``/``.npz``
                    and text matrices without a value unit in their header; for a text
                    matrix with a header it overrides the header's height unit.  Files
-                   in instrument formats state their own unit and reject it.
+                   in instrument formats state their own unit and pixel size and reject
+                   both arguments (unless the file lacks them, then both are required).
     pixel_size   : grid spacing of a height map in ``unit``, a number or (dx, dy).
                    Required for ``.npy``/``.npz`` and headerless text matrices; overrides
                    a text header's sizes (and then needs ``unit``).
