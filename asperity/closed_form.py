@@ -38,6 +38,9 @@ CONTACT_REGIMES = ("all-faces", "windward")
 
 #: slope g.s below which a face counts as level with the motion (windward regime)
 LEVEL_SLOPE_TOL = 1e-12
+#: message when, in the windward regime, every face descends in some sliding direction
+NO_WINDWARD_FACE = ("windward contact: in some sliding direction every face descends, so nothing "
+                    "is climbed (a tilted surface? remove the tilt, e.g. --detrend slope)")
 #: vertical force share below which a face is taken as self-locking
 LOCK_TOL = 1e-12
 
@@ -176,7 +179,7 @@ def compute_face_reservoir(gradient, mu, weight, psi, contact: str = "all-faces"
         set_valued = none & (level & steep).any(axis=1)
         if np.any(none & ~level.any(axis=1)):
             # cannot happen with weights > 0: some face is level or climbed in every direction
-            raise InputError("windward contact found no loaded face for some direction")
+            raise InputError(NO_WINDWARD_FACE)
 
     locked_faces = loaded & (fz <= LOCK_TOL)
     locked = locked_faces.any(axis=1)

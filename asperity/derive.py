@@ -190,17 +190,17 @@ def format_text(d: Derivation) -> str:
                 f"contact: {d.contact}   directions: {d.reservoir.psi.size}",
                 f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
                 f"from +x; anisotropy (max T - min T)/mean T = {d.anisotropy:.4f}"]
-        a, b = f"{th:.1f} deg", f"{(th + 90) % 360:.1f} deg"
+        dirs = [f"towards {(th + k) % 360:.1f} deg" for k in (0, 180, 90, 270)]
     else:
         head = [f"texture: {tex.kind}  alpha={tex.alpha_deg:g} deg  beta={tex.beta_deg:g} deg  "
                 f"mu_alpha={tex.mu_alpha:g}  mu_beta={tex.mu_beta:g}",
                 f"contact: {d.contact}   method: {d.method}   directions: {d.reservoir.psi.size}"]
-        a, b = "t_a", "t_b"
+        dirs = ["along +t_a", "along -t_a", "along +t_b", "along -t_b"]
     lines = head + ["",
-             f"  mu_a+ (slide along +{a}) = {f(d.axes['mu_a_plus'])}",
-             f"  mu_a- (slide along -{a}) = {f(d.axes['mu_a_minus'])}",
-             f"  mu_b+ (slide along +{b}) = {f(d.axes['mu_b_plus'])}",
-             f"  mu_b- (slide along -{b}) = {f(d.axes['mu_b_minus'])}",
+             f"  mu_a+ (slide {dirs[0]}) = {f(d.axes['mu_a_plus'])}",
+             f"  mu_a- (slide {dirs[1]}) = {f(d.axes['mu_a_minus'])}",
+             f"  mu_b+ (slide {dirs[2]}) = {f(d.axes['mu_b_plus'])}",
+             f"  mu_b- (slide {dirs[3]}) = {f(d.axes['mu_b_minus'])}",
              ""]
     a = d.admissibility
     lines.append(f"admissible (p.s >= 0 for all directions): {'yes' if a.admissible else 'NO'}"

@@ -21,7 +21,7 @@ import operator
 
 import numpy as np
 
-from .closed_form import LEVEL_SLOPE_TOL, LOCK_TOL, Reservoir, check_contact
+from .closed_form import LEVEL_SLOPE_TOL, LOCK_TOL, NO_WINDWARD_FACE, Reservoir, check_contact
 from .errors import InputError
 
 #: facets per cache chunk of the numba kernel (5 float64 streams of 1024 = 40 kB: L1/L2)
@@ -164,7 +164,7 @@ def _assemble(fac: _Facets, psi, contact, sums, first, level_fn) -> Reservoir:
             lsums, lfirst = level_fn(none)
             if np.any(lsums[:, 4] == 0):
                 # cannot happen with weights > 0: some face is level or climbed in every direction
-                raise InputError("windward contact found no loaded face for some direction")
+                raise InputError(NO_WINDWARD_FACE)
             sums = sums.copy()
             first = first.copy()
             sums[none] = lsums

@@ -38,7 +38,7 @@ from .texture import Faces
 #: default local friction coefficient of a surface when no --mu or friction map is given
 DEFAULT_MU = 0.1
 #: detrending choices: name -> polynomial degree (None: keep the form)
-DETREND = {"none": None, "mean": 0, "plane": 1, "poly2": 2, "poly3": 3}
+DETREND = {"none": None, "slope": "slope", "mean": 0, "plane": 1, "poly2": 2, "poly3": 3}
 #: |n_z| / |n| below which a mesh triangle counts as vertical
 VERTICAL_TOL = 1e-9
 
@@ -129,12 +129,19 @@ def rest_level_for_bearing(zc: np.ndarray, area: np.ndarray, fraction: float) ->
     return float(z[-1] - 1e-9 * max(z[0] - z[-1], abs(z[-1]), 1e-300))
 
 
-def _finish(gx, gy, mu, area, zc, rest_level, bearing_fraction, info, **extra) -> FacetSurface:
+def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
+            **extra) -> FacetSurface:
     if rest_level is not None and bearing_fraction is not None:
         raise InputError("give rest_level or bearing_fraction, not both")
     if gx.size == 0:
         raise InputError(f"{info.get('source')}: no facet left (every triangle was undefined, "
                          "degenerate or vertical)")
+    if level_slope:
+        # shear z -> z - a x - b y: projected areas unchanged, gradients shifted by (a, b)
+        a, b = (float(np.dot(area, g) / area.sum()) for g in (gx, gy))
+        gx, gy = gx - a, gy - b
+        zc = zc - (a * xy[0] + b * xy[1])
+        info["removed_slope"] = [a, b]
     if bearing_fraction is not None:
         rest_level = rest_level_for_bearing(zc, area, bearing_fraction)
         info["bearing_fraction"] = float(bearing_fraction)
@@ -168,11 +175,13 @@ def _facet_mu(mu, friction_map, n_expected: int, per_vertex=None):
 
 
 def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
-                     bearing_fraction=None, info=None) -> FacetSurface:
+                     bearing_fraction=None, level_slope=False, info=None) -> FacetSurface:
     """Facets of a :class:`~asperity.surface_io.HeightMap` (two triangles per cell).
 
     friction_map: (nx, ny) local friction per pixel; a facet takes the mean of its
-    three corners.
+    three corners.  level_slope: remove the area-weighted mean gradient (the surface
+    is sheared so that its facets' mean slope is zero; for a periodic texture over whole
+    periods this changes nothing, unlike a least-squares plane).
     """
     z = np.asarray(hm.heights, dtype=float)
     if z.ndim != 2 or z.shape[0] < 2 or z.shape[1] < 2:
@@ -200,12 +209,18 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
                 n_skipped_undefined=int(n_cells_tri - ok.sum()),
                 mu=None if not np.isscalar(fmu) else float(fmu))
     area = np.full(int(ok.sum()), 0.5 * dx * dy)
-    return _finish(gx[ok], gy[ok], fmu, area, zc[ok], rest_level, bearing_fraction, info,
+    xy = None
+    if level_slope:
+        i, j = np.meshgrid(np.arange(z.shape[0] - 1), np.arange(z.shape[1] - 1), indexing="ij")
+        xy = (np.concatenate([(i + 1 / 3) * dx, (i + 2 / 3) * dx], axis=None)[ok],
+              np.concatenate([(j + 1 / 3) * dy, (j + 2 / 3) * dy], axis=None)[ok])
+    return _finish(gx[ok], gy[ok], fmu, area, zc[ok], xy, level_slope, rest_level,
+                   bearing_fraction, info,
                    preview=_preview(z), extent=(dx * z.shape[0], dy * z.shape[1]))
 
 
 def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
-                bearing_fraction=None, info=None) -> FacetSurface:
+                bearing_fraction=None, level_slope=False, info=None) -> FacetSurface:
     """Facets of a :class:`~asperity.surface_io.TriangleMesh`.
 
     friction_map: one local friction value per triangle of ``mesh.faces``.
@@ -240,7 +255,9 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
                 n_skipped_vertical=int(vertical.sum()),
                 n_skipped_overhanging=int(np.count_nonzero(~facing & ~vertical)),
                 mu=None if not np.isscalar(fmu) else float(fmu))
-    return _finish(gx, gy, fmu, area, zc, rest_level, bearing_fraction, info,
+    xy = ((p0[facing, 0] + p1[facing, 0] + p2[facing, 0]) / 3.0,
+          (p0[facing, 1] + p1[facing, 1] + p2[facing, 1]) / 3.0)
+    return _finish(gx, gy, fmu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
                    preview=_mesh_preview(p0, p1, p2, lo, hi),
                    extent=(float(hi[0] - lo[0]), float(hi[1] - lo[1])))
 
@@ -273,13 +290,15 @@ def surface_facets(surface, **kwargs) -> FacetSurface:
     return mesh_facets(surface, **kwargs)
 
 
-def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="plane",
+def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="slope",
                  mu=None, friction_map=None, rest_level=None,
                  bearing_fraction=None) -> FacetSurface:
     """Read a mesh or height-map file and return its facets.
 
-    detrend: one of :data:`DETREND` (form/tilt removal before triangulation; default
-    "plane").  friction_map: a file (read by :func:`asperity.surface_io.read_friction_map`)
+    detrend: one of :data:`DETREND`: "slope" (default) removes the mean facet gradient
+    (zero mean slope, exact for periodic textures over whole periods); "mean", "plane",
+    "poly2", "poly3" subtract a least-squares polynomial of that degree (form removal)
+    before triangulation; "none" keeps the heights as read.  friction_map: a file (read by :func:`asperity.surface_io.read_friction_map`)
     or an array.  rest_level (m, from the detrended mean plane) or bearing_fraction
     (share of the projected area in contact) select the spring rest level; neither:
     uniform preload.
@@ -288,7 +307,7 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
     if detrend not in DETREND:
         raise InputError(f"detrend must be one of {', '.join(DETREND)}, got {detrend!r}")
     s = read_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
-    if DETREND[detrend] is not None:
+    if DETREND[detrend] not in (None, "slope"):
         from .surface_io import detrend as _detrend
         s = _detrend(s, DETREND[detrend])
     fm = friction_map
@@ -301,7 +320,8 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
         if not np.all(np.isfinite(fm)) or np.any(fm < 0):
             raise InputError("friction map values must be finite and >= 0")
     return surface_facets(s, mu=mu, friction_map=fm, rest_level=rest_level,
-                          bearing_fraction=bearing_fraction, info=info)
+                          bearing_fraction=bearing_fraction, level_slope=detrend == "slope",
+                          info=info)
 
 
 # --- surfaces generated from wedge textures (validation) ------------------------------------

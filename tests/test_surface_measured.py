@@ -54,12 +54,19 @@ def test_matrix3_is_isotropic_within_tolerance(contact, tol):
     assert d.anisotropy < tol
 
 
-@pytest.mark.parametrize("contact,min_asym", [("all-faces", 0.01), ("windward", 0.3)])
-def test_mi1_terraces_are_asymmetric_along_x(contact, min_asym):
-    """Steep rises, gentle falls along x: sliding towards +x climbs the steep rises."""
-    s = load_surface(DATA / "mi-1.mi", height_scale=20.0)
-    T = compute_reservoir(s, np.array([0.0, np.pi]), contact).tangential
-    assert (T[0] - T[1]) / T.mean() > min_asym, T
+def _x_asymmetry(name, contact, **opts):
+    T = compute_reservoir(load_surface(DATA / name, **opts), np.array([0.0, np.pi]), contact).tangential
+    return (T[0] - T[1]) / T.mean()
+
+
+def test_mi1_terraces_are_asymmetric_along_x():
+    """Steep rises, gentle falls along x: sliding towards +x climbs the steep rises, so
+    mu+ > mu- along x; rigid asperities (windward) show it strongly (0.50), compliant
+    springs (all faces) weakly (third order in the slopes; 0.005).  The isotropic
+    control's asymmetry along x is 0.06 (windward)."""
+    assert _x_asymmetry("mi-1.mi", "windward", height_scale=20.0) > 0.4
+    assert _x_asymmetry("mi-1.mi", "all-faces", height_scale=20.0) > 0.002
+    assert abs(_x_asymmetry("matrix-3.txt", "windward")) < 0.1
 
 
 def test_every_shared_file_goes_through_the_cli(capsys):

@@ -89,9 +89,11 @@ def add_source_arguments(p) -> None:
                    help="pixel size (one value, or dx dy) in --unit, for height maps without sizes")
     f.add_argument("--height-scale", type=float, default=1.0, metavar="F",
                    help="multiply the heights by F (> 0), e.g. to study a scaled texture")
-    f.add_argument("--detrend", choices=["none", "mean", "plane", "poly2", "poly3"],
-                   default="plane", help="form/tilt removal: least-squares polynomial subtracted "
-                                         "from the heights before triangulation")
+    f.add_argument("--detrend", choices=["slope", "none", "mean", "plane", "poly2", "poly3"],
+                   default="slope", help="tilt/form removal: slope = remove the mean facet "
+                   "gradient (zero mean slope; exact for periodic textures); mean/plane/poly2/"
+                   "poly3 = subtract a least-squares polynomial of that degree from the heights; "
+                   "none = as read")
     load = f.add_mutually_exclusive_group()
     load.add_argument("--rest-level", type=float, metavar="M",
                       help="spring rest level in m above the detrended mean plane: only points "
