@@ -14,8 +14,9 @@ import numpy as np
 
 from . import __version__
 from .closed_form import Reservoir, check_contact, compute_faces_reservoir, directions
-from .diagnostics import (DERIVATIVE_STEP, Admissibility, Associativity, check_admissibility,
-                          check_associativity, dT_dpsi_from, find_self_locking)
+from .diagnostics import (DERIVATIVE_STEP, SURFACE_DERIVATIVE_STEP, Admissibility, Associativity, check_admissibility,
+                          check_associativity, dT_dpsi_from, find_self_locking,
+                          locking_share)
 from .errors import InputError, check_int
 
 METHODS = ("closed-form", "springs")
@@ -35,6 +36,7 @@ class Derivation:
     closed_form: Reservoir | None = field(default=None, repr=False)
     principal_direction_deg: float = 0.0   # t_a in the x-y frame (surfaces: found)
     anisotropy: float = 0.0          # (max T - min T) / mean T over the directions
+    locking_share: float = 0.0       # largest load share on faces that cannot be climbed
 
 
 def derive(texture, contact: str = "all-faces", method: str = "closed-form",
@@ -60,7 +62,7 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
         raise InputError("method springs needs a wedge texture; surfaces use the facet closed form")
     psi = directions(n)
     faces = texture.faces()
-    h = DERIVATIVE_STEP
+    h = SURFACE_DERIVATIVE_STEP if surface else DERIVATIVE_STEP
     # the directions, their +-h neighbours for dT/dpsi: one pass over the facets
     both = compute_faces_reservoir(faces, np.concatenate([psi, psi + h, psi - h]), contact,
                                    progress)
@@ -71,7 +73,7 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
         res = cf
         t = compute_faces_reservoir(faces, axis_psi, contact).tangential
         assoc = check_associativity(res, *dT_dpsi_from(both.take(slice(n, 2 * n)),
-                                                       both.take(slice(2 * n, 3 * n))))
+                                                       both.take(slice(2 * n, 3 * n)), h))
         springs = None
     else:
         from .springs import SpringModel, simulate_reservoir
@@ -86,7 +88,8 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
     return Derivation(texture, contact, method, res, axes, find_self_locking(res, faces.names),
                       check_admissibility(res), assoc, springs, cf,
                       principal_direction_deg=math.degrees(theta),
-                      anisotropy=anisotropy(res))
+                      anisotropy=anisotropy(res),
+                      locking_share=float(locking_share(faces, res).max(initial=0.0)))
 
 
 def principal_direction(res: Reservoir) -> float:
@@ -162,8 +165,9 @@ def to_json(d: Derivation) -> dict:
         "admissible": d.admissibility.admissible,
         "min_dissipation": _num(d.admissibility.min_dissipation),
         "self_locking": d.self_locking,
+        "self_locking_load_share": d.locking_share,
         "associativity": {
-            "associated": d.associativity.associated,
+            "associated": d.associativity.associated if d.associativity.defined.any() else None,
             "max_abs_L_minus_dT_dpsi": d.associativity.max_deviation,
             "max_abs_lateral": d.associativity.max_lateral,
             "psi_deg_of_max": d.associativity.psi_max_deg
@@ -184,7 +188,8 @@ def format_text(d: Derivation) -> str:
     def f(x):
         return "inf (self-locking)" if not math.isfinite(x) else f"{x:.6f}"
     tex = d.texture
-    if getattr(tex, "kind", "") == "surface":
+    surface = getattr(tex, "kind", "") == "surface"
+    if surface:
         th = d.principal_direction_deg
         head = [tex.describe(),
                 f"contact: {d.contact}   directions: {d.reservoir.psi.size}",
@@ -207,13 +212,19 @@ def format_text(d: Derivation) -> str:
                  + (f"  (min p.s = {a.min_dissipation:.4g} at psi = {a.psi_min_deg:g} deg)"
                     if math.isfinite(a.min_dissipation) else ""))
     s = d.associativity
-    lines.append(f"associated (L = dT/dpsi): {'yes' if s.associated else 'no'}; "
-                 f"max |L - dT/dpsi| = {s.max_deviation:.4g}, max |L| = {s.max_lateral:.4g}")
+    if not s.defined.any():
+        lines.append("associated (L = dT/dpsi): not defined (no direction with a finite, "
+                     "single-valued force and defined neighbours)")
+    else:
+        lines.append(f"associated (L = dT/dpsi): {'yes' if s.associated else 'no'}; "
+                     f"max |L - dT/dpsi| = {s.max_deviation:.4g}, max |L| = {s.max_lateral:.4g}")
     if d.self_locking:
         faces = sorted({e['face'] for e in d.self_locking})
         lines.append(f"SELF-LOCKING in {len(d.self_locking)} of {d.reservoir.psi.size} directions, "
-                     f"psi in {_runs(d.reservoir)} (face {', '.join(faces)}): "
+                     f"psi in {_runs(d.reservoir)} ({'facet' if surface else 'face'} {', '.join(faces)}): "
                      "the tips cannot climb, friction is unbounded there")
+        lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g} % "
+                     "of the load")
     else:
         lines.append("self-locking: none")
     if d.reservoir.set_valued.any():

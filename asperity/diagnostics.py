@@ -22,6 +22,10 @@ ADMISSIBILITY_TOL = 1e-12
 ASSOCIATED_TOL = 1e-6
 #: step of the central difference for dT/dpsi on closed forms (rad)
 DERIVATIVE_STEP = 1e-6
+#: the same for measured surfaces: in the windward regime every facet enters the loaded
+#: set with a small jump of T as the direction turns past it; a step that spans many such
+#: entries measures the derivative of the averaged law, not of one jump
+SURFACE_DERIVATIVE_STEP = 1e-3
 
 
 def find_self_locking(res: Reservoir, face_names=None) -> list[dict]:
@@ -106,10 +110,29 @@ def closed_form_dT_dpsi(evaluate, psi: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return dT_dpsi_from(evaluate(psi + h), evaluate(psi - h))
 
 
-def dT_dpsi_from(rp: Reservoir, rm: Reservoir) -> tuple[np.ndarray, np.ndarray]:
-    """Central difference of T between reservoirs at psi + DERIVATIVE_STEP and psi - it."""
-    h = DERIVATIVE_STEP
+def dT_dpsi_from(rp: Reservoir, rm: Reservoir, h: float = DERIVATIVE_STEP
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Central difference of T between reservoirs at psi + h and psi - h."""
     defined = ~(rp.locked | rm.locked | rp.set_valued | rm.set_valued)
     dT = np.where(defined, (np.where(defined, rp.tangential, 0) - np.where(defined, rm.tangential, 0))
                   / (2 * h), 0.0)
     return dT, defined
+
+
+def locking_share(faces, res: Reservoir) -> np.ndarray:
+    """For each direction of ``res``: the share of the load (weight) carried by faces that
+    cannot be climbed (0 where the direction does not self-lock).  Tells whether a
+    self-locking surface locks on a few steep outlier facets or on much of its area."""
+    from .closed_form import LEVEL_SLOPE_TOL, LOCK_TOL
+    out = np.zeros(res.psi.shape)
+    g = faces.gradient
+    gx, gy = np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1])
+    w = np.asarray(faces.weight, dtype=float)
+    mu = np.asarray(faces.mu, dtype=float)
+    inv_nrm = 1.0 / np.sqrt(1.0 + gx * gx + gy * gy)
+    for k in np.flatnonzero(res.locked):
+        slope = gx * np.cos(res.psi[k]) + gy * np.sin(res.psi[k])
+        fz = inv_nrm - mu * slope / np.sqrt(1.0 + slope * slope)
+        loaded = w > 0 if res.contact == "all-faces" else (slope > LEVEL_SLOPE_TOL) & (w > 0)
+        out[k] = w[loaded & (fz <= LOCK_TOL)].sum() / w[loaded].sum()
+    return out

@@ -167,3 +167,16 @@ def test_tilt_removed_by_mean_slope_levelling(contact):
     s = mesh_facets(tilted, friction_map=mu, level_slope=True)
     np.testing.assert_allclose(s.info["removed_slope"], [0.1, -0.05], rtol=1e-9)
     np.testing.assert_allclose(compute_reservoir(s, PSI, contact).p, ref, rtol=1e-9, atol=1e-12)
+
+
+def test_self_locking_load_share_is_the_locking_faces_area_share():
+    """A steep alpha face (80 deg, mu 0.3 > cot 80) locks across the ridges: its share of
+    the projected area is cot(alpha) / (cot(alpha) + cot(beta))."""
+    tex = WedgeTexture(80, 10, 0.3, 0.2)
+    ca, cb = 1 / math.tan(math.radians(80)), 1 / math.tan(math.radians(10))
+    mesh, mu = wedge_mesh(tex, periods=2)
+    for surf in (tex, mesh_facets(mesh, friction_map=mu)):
+        d = derive(surf, n_directions=72)
+        assert d.reservoir.locked.any()
+        assert d.locking_share == pytest.approx(ca / (ca + cb), rel=1e-9)
+    assert derive(WedgeTexture(30, 10, 0.1, 0.2), n_directions=36).locking_share == 0.0
