@@ -78,3 +78,19 @@ def test_every_shared_file_goes_through_the_cli(capsys):
         d = json.loads(out)
         assert d["n_facets"] > 10_000 and d["admissible"] and not d["self_locking"]
         assert 0.08 < d["mu_a_plus"] < 0.2 and 0.0 <= d["principal_direction_deg"] < 180.0
+
+
+@pytest.mark.parametrize("name,law", [("matrix-4.txt.gz", "star"), ("mi-1.mi", "truncated-ellipse")])
+def test_gauge_of_a_measured_surface_reloads_bit_for_bit(tmp_path, name, law):
+    from asperity.gauge_file import read_gauge, to_dict, write_gauge
+    from asperity.gauges import fit_derivation
+    d = derive(load_surface(DATA / name, height_scale=20.0 if name == "mi-1.mi" else 1.0),
+               "windward", n_directions=72)
+    gl = fit_derivation(d, law)
+    write_gauge(tmp_path / "g.json", gl)
+    again = read_gauge(tmp_path / "g.json")
+    assert to_dict(again) == to_dict(gl)
+    psi = np.radians(np.arange(0.0, 360.0, 7.0))
+    for a in psi:
+        assert np.array_equal(again.law.force(a).p, gl.law.force(a).p)
+    assert gl.fit.min_dissipation > 0
