@@ -34,6 +34,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from numba import njit, prange
 
 MODE_ALL = 0
@@ -298,3 +300,28 @@ def prepare(gx, gy, mu, w, a):
         if not (math.isfinite(m) and m >= 0.0):
             bad_mu += 1
     return bad_g, bad_mu, bad_w, npos
+
+
+@njit(cache=True, parallel=True, fastmath={"reassoc", "nsz", "arcp"}, error_model="numpy")
+def locked_weight(gx, gy, mu, mu_uniform, w, cs, ss, windward, tol, stol):
+    """Per direction j: (weight of the loaded facets that cannot be climbed, loaded weight),
+    with the reference's test ``1/|n| - mu slope / sqrt(1 + slope^2) <= tol``; windward:
+    only facets with slope > stol are loaded.  Parallel over directions."""
+    m = cs.shape[0]
+    out = np.zeros((m, 2))
+    for j in prange(m):
+        c = cs[j]
+        s = ss[j]
+        lw = 0.0
+        tw = 0.0
+        for i in range(gx.size):
+            slope = gx[i] * c + gy[i] * s
+            mi = mu[0] if mu_uniform else mu[i]
+            fz = 1.0 / math.sqrt(1.0 + gx[i] * gx[i] + gy[i] * gy[i]) \
+                - mi * slope / math.sqrt(1.0 + slope * slope)
+            wl = w[i] if (slope > stol or not windward) else 0.0
+            tw += wl
+            lw += wl if fz <= tol else 0.0
+        out[j, 0] = lw
+        out[j, 1] = tw
+    return out

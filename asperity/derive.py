@@ -89,7 +89,7 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
                       check_admissibility(res), assoc, springs, cf,
                       principal_direction_deg=math.degrees(theta),
                       anisotropy=anisotropy(res),
-                      locking_share=float(locking_share(faces, res).max(initial=0.0)))
+                      locking_share=float(np.nanmax(locking_share(faces, res), initial=0.0)))
 
 
 def principal_direction(res: Reservoir) -> float:

@@ -119,20 +119,32 @@ def dT_dpsi_from(rp: Reservoir, rm: Reservoir, h: float = DERIVATIVE_STEP
     return dT, defined
 
 
+#: self-locking directions on which :func:`locking_share` is evaluated, at most
+MAX_SHARE_DIRECTIONS = 64
+
+
 def locking_share(faces, res: Reservoir) -> np.ndarray:
     """For each direction of ``res``: the share of the load (weight) carried by faces that
     cannot be climbed (0 where the direction does not self-lock).  Tells whether a
-    self-locking surface locks on a few steep outlier facets or on much of its area."""
+    self-locking surface locks on a few steep outlier facets or on much of its area.
+    Evaluated on at most MAX_SHARE_DIRECTIONS of the self-locking directions, evenly
+    spread (NaN on the others)."""
+    from ._facet_kernels import locked_weight
     from .closed_form import LEVEL_SLOPE_TOL, LOCK_TOL
     out = np.zeros(res.psi.shape)
+    k = np.flatnonzero(res.locked)
+    if k.size == 0:
+        return out
+    if k.size > MAX_SHARE_DIRECTIONS:
+        out[k] = np.nan
+        k = k[np.linspace(0, k.size - 1, MAX_SHARE_DIRECTIONS).round().astype(int)]
     g = faces.gradient
-    gx, gy = np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1])
-    w = np.asarray(faces.weight, dtype=float)
     mu = np.asarray(faces.mu, dtype=float)
-    inv_nrm = 1.0 / np.sqrt(1.0 + gx * gx + gy * gy)
-    for k in np.flatnonzero(res.locked):
-        slope = gx * np.cos(res.psi[k]) + gy * np.sin(res.psi[k])
-        fz = inv_nrm - mu * slope / np.sqrt(1.0 + slope * slope)
-        loaded = w > 0 if res.contact == "all-faces" else (slope > LEVEL_SLOPE_TOL) & (w > 0)
-        out[k] = w[loaded & (fz <= LOCK_TOL)].sum() / w[loaded].sum()
+    uniform = mu.strides == (0,)
+    lw = locked_weight(np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1]),
+                       np.ascontiguousarray(mu[:1] if uniform else mu), uniform,
+                       np.ascontiguousarray(faces.weight, dtype=float),
+                       np.cos(res.psi[k]), np.sin(res.psi[k]), res.contact == "windward",
+                       LOCK_TOL, LEVEL_SLOPE_TOL)
+    out[k] = lw[:, 0] / np.where(lw[:, 1] > 0, lw[:, 1], 1.0)
     return out
