@@ -128,3 +128,23 @@ def test_derive_surface_friction_map_and_plot(capsys, tmp_path):
     d = json.loads(out)
     assert all(x["tangential"] == pytest.approx(0.25, rel=1e-12) for x in d["directions"])
     assert (tmp_path / "flat.png").stat().st_size > 10_000
+
+
+def test_progress_bar_draws_on_a_terminal_only():
+    import io
+
+    from asperity.cli.derive import progress_bar
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+    bar = progress_bar("facets")
+    bar.stream, bar.on = Tty(), True
+    with bar:
+        bar(0.5)
+        bar(1.0)
+    text = bar.stream.getvalue()
+    assert "50.0 %" in text and "100.0 %" in text and text.endswith("\r")
+    quiet = progress_bar("facets")          # pytest's stderr is not a terminal
+    quiet(0.5)
+    assert not quiet.shown
