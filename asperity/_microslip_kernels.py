@@ -199,12 +199,13 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
 
 @njit(cache=True)
 def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, status_seq,
-          rec_nodes, rec_u, max_iter):
+          slip_seq, rec_nodes, rec_u, max_iter):
     """March the load points (dT_seq[j], F_seq[j]) from the state (u, s) (updated in place).
 
     du_seq (m, n): displacement increments of the same points one cycle earlier, the
     starting guess of each increment (exact once the cycle is stabilised); overwritten.
     status_seq (m, n) int8: the slider status over each increment (out).
+    slip_seq (m,): the largest |slip| of a slider over each increment (out).
     rec_u (m, len(rec_nodes)): node displacements recorded at each point.
     Returns (code, index of the failing point or -1, total Newton iterations)."""
     n = u.size
@@ -235,9 +236,14 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, status_s
                 s[i] = s_old[i]
                 u[i] = u_old[i]
             return code, j, iters
+        smax = 0.0
         for i in range(n):
             status_seq[j, i] = st[i]
             du_seq[j, i] = u[i] - u_old[i]
+            d = abs(s[i] - s_old[i])
+            if d > smax:
+                smax = d
+        slip_seq[j] = smax
         for k in range(rec_nodes.size):
             rec_u[j, k] = u[rec_nodes[k]]
     return STATUS_OK, -1, iters

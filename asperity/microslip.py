@@ -398,7 +398,9 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
 
     def run(dT, F, du, status):
         ru = np.empty((dT.size, rec.size))
-        code, j, it = march(*args, dT, F, u, s, du, status, rec, ru, max_iter)
+        slip = np.zeros(dT.size)
+        slips.append(slip)
+        code, j, it = march(*args, dT, F, u, s, du, status, slip, rec, ru, max_iter)
         if code == STATUS_SLIDE_OFF:
             raise SlideOffError(f"the assembly slides off at load point dT = {dT[j]:g} K, "
                                 f"F = {F[j]:g}: no slider can stay stuck")
@@ -408,6 +410,8 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         return ru, it
 
     tr_t, tr_dT, tr_u = [0.0], [0.0], [np.zeros(rec.size)]
+    slips = []
+    scale = _scale(chain, loading)
     iters = 0
     dT0, F0 = loading.lead_in()
     if dT0.size:
@@ -433,7 +437,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         mean_u.append(float(chain.weight @ u))
         u_end.append(u.copy())
         q_end = chain.kt * (u - s)
-        slip = bool(np.any(status != 0))
+        slip = bool(slips[-1].max() > tol.no_drift * scale)
         if np.max(np.abs(q_end - q_prev)) <= tol.stabilised * cap:
             stab = c if stab is None else stab
             if until_stable and c >= min_cycles:
@@ -444,7 +448,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     mean_u = np.array(mean_u)
     k = len(mean_u) - 1
     d = float(mean_u[k] - mean_u[k - 1])
-    if abs(d) <= tol.no_drift * _scale(chain, loading):
+    if abs(d) <= tol.no_drift * scale:
         d = 0.0
     trace = {"t": np.array(tr_t), "dT": np.array(tr_dT), "u": np.array(tr_u), "nodes": rec}
     return MicroslipResult(chain, loading, "quasi-static", k, mean_u, np.array(u_end), q_end, d,
