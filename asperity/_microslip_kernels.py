@@ -126,7 +126,15 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
     Returns (code, Newton iterations); on success s, q, status hold the new state."""
     n = u.size
     kd = np.empty(n)
+    # absolute floor of the force scale: the largest finite slider threshold
+    cap = 0.0
+    for i in range(n):
+        if math.isfinite(cp[i]) and cp[i] > cap:
+            cap = cp[i]
+        if math.isfinite(cm[i]) and cm[i] > cap:
+            cap = cm[i]
     phi, gmax, scale = _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, g)
+    scale = max(scale, cap)
     nst = _classify(kt, cp, cm, s_old, u, cls)
     code = STATUS_NO_CONVERGENCE
     its = max_iter
@@ -152,7 +160,7 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
                 un[i] = u[i] + step * du[i]
             phin, gmaxn, scalen = _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F,
                                                    s_old, un, gn)
-            if phin <= phi + 1e-4 * step * slope + 1e-12 * abs(phi) or gmaxn <= _GTOL * scalen:
+            if phin <= phi + 1e-4 * step * slope + 1e-12 * abs(phi) or gmaxn <= _GTOL * max(scalen, cap):
                 accepted = True
                 break
             step *= 0.5
@@ -165,7 +173,7 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
         for i in range(n):
             u[i] = un[i]
             g[i] = gn[i]
-        phi, gmax, scale = phin, gmaxn, scalen
+        phi, gmax, scale = phin, gmaxn, max(scalen, cap)
         nstn = _classify(kt, cp, cm, s_old, u, clsn)
         same = nstn == nst and step == 1.0 and nst > 0
         if same:

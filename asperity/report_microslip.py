@@ -1,0 +1,291 @@
+"""Report section and figures of the cumulative microslip (SPEC.md section 5).
+
+:func:`section` (folder) -> Markdown lines, figures written into ``folder``: Antoni et al.'s
+figure 3 redrawn from the model (node displacement against cycles), the strip's slip
+profiles, a risk map, the convergence of the strip's drift per cycle with the number of
+nodes, the dT_c checks and the agreement of the two solution modes.  The plot functions are
+also used by ``asperity risk --plot``.  matplotlib is imported only when a figure is drawn.
+"""
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+# the SPEC.md section 5 two-node check and a strip at lam l = 3.54
+TWO_NODE = dict(k=1e6, l0=0.1, alpha_T=1.2e-5, k_t=5e5, N=100.0)
+STRIP = dict(h=2e-3, E=2e11, p=1e6, l=0.1, alpha_T=1.2e-5)
+STRIP_LAM_L = 3.54
+MU = (0.2, 0.1)
+
+
+def _strip_kt() -> float:
+    return (STRIP_LAM_L / STRIP["l"]) ** 2 * STRIP["E"] * STRIP["h"]
+
+
+def _strip(n, mu=MU):
+    from .microslip import strip_chain
+    s = STRIP
+    return strip_chain(s["h"], s["E"], s["p"], s["l"], _strip_kt(), s["alpha_T"], n, *mu)
+
+
+def _two_node(mu=MU):
+    from .microslip import two_node_chain
+    t = TWO_NODE
+    return two_node_chain(t["k"], t["l0"], t["alpha_T"], t["k_t"], t["N"], *mu)
+
+
+# --------------------------------------------------------------------------- figures
+
+def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int = 6,
+                          substeps: int = 24) -> None:
+    """Node displacement against cycles (Antoni et al. figure 3 redrawn from the model,
+    temperature on a second axis); for a strip also the displacement profiles u(x) at the
+    end of each cycle and at the hottest point of the last one."""
+    from .io import save_figure_atomic
+    from .microslip import Loading, simulate
+    from .plotting import _plt
+    plt = _plt()
+    L = Loading(loading.dT, loading.F, max(loading.substeps, substeps))
+    n = chain.n
+    strip = chain.kind == "strip"
+    if strip:
+        nodes = np.unique(np.linspace(0, n - 1, min(n, 401)).astype(int))
+    else:
+        nodes = np.arange(n)
+    r = simulate(chain, L, cycles, until_stable=False, record_nodes=nodes)
+    tr = r.trace
+    show = [0, n // 2, n - 1] if strip else list(range(n))
+    cols = {k: c for k, c in zip(show, ["tab:blue", "tab:green", "tab:red"])}
+    if strip:
+        fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12.5, 4.6))
+    else:
+        fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    for k in show:
+        j = int(np.searchsorted(nodes, k))
+        lab = f"node {k + 1} (x = {chain.x[k]:.3g} m)"
+        ax.plot(tr["t"], tr["u"][:, j] * 1e6, color=cols[k], lw=1.6, label=lab)
+    ax.set_xlabel("cycles")
+    ax.set_ylabel("node displacement u (um)")
+    ax.grid(alpha=0.3)
+    axT = ax.twinx()
+    axT.plot(tr["t"], tr["dT"], color="0.6", lw=0.8, ls=":")
+    axT.set_ylabel("dT (K, dotted)", color="0.4")
+    d = r.drift_per_cycle
+    ax.set_title((title + ": " if title else "") + f"mu+={chain.mu_plus:.4g}, "
+                 f"mu-={chain.mu_minus:.4g}; drift {d * 1e6:+.4g} um/cycle", fontsize=10)
+    ax.legend(fontsize=8, loc="best")
+    if strip:
+        x = chain.x[nodes] * 1e3
+        cmap = plt.get_cmap("viridis")
+        for c in range(1, r.cycles_run + 1):
+            ax2.plot(chain.x * 1e3, r.u_end[c] * 1e6, color=cmap(c / (r.cycles_run + 1)),
+                     lw=1.4, label=f"end of cycle {c}")
+        per = L.cycle_points()[0].size
+        hot = int(np.argmax(L.cycle_points()[0]))
+        j = 1 + (r.cycles_run - 1) * per + hot + (len(tr["t"]) - 1 - r.cycles_run * per)
+        ax2.plot(x, tr["u"][j] * 1e6, color="tab:red", ls="--", lw=1.2,
+                 label=f"cycle {r.cycles_run} at dT = {tr['dT'][j]:g} K")
+        ax2.set_xlabel("x (mm)")
+        ax2.set_ylabel("displacement u(x) (um)")
+        ax2.set_title("strip displacement profiles", fontsize=10)
+        ax2.grid(alpha=0.3)
+        ax2.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    save_figure_atomic(fig, path, dpi=110)
+    plt.close(fig)
+
+
+def plot_risk_map(out: dict, path) -> None:
+    """Drift per cycle over the grid of ``asperity risk --map`` (signed colour, um/cycle),
+    shakedown cells hatched grey, slide-off cells black."""
+    from matplotlib.colors import TwoSlopeNorm
+
+    from .io import save_figure_atomic
+    from .plotting import _plt
+    plt = _plt()
+    m = out["map"]
+    xs, ys = np.array(m["x"]["values"]), np.array(m["y"]["values"])
+    d = np.array([[np.nan if v is None else v for v in row] for row in m["drift_per_cycle_m"]])
+    verdict = np.array(m["verdict"], dtype=object)
+    fig, ax = plt.subplots(figsize=(7.2, 5.4))
+    z = d * 1e6
+    lim = np.nanmax(np.abs(z)) if np.isfinite(z).any() and np.nanmax(np.abs(z)) > 0 else 1.0
+    im = ax.pcolormesh(_edges(xs), _edges(ys), np.where(verdict == "ratchet", z, np.nan),
+                       cmap="coolwarm", norm=TwoSlopeNorm(0.0, -lim, lim), shading="flat")
+    fig.colorbar(im, ax=ax, label="drift per cycle (um; < 0: towards -x)")
+    for j, y in enumerate(ys):
+        for i, x in enumerate(xs):
+            v = verdict[j, i]
+            if v == "shakedown":
+                ax.add_patch(plt.Rectangle((_edges(xs)[i], _edges(ys)[j]),
+                                           np.diff(_edges(xs))[i], np.diff(_edges(ys))[j],
+                                           facecolor="0.9", edgecolor="0.6", hatch="//", lw=0.3))
+            elif v != "ratchet":
+                ax.add_patch(plt.Rectangle((_edges(xs)[i], _edges(ys)[j]),
+                                           np.diff(_edges(xs))[i], np.diff(_edges(ys))[j],
+                                           facecolor="k"))
+    ax.plot([], [], marker="s", ls="", color="0.85", label="shakedown (hatched)")
+    if np.any((verdict != "ratchet") & (verdict != "shakedown")):
+        ax.plot([], [], marker="s", ls="", color="k", label="slides off")
+    ax.legend(fontsize=8, loc="upper right")
+    unit = {"alpha": " (deg)", "beta": " (deg)"}
+    ax.set_xlabel(m["x"]["parameter"] + unit.get(m["x"]["parameter"], ""))
+    ax.set_ylabel(m["y"]["parameter"] + unit.get(m["y"]["parameter"], ""))
+    ax.set_title(f"risk map: {out['assembly']['name']}, {out['contact']}, texture on the "
+                 f"{out['textured']}", fontsize=10)
+    fig.tight_layout()
+    save_figure_atomic(fig, path, dpi=110)
+    plt.close(fig)
+
+
+def _edges(v: np.ndarray) -> np.ndarray:
+    mid = 0.5 * (v[1:] + v[:-1])
+    return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
+
+
+# --------------------------------------------------------------------------- numbers
+
+def strip_convergence(ns=(21, 41, 81, 161, 321, 641, 1281), n_ref: int = 5121,
+                      margin: float = 5.0) -> dict:
+    """The strip's drift per cycle against n (cycles 0 -> 2 margin dT_c -> 0, dT_c the
+    shear-lag closed form), errors against n_ref nodes and the fitted order."""
+    from .microslip import Loading, simulate, strip_dT_c
+    s = STRIP
+    dTc = strip_dT_c(s["h"], s["E"], s["p"], s["l"], _strip_kt(), *MU, s["alpha_T"])
+    L = Loading.cycles_between(0.0, 2 * margin * dTc)
+    ref = simulate(_strip(n_ref), L, 20).drift_per_cycle
+    rows = []
+    for n in ns:
+        d = simulate(_strip(n), L, 20).drift_per_cycle
+        rows.append((n, d, abs(d / ref - 1)))
+    e = np.array([r[2] for r in rows])
+    h = np.array([1.0 / (r[0] - 1) for r in rows])
+    ok = e > 0
+    order = float(np.polyfit(np.log(h[ok]), np.log(e[ok]), 1)[0]) if ok.sum() >= 2 else math.nan
+    return {"dT_c": dTc, "margin": margin, "reference_n": n_ref, "reference": ref,
+            "rows": rows, "order": order}
+
+
+def dT_c_checks() -> list[tuple]:
+    """(model, n, numeric dT_c, closed form, relative error)."""
+    from .microslip import elastic_limit, strip_dT_c, two_node_dT_c
+    t, s = TWO_NODE, STRIP
+    rows = [("two-node", 2, elastic_limit(_two_node()),
+             two_node_dT_c(t["k"], t["k_t"], t["N"], *MU, t["alpha_T"], t["l0"]))]
+    exact = strip_dT_c(s["h"], s["E"], s["p"], s["l"], _strip_kt(), *MU, s["alpha_T"])
+    for n in (101, 201, 401, 801):
+        rows.append(("strip", n, elastic_limit(_strip(n)), exact))
+    return [(m, n, a, b, abs(a / b - 1)) for m, n, a, b in rows]
+
+
+def section(folder: Path) -> list[str]:
+    """Markdown lines of the microslip section; PNGs written into ``folder``."""
+    from .microslip import (Loading, long_life, simulate, simulate_dynamic,
+                            two_node_drift_per_cycle, two_node_dT_c)
+    folder = Path(folder)
+    t = TWO_NODE
+    out = ["## Cumulative microslip: assemblies under thermal cycles", "",
+           "Slider chains (SPEC.md 5): each contact node an elastic spring k_t in series with a "
+           "slider at mu+ N (towards +x) and mu- N (towards -x). Quasi-static mode: one exact "
+           "increment per monotone load segment (semismooth Newton on the incremental energy); "
+           "dynamic mode: Moreau midpoint time-stepping with small masses and slow loading. "
+           "Sign convention: drift < 0 is towards -x, the side of the smaller coefficient "
+           "when mu+ > mu-.", ""]
+    # figure 3
+    dTc = two_node_dT_c(t["k"], t["k_t"], t["N"], *MU, t["alpha_T"], t["l0"])
+    L3 = Loading.cycles_between(0.0, 3 * dTc)
+    plot_assembly_history(_two_node(), L3, folder / "microslip_two_node.png",
+                          title="two-node model (Antoni et al. fig. 3)")
+    r = simulate(_two_node(), L3, 8, until_stable=False)
+    want = two_node_drift_per_cycle(t["k"], t["k_t"], t["N"], *MU, t["alpha_T"], t["l0"],
+                                    0.0, 3 * dTc)
+    out += ["### Two-node model (Antoni et al. figure 3, redrawn from the model)", "",
+            f"k = {t['k']:g} N/m, k_t = {t['k_t']:g} N/m, N = {t['N']:g} N, mu+ = {MU[0]}, "
+            f"mu- = {MU[1]}, alpha_T = {t['alpha_T']:g} 1/K, l0 = {t['l0']:g} m, dT in "
+            f"[0, 3 dT_c]: drift per cycle {r.drift_per_cycle:.6e} m (closed form "
+            f"{want:.6e} m, SPEC.md: -5.0e-5), both nodes from the first full cycle on.", "",
+            "![two-node model](microslip_two_node.png)", ""]
+    # dT_c checks
+    out += ["### Elastic limit dT_c against the closed forms", "",
+            "| model | nodes | dT_c numeric (K) | closed form (K) | relative error |",
+            "|---|---|---|---|---|"]
+    for m, n, a, b, e in dT_c_checks():
+        out.append(f"| {m} | {n} | {a:.8g} | {b:.8g} | {e:.2e} |")
+    out += ["", f"Strip: h = {STRIP['h']:g} m, E = {STRIP['E']:g} Pa, p = {STRIP['p']:g} Pa, "
+            f"l = {STRIP['l']:g} m, lam l = {STRIP_LAM_L}; shear-lag dT_c = mu- p lam "
+            "coth(lam l/2) / (alpha_T k_t). The lumped discretisation converges at second "
+            "order (error / 4 per halving of dx; SPEC.md quotes 2.6e-6 at 801 nodes).", ""]
+    # strip profiles
+    L5 = Loading.cycles_between(0.0, 10 * dT_c_checks()[-1][3])
+    plot_assembly_history(_strip(201), L5, folder / "microslip_strip.png",
+                          title="strip, 201 nodes, dT range 5 x 2 dT_c")
+    out += ["### Strip: node displacements and slip profiles", "",
+            "![strip](microslip_strip.png)", ""]
+    # convergence
+    t0 = time.perf_counter()
+    cv = strip_convergence()
+    out += ["### Strip drift per cycle against n", "",
+            f"Cycles 0 -> {2 * cv['margin']:g} dT_c -> 0 (margin {cv['margin']:g}); reference "
+            f"{cv['reference_n']} nodes: {cv['reference']:.8e} m per cycle. Fitted order of "
+            f"the error in dx: {cv['order']:.2f} (irregular: the slip-zone boundaries fall "
+            "between nodes).", "",
+            "| nodes | drift per cycle (m) | relative error vs reference |", "|---|---|---|"]
+    for n, d, e in cv["rows"]:
+        out.append(f"| {n} | {d:.8e} | {e:.2e} |")
+    out += ["", f"({time.perf_counter() - t0:.1f} s for the table.)", ""]
+    # modes agree
+    rows = []
+    for name, chain, L in (("two-node", _two_node(), L3), ("strip, 11 nodes", _strip(11),
+                                                           L5)):
+        qs = simulate(chain, L, 10).drift_per_cycle
+        for sps in (20000, 80000, 320000):
+            dyn = simulate_dynamic(chain, L, 3, steps_per_segment=sps)
+            rows.append((name, sps, qs, dyn.drift_per_cycle, abs(dyn.drift_per_cycle / qs - 1),
+                         dyn.solver["max_iterations_used"]))
+    out += ["### Quasi-static and dynamic (Moreau) modes", "",
+            "Dynamic: node and slider masses, each load segment one time unit, omega_max dt = "
+            "0.5, mass-proportional damping; friction impulses from xi = prox_[-mu- N dt, "
+            "mu+ N dt](xi + r w_E), r = 1/G (G the slider's Delassus term), fixed-point "
+            "tolerance 1e-12, at most 100 iterations. The difference is first order in the "
+            "loading rate (inertia and damping lag).", "",
+            "| model | steps per segment | quasi-static drift (m) | Moreau drift (m) | "
+            "relative difference | max prox iterations |", "|---|---|---|---|---|---|"]
+    for name, sps, qs, dy, e, it in rows:
+        out.append(f"| {name} | {sps} | {qs:.6e} | {dy:.6e} | {e:.2e} | {it} |")
+    # risk map of the shipped bushing
+    out += _risk_map_lines(folder)
+    # long life
+    ll = long_life(_strip(201), L5, 1e6)
+    out += ["", "### Long life", "",
+            f"Strip, 201 nodes: stabilised at cycle {ll.stabilised_at}; drift per cycle "
+            f"{ll.drift_per_cycle:.6e} m; after 1e6 cycles {ll.drift_after(1e6):.6e} m "
+            "(state of the stabilised cycle + (N - k) x drift, exact for a rate-independent "
+            "chain whose cycle repeats up to a translation; tests check it against 300 "
+            "marched cycles).", ""]
+    return out
+
+
+def _risk_map_lines(folder: Path) -> list[str]:
+    import argparse
+
+    from .cli.risk import add_parser, run
+    root = Path(__file__).resolve().parent.parent / "surfaces"
+    asm = root / "bushing-strip.toml"
+    tex = root / "wedge-asymmetric.toml"
+    if not asm.is_file() or not tex.is_file():
+        return ["", "(risk map skipped: surfaces/bushing-strip.toml not found)", ""]
+    p = argparse.ArgumentParser()
+    add_parser(p.add_subparsers())
+    args = p.parse_args(["risk", str(tex), str(asm), "--map", "alpha=5:40:8",
+                         "beta=5:40:8"])
+    out = run(args)
+    plot_risk_map(out, folder / "microslip_risk_map.png")
+    v = np.array(out["map"]["verdict"], dtype=object)
+    return ["", "### Risk map of the shipped bushing (illustrative values)", "",
+            f"`asperity risk surfaces/wedge-asymmetric.toml surfaces/bushing-strip.toml --map "
+            f"alpha=5:40:8 beta=5:40:8`: {int((v == 'ratchet').sum())} of {v.size} wedge "
+            f"shapes ratchet under dT 0 -> 120 K.", "",
+            "![risk map](microslip_risk_map.png)", ""]
