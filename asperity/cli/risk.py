@@ -74,7 +74,8 @@ def friction_for(args, asm):
         name = args.texture or "wedge flags"
         f = friction_from_texture(texture, args.contact, axis, textured, name)
         if fr:
-            f.detail["note"] = "texture from the command line; the file's [friction] is ignored"
+            f.detail["note"] = ("texture from the command line instead of the file's friction "
+                                "source; its slip_axis_deg and textured still apply")
         return f, texture
     if args.slip_axis is not None or args.textured is not None:
         fr = dict(fr)
