@@ -147,3 +147,37 @@ def format_facets(out: dict) -> str:
 
 def run(seconds: float = 1.0) -> dict:
     return {"closed_form": bench_closed_form(seconds), "springs": bench_springs(seconds)}
+
+
+def bench_microslip(n_nodes: int = 10_000, cycles: int = 1_000, repeats: int = 3) -> dict:
+    """Quasi-static microslip: a strip of ``n_nodes`` nodes (lam l = 3.54) through ``cycles``
+    thermal cycles 0 -> 10 dT_c -> 0, every cycle marched (no stabilised-cycle shortcut);
+    node-updates = nodes x load increments (two per cycle).  Best and all of ``repeats``
+    timings after a warm-up (compilation)."""
+    from .microslip import Loading, simulate, strip_chain, strip_dT_c
+    h, E, p, l, aT = 2e-3, 2e11, 1e6, 0.1, 1.2e-5
+    kt = (3.54 / l) ** 2 * E * h
+    L = Loading.cycles_between(0.0, 10 * strip_dT_c(h, E, p, l, kt, 0.2, 0.1, aT))
+    simulate(strip_chain(h, E, p, l, kt, aT, 50, 0.2, 0.1), L, 3, until_stable=False)
+    chain = strip_chain(h, E, p, l, kt, aT, n_nodes, 0.2, 0.1)
+    times, r = [], None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        r = simulate(chain, L, cycles, until_stable=False)
+        times.append(time.perf_counter() - t0)
+    updates = n_nodes * 2 * cycles
+    best = min(times)
+    return {"nodes": n_nodes, "cycles": cycles, "increments": 2 * cycles,
+            "seconds": best, "all_seconds": times,
+            "node_updates_per_second": updates / best,
+            "newton_iterations": r.solver["iterations"],
+            "drift_per_cycle_m": r.drift_per_cycle}
+
+
+def format_microslip(out: dict) -> str:
+    """Human-readable line of :func:`bench_microslip`."""
+    return (f"microslip, quasi-static strip: {out['nodes']} nodes x {out['cycles']} cycles in "
+            f"{out['seconds']:.2f} s (runs: {', '.join(f'{t:.2f}' for t in out['all_seconds'])}"
+            f" s), {out['node_updates_per_second']:.3e} node-updates/s, "
+            f"{out['newton_iterations']} Newton iterations, drift "
+            f"{out['drift_per_cycle_m']:.6e} m/cycle")

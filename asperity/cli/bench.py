@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-PARTS = ("closed-form", "springs", "facets")
+PARTS = ("closed-form", "springs", "facets", "microslip")
 
 
 def add_parser(sub) -> None:
@@ -45,6 +45,8 @@ def main(args) -> int:
         n_dir = int(check_range("--directions", args.directions, 1, 1_000_000))
         n_np = int(check_range("--numpy-directions", args.numpy_directions, 1, 1_000_000))
         out["facets"] = bench.bench_facets(n_grid, n_dir, n_np)
+    if "microslip" in parts:
+        out["microslip"] = bench.bench_microslip()
     if args.json:
         print(json.dumps(out, indent=2))
         return 0
@@ -54,4 +56,6 @@ def main(args) -> int:
         print(f"springs, {k:23s}: {v['updates_per_second']:.3e} spring-tip updates/s")
     if "facets" in out:
         print(bench.format_facets(out["facets"]))
+    if "microslip" in out:
+        print(bench.format_microslip(out["microslip"]))
     return 0
