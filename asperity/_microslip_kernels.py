@@ -160,7 +160,8 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
                 un[i] = u[i] + step * du[i]
             phin, gmaxn, scalen = _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F,
                                                    s_old, un, gn)
-            if phin <= phi + 1e-4 * step * slope + 1e-12 * abs(phi) or gmaxn <= _GTOL * max(scalen, cap):
+            if (phin <= phi + 1e-4 * step * slope + 1e-12 * abs(phi)
+                    or gmaxn <= _GTOL * max(scalen, cap)):
                 accepted = True
                 break
             step *= 0.5

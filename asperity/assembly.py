@@ -161,7 +161,6 @@ def _positive(where: str, name: str, value, unit: str) -> float:
 
 def load_assembly(path) -> Assembly:
     """Read an assembly TOML file; one-line AssemblyFileError naming the field."""
-    from .microslip import Loading
     p = Path(path)
     if not p.is_file():
         raise AssemblyFileError(f"assembly file {str(p)!r} does not exist")

@@ -457,8 +457,8 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     trace = {"t": np.array(tr_t), "dT": np.array(tr_dT), "u": np.array(tr_u), "nodes": rec}
     return MicroslipResult(chain, loading, "quasi-static", k, mean_u, np.array(u_end), q_end, d,
                            stab, slip, trace,
-                           {"method": "semismooth Newton on the incremental energy, one increment per "
-                                      "load segment x substeps",
+                           {"method": "semismooth Newton on the incremental energy, one "
+                                      "increment per load segment x substeps",
                             "increments_per_segment": loading.substeps,
                             "iterations": int(iters)})
 
@@ -543,9 +543,7 @@ def simulate_dynamic(chain: Chain, loading: Loading, cycles: int = 3, *,
             k = min(nrec, int(span * steps_per_segment) // every)
             tr_t += list(rt[:k] + t0)
             tr_u += list(ru[:k])
-        # shift the time axis so that the kernel always starts at t = 0
-        t_pts_shift = t_end
-        t0 = t_pts_shift
+        t0 = t_end                       # the kernel restarts at t = 0 on a shifted axis
         mean_u.append(float(chain.weight @ u))
         u_end.append(u.copy())
     mean_u = np.array(mean_u)

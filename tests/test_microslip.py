@@ -119,7 +119,8 @@ def test_increment_against_naive_minimisation():
     n = 7
     base = two_node()
     from dataclasses import replace
-    c = replace(base, kind="random", x=np.arange(n, dtype=float), kb=rng.uniform(0.5, 2, n - 1) * 1e6,
+    c = replace(base, kind="random", x=np.arange(n, dtype=float),
+                kb=rng.uniform(0.5, 2, n - 1) * 1e6,
                 le=rng.uniform(0.5, 1.5, n - 1) * 0.02, kt=rng.uniform(0.5, 2, n) * 5e5,
                 cp=rng.uniform(5, 20, n), cm=rng.uniform(5, 20, n),
                 fw=np.full(n, 1 / n), weight=np.full(n, 1 / n))

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 
 from ..errors import InputError
 from .derive import WEDGE_FLAGS, add_source_arguments
@@ -137,7 +136,8 @@ def parse_map_axis(text: str):
     import numpy as np
     from ..errors import check_int, check_range
     if "=" not in text:
-        raise InputError(f"--map takes P=LO:HI:N with P one of {', '.join(MAP_PARAMS)}, got {text!r}")
+        raise InputError(f"--map takes P=LO:HI:N with P one of {', '.join(MAP_PARAMS)}, "
+                         f"got {text!r}")
     name, rng = text.split("=", 1)
     name = name.strip().replace("-", "_")
     if name not in MAP_PARAMS:
@@ -349,6 +349,3 @@ def _loading_from(args):
     from ..assembly import load_assembly
     return load_assembly(args.assembly).loading
 
-
-def _finite(x) -> float | None:
-    return float(x) if x is not None and math.isfinite(x) else None
