@@ -233,6 +233,16 @@ def _fit_rows(d, name: str) -> list[str]:
     return rows
 
 
+def _numbered(k: int, section: list[str]) -> list[str]:
+    """A section's lines with its first level-2 heading numbered k."""
+    out = list(section)
+    for i, line in enumerate(out):
+        if line.startswith("## "):
+            out[i] = f"## {k}. " + line[3:]
+            break
+    return out
+
+
 def run(folder: str | Path = "reports") -> Path:
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
@@ -241,8 +251,8 @@ def run(folder: str | Path = "reports") -> Path:
     lines += _spec_section() + _springs_section() + _figures(folder) + _loading_section(folder)
     lines += _surface_validation_section() + _measured_section(folder)
     from .report_gauges import section as gauge_section
-    lines += ["## 7. " + x[3:] if x.startswith("## ") and i == 0 else x
-              for i, x in enumerate(gauge_section(folder))]
+    from .report_microslip import section as microslip_section
+    lines += _numbered(7, gauge_section(folder)) + _numbered(8, microslip_section(folder))
     path = folder / "REPORT.md"
     write_text_atomic(path, "\n".join(lines))
     return path
