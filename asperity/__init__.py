@@ -29,6 +29,13 @@ _LAZY = {
     "TruncatedEllipse": "asperity.gauges",
     "read_gauge": "asperity.gauge_file",
     "write_gauge": "asperity.gauge_file",
+    "simulate_microslip": "asperity.microslip",
+    "long_life": "asperity.microslip",
+    "assess": "asperity.microslip",
+    "two_node_chain": "asperity.microslip",
+    "strip_chain": "asperity.microslip",
+    "Loading": "asperity.microslip",
+    "load_assembly": "asperity.assembly",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }
@@ -36,8 +43,12 @@ _LAZY = {
 __all__ = ["__version__", *_LAZY]
 
 
+#: public names that differ from the module's own
+_RENAMED = {"simulate_microslip": "simulate"}
+
+
 def __getattr__(name: str):
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'asperity' has no attribute {name!r}")
-    return getattr(importlib.import_module(module), name)
+    return getattr(importlib.import_module(module), _RENAMED.get(name, name))
