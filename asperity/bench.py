@@ -190,3 +190,53 @@ def format_microslip(out: dict) -> str:
             f"{v['node_updates_per_second']:.3e} node-updates/s, {v['newton_iterations']} "
             f"Newton iterations, drift {v['drift_per_cycle_m']:.6e} m/cycle")
     return "\n".join(lines)
+
+
+def bench_moreau(seconds: float = 1.0, steps: int = 1_000_000) -> dict:
+    """Moreau time steps per second of one point mass sliding (never sticking: the costly
+    phase) with each law, compilation excluded.  u0 = 1e4 m/s at 30 deg, dt = 1e-6 s, so the
+    body slides through all ``steps`` steps; the velocity direction turns, so the star law's
+    fixed-point iteration works at every step (mean iterations reported)."""
+    from . import laws as L
+    from .moreau import point_mass, simulate
+    cases = {"coulomb": L.coulomb_law(0.3), "ellipse": L.ellipse_law(0.6, 0.3),
+             "truncated-ellipse": L.truncated_ellipse_law(0.2, 0.08, 0.12, 0.15),
+             "collinear": L.collinear_law(mu1=0.6, mu2=0.3), "star": L.star_law(0.6, 0.3),
+             "windward star (gauge fit)": L.windward_star_law()}
+    dt = 1e-6
+    u = 1e4 * np.array([math.cos(math.radians(30)), math.sin(math.radians(30))])
+    out = {}
+    for name, law in cases.items():
+        body = point_mass(law)
+        last = {}
+
+        def run():
+            last["r"] = simulate(body, u, dt=dt, t_end=steps * dt, record_every=steps)
+        rate, n = _rate(run, steps, seconds)
+        r = last["r"]
+        out[name] = {"steps_per_second": rate, "steps": n,
+                     "mean_iterations": r.mean_iterations,
+                     "max_iterations_used": r.max_iterations_used, "status": r.status}
+    # a whole slide to rest (u0 = 2 m/s at 45 deg, dt = 1e-6 s): direction turning, the stop
+    for name in ("ellipse", "star", "windward star (gauge fit)"):
+        body = point_mass(cases[name])
+        v = 2.0 * np.array([math.sqrt(0.5), math.sqrt(0.5)])
+        last = {}
+
+        def run():
+            last["r"] = simulate(body, v, dt=dt, t_end=2.0, record_every=10 ** 7,
+                                 halt_at_rest=True)
+        last["r"] = simulate(body, v, dt=dt, t_end=2.0, record_every=10 ** 7, halt_at_rest=True)
+        rate, n = _rate(run, last["r"].steps, seconds)
+        r = last["r"]
+        out[f"{name}, slide to rest"] = {
+            "steps_per_second": rate, "steps": n, "mean_iterations": r.mean_iterations,
+            "max_iterations_used": r.max_iterations_used, "status": r.status}
+    return out
+
+
+def format_moreau(out: dict) -> str:
+    """Human-readable lines of :func:`bench_moreau`."""
+    return "\n".join(f"moreau, {k:38s}: {v['steps_per_second']:.3e} steps/s "
+                     f"(mean {v['mean_iterations']:.2f} iterations/step, max "
+                     f"{v['max_iterations_used']}, {v['status']})" for k, v in out.items())

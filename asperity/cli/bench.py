@@ -10,9 +10,11 @@ PARTS = ("closed-form", "springs", "facets", "microslip")
 def add_parser(sub) -> None:
     p = sub.add_parser("bench", help="print speed figures",
                        description="Closed-form reservoir evaluations per second, "
-                                   "spring-tip updates per second and (with --only facets or "
+                                   "spring-tip updates per second, (with --only facets or "
                                    "--facets N) facet-directions per second of the facet "
-                                   "kernel against streamed NumPy (compilation excluded).")
+                                   "kernel against streamed NumPy and (with --only moreau) "
+                                   "Moreau time steps per second of one sliding body with "
+                                   "each friction law (compilation excluded).")
     p.add_argument("--seconds", type=float, default=1.0, help="time per measurement (s)")
     p.add_argument("--only", choices=PARTS, default=None,
                    help="run one benchmark only (default: closed-form and springs)")
@@ -45,6 +47,8 @@ def main(args) -> int:
         n_dir = int(check_range("--directions", args.directions, 1, 1_000_000))
         n_np = int(check_range("--numpy-directions", args.numpy_directions, 1, 1_000_000))
         out["facets"] = bench.bench_facets(n_grid, n_dir, n_np)
+    if "moreau" in parts:
+        out["moreau"] = bench.bench_moreau(seconds)
     if "microslip" in parts:
         out["microslip"] = bench.bench_microslip()
     if args.json:
@@ -56,6 +60,8 @@ def main(args) -> int:
         print(f"springs, {k:23s}: {v['updates_per_second']:.3e} spring-tip updates/s")
     if "facets" in out:
         print(bench.format_facets(out["facets"]))
+    if "moreau" in out:
+        print(bench.format_moreau(out["moreau"]))
     if "microslip" in out:
         print(bench.format_microslip(out["microslip"]))
     return 0
