@@ -1,0 +1,213 @@
+"""``asperity slide``: a point mass launched on a frictional plane, integrated with the Moreau
+solver until it sticks (deflection of the path by anisotropic friction)."""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+LAWS = ("coulomb", "ellipse", "collinear", "star")
+#: rows of the CSV table / points of the plot at most (every k-th step is kept)
+MAX_ROWS = 20000
+EXIT_NOT_CONVERGED = 3
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "slide", help="slide a body on a friction law until it sticks (Moreau time-stepping)",
+        description="Launch a point mass from the origin at speed --u0 in direction --angle "
+                    "(deg, from t_a towards t_b) on a plane with dry friction and integrate its "
+                    "motion with the Moreau midpoint scheme until it sticks (exact stick: the "
+                    "velocity becomes exactly zero). The law is a gauge file's (GAUGE, written "
+                    "by `asperity fit`: its truncated ellipse or star-shaped law, or with --law "
+                    "collinear a force along the sliding direction with the file's magnitudes) "
+                    "or a built-in one: coulomb (mu1 alone, or mu1 = mu2), ellipse (associated "
+                    "orthotropic), collinear (force along the sliding direction, magnitude from "
+                    "the ellipse) or star (non-convex windward wedge reservoir stretched to mu1 "
+                    "along t_a and mu2 along t_b). Prints the rest point, stop time and the "
+                    "deflection: the signed angle from the initial velocity to the line from "
+                    "start to rest (positive towards t_b). Exit status 3 if the fixed-point "
+                    "iteration did not converge at some step (reported, with the residual).",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
+    p.add_argument("--law", choices=LAWS, default=None,
+                   help="law (default: the gauge file's; without one coulomb if only --mu1 "
+                        "is given or mu1 = mu2, else ellipse)")
+    p.add_argument("--mu1", type=float, metavar="X", help="friction coefficient along t_a")
+    p.add_argument("--mu2", type=float, metavar="Y", help="friction coefficient along t_b")
+    p.add_argument("--u0", type=float, required=True, metavar="M_S", help="initial speed (m/s)")
+    p.add_argument("--angle", type=float, required=True, metavar="DEG",
+                   help="direction of the initial velocity (deg from t_a towards t_b)")
+    p.add_argument("--mass", type=float, default=1.0, metavar="KG", help="mass (kg)")
+    p.add_argument("--g", type=float, default=9.81, metavar="M_S2",
+                   help="gravity: normal force m g (m/s^2)")
+    p.add_argument("--dt", type=float, default=1e-4, metavar="S", help="time step (s)")
+    p.add_argument("--t-end", type=float, default=None, metavar="S",
+                   help="end time (s); default: until the body sticks")
+    p.add_argument("--tol", type=float, default=1e-12,
+                   help="fixed-point tolerance (friction impulse per normal impulse)")
+    p.add_argument("--max-iterations", type=int, default=2000,
+                   help="fixed-point iteration limit per step")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the path")
+    p.add_argument("--csv", metavar="FILE.csv", help="write t,x,y,vx,vy of the path")
+    p.set_defaults(func=main)
+
+
+def build_law(args):
+    """The PlanarLaw selected by the arguments (validated)."""
+    from .. import laws as L
+    from ..errors import InputError, check_range
+    if args.gauge:
+        if args.mu1 is not None or args.mu2 is not None:
+            raise InputError("--mu1/--mu2 do not apply with a gauge file (the file holds the law)")
+        if args.law == "coulomb":
+            raise InputError("--law coulomb takes --mu1, not a gauge file")
+        from ..gauge_file import read_gauge
+        gl = read_gauge(args.gauge)
+        kind = args.law
+        if kind == "ellipse" and gl.kind != "truncated-ellipse":
+            raise InputError(f"--law ellipse needs a truncated-ellipse gauge file, "
+                             f"{args.gauge} holds a {gl.kind} law (use --law star or collinear)")
+        if kind == "star" and gl.kind != "star":
+            raise InputError(f"--law star needs a star gauge file, {args.gauge} holds a "
+                             f"{gl.kind} law (use --law ellipse or collinear)")
+        return L.from_gauge(gl, None if kind in (None, "ellipse", "star") else kind)
+    if args.mu1 is None:
+        raise InputError("--mu1 is required without a gauge file (friction coefficient along "
+                         "t_a, in (0, 100])")
+    mu1 = check_range("--mu1", args.mu1, 0.0, 100.0, low_open=True)
+    mu2 = None if args.mu2 is None else check_range("--mu2", args.mu2, 0.0, 100.0,
+                                                   low_open=True)
+    law = args.law or ("coulomb" if mu2 is None or mu2 == mu1 else "ellipse")
+    if law == "coulomb":
+        if mu2 is not None and mu2 != mu1:
+            raise InputError(f"--law coulomb is isotropic: give --mu1 alone or --mu2 equal to "
+                             f"it, got --mu1 {mu1:g} --mu2 {mu2:g}")
+        return L.coulomb_law(mu1)
+    if mu2 is None:
+        raise InputError(f"--law {law} needs --mu2 (friction coefficient along t_b, in (0, 100])")
+    if law == "ellipse":
+        return L.ellipse_law(mu1, mu2)
+    if law == "collinear":
+        return L.collinear_law(mu1=mu1, mu2=mu2)
+    return L.star_law(mu1, mu2)
+
+
+def run(args):
+    """Python API of the command: (law, Result, the JSON object printed with --json)."""
+    from ..errors import InputError, check_int, check_range
+    from ..moreau import Settings, deflection_deg, simulate, point_mass
+    u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
+    angle = check_range("--angle", args.angle, -360.0, 360.0, unit="deg")
+    mass = check_range("--mass", args.mass, 0.0, 1e9, low_open=True, unit="kg")
+    g = check_range("--g", args.g, 0.0, 1e4, low_open=True, unit="m/s^2")
+    dt = check_range("--dt", args.dt, 0.0, 1.0, low_open=True, unit="s")
+    tol = check_range("--tol", args.tol, 0.0, 1e-3, low_open=True)
+    maxit = check_int("--max-iterations", args.max_iterations, 1, 1_000_000)
+    law = build_law(args)
+    halt = args.t_end is None
+    if halt:
+        t_end = 1.5 * u0 / (g * law.min_tangential()) + 10 * dt
+    else:
+        t_end = check_range("--t-end", args.t_end, 0.0, 1e9, unit="s")
+    n = int(round(t_end / dt))
+    if n > 500_000_000:
+        raise InputError(f"--t-end / --dt gives {n:.3g} steps, at most 5e8: raise --dt")
+    rec = max(1, n // MAX_ROWS) if (args.plot or args.csv) else max(1, n)
+    a = math.radians(angle)
+    res = simulate(point_mass(law, mass), [u0 * math.cos(a), u0 * math.sin(a)], dt=dt,
+                   t_end=t_end, g=g, settings=Settings(tol=tol, max_iterations=maxit),
+                   record_every=rec, halt_at_rest=halt)
+    x, y = (float(v) for v in res.q_final)
+    stopped = res.stop_step is not None
+    obj = {
+        "law": law.name, "description": law.description,
+        "u0": u0, "angle_deg": angle, "mass": mass, "g": g, "dt": dt,
+        "t_end": None if halt else t_end,
+        "rest": [x, y] if stopped else None,
+        "final_position": [x, y],
+        "final_velocity": [float(v) for v in res.u_final],
+        "distance": math.hypot(x, y),
+        "stop_time": res.stop_time,
+        "deflection_deg": deflection_deg(angle, (x, y)),
+        "steps": res.steps,
+        "max_iterations_used": res.max_iterations_used,
+        "mean_iterations": res.mean_iterations,
+        "tolerance": tol,
+        "status": res.status,
+        "status_message": res.status_message(),
+        "fail_step": res.fail_step,
+        "fail_residual": res.fail_residual,
+        "units": {"rest": "m (t_a, t_b)", "stop_time": "s", "deflection_deg": "deg, "
+                  "counter-clockwise (towards t_b) from the initial velocity"},
+    }
+    if args.gauge:
+        obj["gauge"] = str(args.gauge)
+    if args.csv:
+        write_csv(args.csv, res)
+    if args.plot:
+        plot_path(args.plot, res, law, angle)
+    return law, res, obj
+
+
+def write_csv(path, res) -> None:
+    """t,x,y,vx,vy of the recorded states (atomic write)."""
+    from ..io import write_text_atomic
+    lines = ["t_s,x_m,y_m,vx_m_s,vy_m_s"]
+    for t, q, u in zip(res.t, res.q, res.u):
+        lines.append(",".join(repr(float(v)) for v in (t, q[0], q[1], u[0], u[1])))
+    write_text_atomic(path, "\n".join(lines) + "\n")
+
+
+def plot_path(path, res, law, angle_deg: float) -> None:
+    """The path from the origin to the rest point, with the launch direction."""
+    from ..io import save_figure_atomic
+    from ..plotting import _plt
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 5.4))
+    ax.plot(res.q[:, 0], res.q[:, 1], color="tab:blue", lw=2, label=f"path ({law.name})")
+    d = max(float(abs(res.q).max()), 1e-12)
+    a = math.radians(angle_deg)
+    ax.plot([0, d * math.cos(a)], [0, d * math.sin(a)], color="0.5", ls="--", lw=1,
+            label="initial velocity direction")
+    ax.plot(0, 0, "ko", ms=4)
+    ax.plot(res.q_final[0], res.q_final[1], "s", color="tab:red", ms=6,
+            label="rest" if res.stop_step is not None else "end (still moving)")
+    ax.set_xlabel("x along t_a (m)")
+    ax.set_ylabel("y along t_b (m)")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(law.description, fontsize=8)
+    fig.tight_layout()
+    save_figure_atomic(fig, path, dpi=120)
+    plt.close(fig)
+
+
+def main(args) -> int:
+    import sys
+    law, res, obj = run(args)
+    if args.json:
+        print(json.dumps(obj, indent=2, allow_nan=False))
+    else:
+        print(f"law: {law.description}")
+        if obj["rest"] is not None:
+            print(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m after "
+                  f"{obj['stop_time']:.6g} s ({obj['steps']} steps of {obj['dt']:g} s), "
+                  f"distance {obj['distance']:.6g} m")
+        else:
+            print(f"still moving at t = {obj['t_end']:g} s: position "
+                  f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m")
+        print(f"deflection: {obj['deflection_deg']:+.4f} deg (from the initial velocity to the "
+              f"line start -> {'rest' if obj['rest'] is not None else 'end'})")
+        print(f"fixed-point iterations per step: max {obj['max_iterations_used']}, mean "
+              f"{obj['mean_iterations']:.3g}")
+        for flag, what in (("csv", "path table"), ("plot", "plot")):
+            v = getattr(args, flag)
+            if v:
+                print(f"{what} written to {v}")
+    if res.status != "ok":
+        print(f"asperity slide: error: {res.status_message()}", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
+    return 0
