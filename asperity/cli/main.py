@@ -14,6 +14,7 @@ COMMANDS = {
     "law": "law",
     "report": "report",
     "bench": "bench",
+    "slide": "slide",
     "risk": "risk",
 }
 
