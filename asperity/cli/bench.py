@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-PARTS = ("closed-form", "springs", "facets", "microslip")
+PARTS = ("closed-form", "springs", "facets", "microslip", "moreau")
 
 
 def add_parser(sub) -> None:
