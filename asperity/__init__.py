@@ -29,6 +29,17 @@ _LAZY = {
     "TruncatedEllipse": "asperity.gauges",
     "read_gauge": "asperity.gauge_file",
     "write_gauge": "asperity.gauge_file",
+    "PlanarLaw": "asperity.laws",
+    "coulomb_law": "asperity.laws",
+    "ellipse_law": "asperity.laws",
+    "truncated_ellipse_law": "asperity.laws",
+    "collinear_law": "asperity.laws",
+    "star_law": "asperity.laws",
+    "windward_star_law": "asperity.laws",
+    "law_from_gauge": "asperity.laws",
+    "slide": "asperity.moreau",
+    "ratchet_drift_square": "asperity.moreau",
+    "deflection_deg": "asperity.moreau",
     "simulate_microslip": "asperity.microslip",
     "long_life": "asperity.microslip",
     "assess": "asperity.microslip",
@@ -44,7 +55,7 @@ __all__ = ["__version__", *_LAZY]
 
 
 #: public names that differ from the module's own
-_RENAMED = {"simulate_microslip": "simulate"}
+_RENAMED = {"simulate_microslip": "simulate", "law_from_gauge": "from_gauge"}
 
 
 def __getattr__(name: str):

@@ -252,7 +252,9 @@ def run(folder: str | Path = "reports") -> Path:
     lines += _surface_validation_section() + _measured_section(folder)
     from .report_gauges import section as gauge_section
     from .report_microslip import section as microslip_section
-    lines += _numbered(7, gauge_section(folder)) + _numbered(8, microslip_section(folder))
+    from .report_moreau import section as moreau_section
+    lines += _numbered(7, gauge_section(folder)) + _numbered(8, moreau_section(folder))
+    lines += _numbered(9, microslip_section(folder))
     path = folder / "REPORT.md"
     write_text_atomic(path, "\n".join(lines))
     return path
