@@ -226,7 +226,6 @@ def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_re
     Returns (code, mode, J, xt, dy, sliding).  code: 0 ok, 2 no convergence,
     3 too many face crossings.
     """
-    k = xs.size - 1
     came = 0  # +1 arrived at a node moving right, -1 moving left, 0 held there before
     landed = False
     for _ in range(_MAX_CROSSINGS):

@@ -46,13 +46,13 @@ it).
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from .errors import InputError, check_int, check_range
+from .io import read_toml
 
 MODELS = ("strip", "two-node")
 _TOP = {"name", "description", "assembly", "friction", "loading"}
@@ -162,19 +162,7 @@ def _positive(where: str, name: str, value, unit: str) -> float:
 def load_assembly(path) -> Assembly:
     """Read an assembly TOML file; one-line AssemblyFileError naming the field."""
     p = Path(path)
-    if not p.is_file():
-        raise AssemblyFileError(f"assembly file {str(p)!r} does not exist")
-    try:
-        with p.open("rb") as fh:
-            data = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise AssemblyFileError(f"{p}: not valid TOML ({exc})") from None
-    except OSError as exc:
-        raise AssemblyFileError(f"{p}: cannot be read ({exc.strerror})") from None
-    unknown = sorted(set(data) - _TOP)
-    if unknown:
-        raise AssemblyFileError(f"{p}: unknown key {unknown[0]!r}; allowed top-level keys: "
-                                f"{', '.join(sorted(_TOP))}")
+    data = read_toml(p, "assembly file", _TOP, AssemblyFileError)
     if "assembly" not in data:
         raise AssemblyFileError(f"{p}: missing table [assembly]")
     a = data["assembly"]

@@ -1,4 +1,5 @@
-"""Atomic file output: an interrupted run never leaves a half-written file."""
+"""File input and output: TOML input files with one-line errors, and atomic output (an
+interrupted run never leaves a half-written file)."""
 from __future__ import annotations
 
 import contextlib
@@ -40,3 +41,25 @@ def save_figure_atomic(fig, path: str | Path, **kwargs) -> None:
     fmt = Path(path).suffix.lstrip(".") or "png"
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=fmt, **kwargs)
+
+
+def read_toml(path: str | Path, what: str, allowed: set[str], error) -> dict:
+    """The top-level table of a TOML input file.  ``what`` names the file kind in the
+    messages ("texture file"); a missing or unreadable file, invalid TOML or a top-level
+    key outside ``allowed`` raises ``error`` (an InputError subclass) with one line."""
+    import tomllib
+    p = Path(path)
+    if not p.is_file():
+        raise error(f"{what} {str(p)!r} does not exist")
+    try:
+        with p.open("rb") as fh:
+            data = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise error(f"{p}: not valid TOML ({exc})") from None
+    except OSError as exc:
+        raise error(f"{p}: cannot be read ({exc.strerror})") from None
+    unknown = sorted(set(data) - allowed)
+    if unknown:
+        raise error(f"{p}: unknown key {unknown[0]!r}; allowed top-level keys: "
+                    f"{', '.join(sorted(allowed))}")
+    return data

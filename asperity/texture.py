@@ -18,7 +18,6 @@ metres.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import MISSING as _MISSING
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -26,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, TextureFileError, check_int, check_range
+from .io import read_toml
 
 
 @dataclass(frozen=True)
@@ -304,19 +304,7 @@ class TextureFile:
 def load_texture_file(path: str | Path) -> TextureFile:
     """Read a TOML texture file (format documented in README.md)."""
     p = Path(path)
-    if not p.is_file():
-        raise TextureFileError(f"texture file {str(p)!r} does not exist")
-    try:
-        with p.open("rb") as fh:
-            data = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise TextureFileError(f"{p}: not valid TOML ({exc})") from None
-    except OSError as exc:
-        raise TextureFileError(f"{p}: cannot be read ({exc.strerror})") from None
-    unknown = sorted(set(data) - _TOP_KEYS)
-    if unknown:
-        raise TextureFileError(
-            f"{p}: unknown key {unknown[0]!r}; allowed top-level keys: {', '.join(sorted(_TOP_KEYS))}")
+    data = read_toml(p, "texture file", _TOP_KEYS, TextureFileError)
     if "texture" not in data:
         raise TextureFileError(f"{p}: missing table [texture]")
     try:

@@ -1,7 +1,5 @@
 """Any surface -> friction: facet homogenisation checked against the wedge closed form."""
-import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -2,9 +2,9 @@
 from __future__ import annotations
 
 import argparse
-import json
 
 from ..errors import InputError
+from . import emit
 
 SPRING_FLAGS = {  # flag dest -> key of the [springs] table / SpringModel field
     "k_n": "k_n", "k_f": "k_f", "preload": "preload", "density": "density",
@@ -198,10 +198,5 @@ def main(args) -> int:
         from ..plotting import plot_derivation
         other = "windward" if d.contact == "all-faces" else "all-faces"
         plot_derivation(d, args.plot, other=compute_reservoir(d.texture, d.reservoir.psi, other))
-    if args.json:
-        print(json.dumps(obj, indent=2, allow_nan=False))
-    else:
-        print(format_text(d))
-        if args.plot:
-            print(f"plot written to {args.plot}")
+    emit(args, obj, format_text(d))
     return 0

@@ -3,8 +3,8 @@ directional friction and save it as a gauge file."""
 from __future__ import annotations
 
 import argparse
-import json
 import math
+from . import emit
 
 LAWS = {"ellipse": "truncated-ellipse", "star": "star"}
 
@@ -104,12 +104,5 @@ def main(args) -> int:
     if args.plot:
         from ..report_gauges import plot_law
         plot_law(gl, args.plot)
-    if args.json:
-        print(json.dumps(obj, indent=2, allow_nan=False))
-    else:
-        print(format_fit(gl))
-        if args.output:
-            print(f"gauge file written to {args.output}")
-        if args.plot:
-            print(f"plot written to {args.plot}")
+    emit(args, obj, format_fit(gl), (("gauge file", args.output),))
     return 0

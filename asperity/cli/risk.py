@@ -7,9 +7,9 @@ quasi-static ratchet analysis of the assembly under its load cycles -> verdict. 
 from __future__ import annotations
 
 import argparse
-import json
 
 from ..errors import InputError
+from . import emit
 from .derive import WEDGE_FLAGS, add_source_arguments
 
 MAP_PARAMS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
@@ -323,25 +323,13 @@ def main(args) -> int:
         if args.plot:
             from ..report_microslip import plot_risk_map
             plot_risk_map(out, args.plot)
-        if args.json:
-            print(json.dumps(out, indent=2, allow_nan=False))
-        else:
-            print(format_map(out))
-            if args.plot:
-                print(f"plot written to {args.plot}")
+        emit(args, out, format_map(out))
         return 0
     if args.plot:
         from ..report_microslip import plot_assembly_history
         plot_assembly_history(out["_chain"], _loading_from(args), args.plot,
                               title=out["assembly"]["name"])
-    if args.json:
-        pub = _public(out)
-        pub["solver"] = {k: v for k, v in pub.get("solver", {}).items()}
-        print(json.dumps(pub, indent=2, allow_nan=False))
-    else:
-        print(format_text(out))
-        if args.plot:
-            print(f"plot written to {args.plot}")
+    emit(args, _public(out), format_text(out))
     return 0
 
 
