@@ -198,3 +198,16 @@ def test_load_assembly_defaults():
     assert c.n == 201 and c.fw.sum() == pytest.approx(1.0)
     with pytest.raises(InputError):
         asm.chain(-0.1, 0.1)
+
+
+def test_dynamic_check_agrees_with_quasi_static_on_the_two_node_case(capsys):
+    """--dynamic: Moreau time-stepping of the same assembly; the SPEC two-node drift per
+    cycle (-5e-5 m) to first order in the loading rate."""
+    surfaces = Path(__file__).resolve().parents[1] / "surfaces"
+    assert main(["risk", str(surfaces / "two-node-spec.toml"), "--dynamic", "80000",
+                 "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    dyn = d["dynamic"]
+    assert dyn["solver"]["status"] == "converged"
+    assert dyn["drift_per_cycle_m"] == pytest.approx(-5.0e-5, rel=3e-3)
+    assert 0 < dyn["relative_difference"] < 3e-3
