@@ -452,6 +452,19 @@ def _force(fpar, ftab, step, t, ndof, out):
         out[j] = fpar[2 + j] + fpar[5 + j] * w
 
 
+
+@njit(cache=True, error_model="numpy")
+def _end_velocity(ue, uf, minv, P, ow, nc, ndof):
+    """u_E = u_free - M^-1 W P (contact impulses Lambda_i = -P_i; ``ow`` the contact
+    offsets turned to the current angle, used when ndof == 3)."""
+    for j in range(ndof):
+        ue[j] = uf[j]
+    for i in range(nc):
+        ue[0] -= minv[0] * P[i, 0]
+        ue[1] -= minv[1] * P[i, 1]
+        if ndof == 3:
+            ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] - ow[i, 1] * P[i, 0])
+
 @njit(cache=True)
 def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
               fpar, ftab, t0, dt, n_steps, r, tol, max_iter, full_rank, halt_at_rest,
@@ -525,14 +538,7 @@ def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
         res = 0.0
         it = 0
         for it in range(1, max_iter + 1):
-            # u_E for the current impulses (Lambda_i = -P_i)
-            for j in range(ndof):
-                ue[j] = uf[j]
-            for i in range(nc):
-                ue[0] -= minv[0] * P[i, 0]
-                ue[1] -= minv[1] * P[i, 1]
-                if ndof == 3:
-                    ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] - ow[i, 1] * P[i, 0])
+            _end_velocity(ue, uf, minv, P, ow, nc, ndof)   # u_E for Lambda_i = -P_i
             res = 0.0
             for i in range(nc):
                 g0 = ue[0]
@@ -570,13 +576,7 @@ def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
             status = STATUS_NOT_CONVERGED
             info[INFO_FAIL_STEP] = step
             info[INFO_FAIL_RESIDUAL] = res
-        for j in range(ndof):
-            ue[j] = uf[j]
-        for i in range(nc):
-            ue[0] -= minv[0] * P[i, 0]
-            ue[1] -= minv[1] * P[i, 1]
-            if ndof == 3:
-                ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] - ow[i, 1] * P[i, 0])
+        _end_velocity(ue, uf, minv, P, ow, nc, ndof)
         all_stick = full_rank
         for i in range(nc):
             if not stick[i]:
