@@ -340,14 +340,6 @@ def format_map(out: dict) -> str:
             cells.append(f"{'S':>9s}" if v == "shakedown" else f"{'X':>9s}" if v != "ratchet"
                          else f"{d * 1e6:>+9.3g}")
         lines.append(f"{y:>14.4g} " + " ".join(cells))
-    dyn = out.get("dynamic")
-    if dyn:
-        rel = dyn["relative_difference"]
-        lines.append(f"Moreau time-stepping ({dyn['steps_per_segment']} steps per load segment, "
-                     f"{dyn['cycles']} cycles): drift {_len(dyn['drift_per_cycle_m'])} per cycle"
-                     + (f", {rel:.2g} from the quasi-static value" if rel is not None else
-                        f" (quasi-static: none; difference {_len(dyn['difference_m'])})")
-                     + f"; solver {dyn['solver'].get('status', '?')}")
     lines.append(f"sign convention: {out['sign_convention']}")
     return "\n".join(lines)
 
