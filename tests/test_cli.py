@@ -4,15 +4,11 @@ from pathlib import Path
 
 import pytest
 
-from asperity.cli.main import main
+from cli_run import run
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 
 
-def run(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_derive_json_keys_and_values(capsys):

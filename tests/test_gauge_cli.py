@@ -6,15 +6,12 @@ import numpy as np
 import pytest
 
 from asperity.cli.main import main
+from cli_run import run
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 WEDGE = ["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.2"]
 
 
-def run(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.fixture(scope="module")

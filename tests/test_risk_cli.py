@@ -11,6 +11,7 @@ import pytest
 
 from asperity.assembly import load_assembly
 from asperity.cli.main import main
+from cli_run import run, run_json
 from asperity.errors import InputError
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
@@ -30,16 +31,11 @@ KEYS = {"verdict", "regime", "dT_c_K", "dT_c_closed_form_K", "dT_range_K", "marg
         "friction", "assembly", "loading", "mu_plus", "mu_minus"}
 
 
-def run(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
+
 
 
 def risk_json(capsys, *argv):
-    code, out, err = run(capsys, "risk", *argv, "--json")
-    assert code == 0, err
-    return json.loads(out)
+    return run_json(capsys, "risk", *argv)
 
 
 def write(tmp_path, text, name="a.toml"):

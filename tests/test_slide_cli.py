@@ -7,21 +7,17 @@ import numpy as np
 import pytest
 
 from asperity.cli.main import main
+from cli_run import run, run_json
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 G = 9.81
 
 
-def run(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
+
 
 
 def slide_json(capsys, *argv):
-    code, out, err = run(capsys, "slide", *argv, "--json")
-    assert code == 0, err
-    return json.loads(out)
+    return run_json(capsys, "slide", *argv)
 
 
 @pytest.fixture(scope="module")
