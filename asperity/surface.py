@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import InputError, check_range
-from .texture import Faces
+from .texture import Faces, _check_mu
 
 #: default local friction coefficient of a surface when no --mu or friction map is given
 DEFAULT_MU = 0.1
@@ -102,13 +102,6 @@ def _columns(gx: np.ndarray, gy: np.ndarray) -> np.ndarray:
     return np.stack([gx, gy]).T
 
 
-def _check_mu_value(mu) -> float:
-    x = check_range("mu", mu, 0.0, None)
-    if not math.isfinite(x):
-        raise InputError(f"mu must be in [0, inf) and finite, got {x:g}")
-    return x
-
-
 def _contact_weight(area: np.ndarray, zc: np.ndarray, rest_level: float | None) -> np.ndarray:
     if rest_level is None:
         return area
@@ -165,13 +158,13 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
     return FacetSurface(gx=g[0], gy=g[1], mu=mu, weight=np.ascontiguousarray(w), info=info, **extra)
 
 
-def _facet_mu(mu, friction_map, n_expected: int, per_vertex=None):
+def _facet_mu(mu, friction_map, to_facets):
     """Uniform float, or a per-facet array from a friction map."""
     if friction_map is None:
-        return _check_mu_value(DEFAULT_MU if mu is None else mu)
+        return _check_mu("mu", DEFAULT_MU if mu is None else mu)
     if mu is not None:
         raise InputError("give mu or a friction map, not both")
-    return per_vertex(np.asarray(friction_map, dtype=float)) if per_vertex else friction_map
+    return to_facets(np.asarray(friction_map, dtype=float))
 
 
 def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
@@ -201,7 +194,7 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
         a, b, c, d = m[:-1, :-1], m[1:, :-1], m[:-1, 1:], m[1:, 1:]
         return np.concatenate([((a + b + c) / 3).ravel(), ((d + c + b) / 3).ravel()])[ok]
 
-    fmu = _facet_mu(mu, friction_map, ok.sum(), per_vertex)
+    fmu = _facet_mu(mu, friction_map, per_vertex)
     info = dict(info or {})
     info.update(kind="heightmap", source=hm.source, grid=[int(z.shape[0]), int(z.shape[1])],
                 pixel_size_m=[dx, dy], physical_size_m=[dx * z.shape[0], dy * z.shape[1]],
@@ -246,7 +239,7 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
             raise InputError(f"friction map has {m.size} values, the mesh {f.shape[0]} triangles")
         return m[facing]
 
-    fmu = _facet_mu(mu, friction_map, int(facing.sum()), per_face)
+    fmu = _facet_mu(mu, friction_map, per_face)
     lo, hi = v.min(axis=0), v.max(axis=0)
     info = dict(info or {})
     info.update(kind="mesh", source=mesh.source, n_triangles=int(f.shape[0]),
