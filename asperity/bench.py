@@ -25,8 +25,8 @@ def _rate(fn, work: int, seconds: float) -> tuple[float, int]:
 
 def bench_closed_form(seconds: float = 1.0, n_directions: int = 1_000_000) -> dict:
     """Wedge reservoir points p(psi) per second (vectorised over directions)."""
-    from .closed_form import compute_reservoir
-    from .texture import WedgeTexture
+    from .friction.faces import compute_reservoir
+    from .texture.wedges import WedgeTexture
     tex = WedgeTexture(30, 10, 0.1, 0.2)
     psi = np.linspace(0.0, 2 * np.pi, n_directions, endpoint=False)
     out = {}
@@ -38,8 +38,9 @@ def bench_closed_form(seconds: float = 1.0, n_directions: int = 1_000_000) -> di
 
 def bench_springs(seconds: float = 2.0) -> dict:
     """Spring-tip updates (springs x steps) per second, rigid and elastic springs."""
-    from .springs import SpringModel, simulate_sliding
-    from .texture import WedgeTexture
+    from .texture.spring_model import SpringModel
+    from .texture.springs import simulate_sliding
+    from .texture.wedges import WedgeTexture
     tex = WedgeTexture(30, 10, 0.1, 0.2)
     psi = math.radians(30.0)
     out = {}
@@ -93,7 +94,7 @@ def bench_facets(n_grid: int = 2048, n_directions: int = 360, numpy_directions: 
     """
     import numba
 
-    from .facet_reservoir import compute_facet_reservoir, numpy_facet_reservoir
+    from .friction.facet_reservoir import compute_facet_reservoir, numpy_facet_reservoir
     t0 = time.perf_counter()
     gx, gy, w = rough_surface_facets(n_grid, rms_slope, seed=seed)
     setup = time.perf_counter() - t0
@@ -154,7 +155,10 @@ def bench_microslip(n_nodes: int = 10_000, cycles: int = 1_000, repeats: int = 3
     thermal cycles 0 -> 10 dT_c -> 0, every cycle marched (no stabilised-cycle shortcut);
     node-updates = nodes x load increments (two per cycle).  Best and all of ``repeats``
     timings after a warm-up (compilation)."""
-    from .microslip import Loading, simulate, strip_chain, strip_dT_c
+    from .microslip.chains import strip_chain
+    from .microslip.closed_forms import strip_dT_c
+    from .microslip.loading import Loading
+    from .microslip.quasi_static import simulate
     h, E, p, l, aT = 2e-3, 2e11, 1e6, 0.1, 1.2e-5
     kt = (3.54 / l) ** 2 * E * h
     L = Loading.cycles_between(0.0, 10 * strip_dT_c(h, E, p, l, kt, 0.2, 0.1, aT))
@@ -197,8 +201,8 @@ def bench_moreau(seconds: float = 1.0, steps: int = 1_000_000) -> dict:
     phase) with each law, compilation excluded.  u0 = 1e4 m/s at 30 deg, dt = 1e-6 s, so the
     body slides through all ``steps`` steps; the velocity direction turns, so the star law's
     fixed-point iteration works at every step (mean iterations reported)."""
-    from . import laws as L
-    from .moreau import point_mass, simulate
+    from .dynamics.moreau import point_mass, simulate
+    from .laws import planar as L
     cases = {"coulomb": L.coulomb_law(0.3), "ellipse": L.ellipse_law(0.6, 0.3),
              "truncated-ellipse": L.truncated_ellipse_law(0.2, 0.08, 0.12, 0.15),
              "collinear": L.collinear_law(mu1=0.6, mu2=0.3), "star": L.star_law(0.6, 0.3),

@@ -7,6 +7,8 @@ and what arrived.
 """
 from __future__ import annotations
 
+import math
+
 
 class AsperityError(Exception):
     """Base class of the errors the command line reports in one line."""
@@ -72,3 +74,10 @@ def check_int(name: str, value, low: int | None = None, high: int | None = None)
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
+
+
+def check_mu(name: str, value) -> float:
+    x = check_range(name, value, 0.0, None)
+    if not math.isfinite(x):
+        raise InputError(f"{name} must be in [0, inf) and finite, got {x:g}")
+    return x

@@ -1,5 +1,6 @@
 """File input and output: TOML input files with one-line errors, and atomic output (an
-interrupted run never leaves a half-written file)."""
+interrupted run never leaves a half-written file).
+"""
 from __future__ import annotations
 
 import contextlib
@@ -63,3 +64,10 @@ def read_toml(path: str | Path, what: str, allowed: set[str], error) -> dict:
         raise error(f"{p}: unknown key {unknown[0]!r}; allowed top-level keys: "
                     f"{', '.join(sorted(allowed))}")
     return data
+
+
+def pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt

@@ -14,8 +14,9 @@ from pathlib import Path
 def bench_long_life() -> dict:
     """Seconds for the verdict of surfaces/bushing-strip.toml over 1e6 cycles (stabilised
     cycle detected, drift extrapolated), compilation excluded."""
-    from asperity.assembly import load_assembly, resolve_friction
-    from asperity.microslip import assess
+    from asperity.microslip.assembly import load_assembly
+    from asperity.microslip.friction import resolve_friction
+    from asperity.microslip.verdict import assess
     asm = load_assembly(Path(__file__).resolve().parents[1] / "surfaces" / "bushing-strip.toml")
     f = resolve_friction(asm)
     chain = asm.chain(f.mu_plus, f.mu_minus)
@@ -28,7 +29,9 @@ def bench_long_life() -> dict:
 
 def bench_dynamic(n: int = 11, steps_per_segment: int = 80_000, cycles: int = 3) -> dict:
     """Moreau steps x nodes per second on a small strip."""
-    from asperity.microslip import Loading, elastic_limit, simulate_dynamic, strip_chain
+    from asperity.microslip.chains import elastic_limit, strip_chain
+    from asperity.microslip.dynamic import simulate_dynamic
+    from asperity.microslip.loading import Loading
     h, E, p, l, aT = 2e-3, 2e11, 1e6, 0.1, 1.2e-5
     chain = strip_chain(h, E, p, l, (3.54 / l) ** 2 * E * h, aT, n, 0.2, 0.1)
     L = Loading.cycles_between(0.0, 10 * elastic_limit(chain))

@@ -15,8 +15,9 @@ def bench_spring_updates(seconds: float = 2.0) -> dict:
     ``updates_per_second`` (spring-tip updates: springs x steps), ``updates``, ``seconds``,
     ``calls`` and the setup used.
     """
-    from asperity.springs import SpringModel, simulate_sliding
-    from asperity.texture import WedgeTexture
+    from asperity.texture.spring_model import SpringModel
+    from asperity.texture.springs import simulate_sliding
+    from asperity.texture.wedges import WedgeTexture
 
     tex = WedgeTexture(30, 10, 0.1, 0.2)
     model = SpringModel(k_f=1e5, steps_per_period=32000)

@@ -3,7 +3,6 @@ import json
 from pathlib import Path
 
 import pytest
-
 from cli_run import run
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
@@ -75,8 +74,8 @@ def test_texture_file_errors(tmp_path, capsys):
 def _wedge_stl(tmp_path, angle=0.0):
     import trimesh
 
-    from asperity.surface import wedge_mesh
-    from asperity.texture import WedgeTexture
+    from asperity.surface.wedge_surfaces import wedge_mesh
+    from asperity.texture.wedges import WedgeTexture
     mesh, _ = wedge_mesh(WedgeTexture(30, 30, 0.2, 0.2, height=1e-3), periods=3, angle_deg=angle)
     path = tmp_path / "wedges.stl"
     trimesh.Trimesh(mesh.vertices * 1e3, mesh.faces, process=False).export(path)
@@ -129,7 +128,7 @@ def test_derive_surface_friction_map_and_plot(capsys, tmp_path):
 def test_progress_bar_draws_on_a_terminal_only():
     import io
 
-    from asperity.cli.derive import progress_bar
+    from asperity.progress import progress_bar
 
     class Tty(io.StringIO):
         def isatty(self):

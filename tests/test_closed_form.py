@@ -4,11 +4,16 @@ import math
 import numpy as np
 import pytest
 
-from asperity.closed_form import (compute_axis_coefficients, compute_H, compute_reservoir,
-                                  compute_wedge_axis_closed_form, directions)
-from asperity.diagnostics import check_admissibility, check_associativity, closed_form_dT_dpsi
 from asperity.errors import InputError
-from asperity.texture import GaussianWedgeTexture, WedgeTexture
+from asperity.friction.diagnostics import (
+    check_admissibility,
+    check_associativity,
+    closed_form_dT_dpsi,
+)
+from asperity.friction.faces import compute_axis_coefficients, compute_reservoir
+from asperity.friction.reservoir import directions
+from asperity.texture.closed_form import compute_H, compute_wedge_axis_closed_form
+from asperity.texture.wedges import GaussianWedgeTexture, WedgeTexture
 
 
 def test_spec_check_values_asymmetric_wedge():
@@ -61,7 +66,7 @@ def test_all_faces_non_associated_spec_figures():
 
 
 def test_flat_isotropic_faces_are_coulomb_and_associated():
-    from asperity.closed_form import compute_face_reservoir
+    from asperity.friction.faces import compute_face_reservoir
     psi = directions(72)
     r = compute_face_reservoir([[0.0, 0.0]], [0.4], [1.0], psi)
     np.testing.assert_allclose(r.tangential, 0.4, rtol=1e-12)

@@ -6,10 +6,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import asperity.facet_reservoir as fr
-from asperity.closed_form import compute_face_reservoir
+import asperity.friction.facet_reservoir as fr
 from asperity.errors import InputError
-from asperity.facet_reservoir import compute_facet_reservoir, numpy_facet_reservoir
+from asperity.friction.faces import compute_face_reservoir
+from asperity.friction.facet_reservoir import compute_facet_reservoir, numpy_facet_reservoir
 
 RTOL = 1e-12
 IMPLS = [compute_facet_reservoir, numpy_facet_reservoir]
@@ -203,7 +203,7 @@ def test_bad_input_one_line_errors(impl, kwargs, match):
 def test_import_asperity_does_not_import_numba():
     import subprocess
     import sys
-    code = "import sys, asperity, asperity.facet_reservoir; print('numba' in sys.modules)"
+    code = "import sys, asperity, asperity.friction.facet_reservoir; print('numba' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 

@@ -4,9 +4,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import run
 
 from asperity.cli.main import main
-from cli_run import run
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 WEDGE = ["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.2"]

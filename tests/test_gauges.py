@@ -6,13 +6,22 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from asperity.closed_form import Reservoir, compute_reservoir
-from asperity.derive import derive
 from asperity.errors import InputError
-from asperity.gauges import (ConvexSet, StarSet, TruncatedEllipse, angle_between, associated,
-                             compare_with_reservoir, coulomb, fit_derivation, fit_star,
-                             fit_truncated_ellipse, prepare_reservoir, unit)
-from asperity.texture import WedgeTexture, load_texture
+from asperity.friction.derive import derive
+from asperity.friction.faces import compute_reservoir
+from asperity.friction.reservoir import Reservoir
+from asperity.laws.convex_set import ConvexSet
+from asperity.laws.fitting import (
+    compare_with_reservoir,
+    fit_derivation,
+    fit_star,
+    fit_truncated_ellipse,
+    prepare_reservoir,
+)
+from asperity.laws.geometry import angle_between, unit
+from asperity.laws.sets import StarSet, TruncatedEllipse
+from asperity.laws.walker_leine import associated, coulomb
+from asperity.texture.wedges import WedgeTexture, load_texture
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 WEDGE_FILES = ["wedge-asymmetric", "wedge-symmetric-30", "gaussian-wedges"]
@@ -249,7 +258,8 @@ def fitted():
 
 
 def test_gauge_file_reloads_bit_for_bit_and_matches_the_schema(fitted, tmp_path):
-    from asperity.gauge_file import read_gauge, schema, write_gauge
+    from asperity.laws.gauge_file import read_gauge, write_gauge
+    from asperity.laws.gauge_schema import schema
     jsonschema = pytest.importorskip("jsonschema")
     psi = np.linspace(-1, 8, 997)
     for (c, k), gl in fitted.items():
@@ -294,7 +304,7 @@ def _mutate(obj, path, value):
     (["parameters", "extra"], 1, "unknown field parameters.extra"),
 ])
 def test_gauge_file_errors_name_the_field(fitted, tmp_path, path, value, msg):
-    from asperity.gauge_file import GaugeFileError, read_gauge, to_dict
+    from asperity.laws.gauge_file import GaugeFileError, read_gauge, to_dict
     obj = to_dict(fitted[("windward", "star")])
     special = value in ("NaN", "Infinity")
     _mutate(obj, path, "@@" if special else value)
@@ -309,14 +319,14 @@ def test_gauge_file_errors_name_the_field(fitted, tmp_path, path, value, msg):
     assert "\n" not in line and msg in line, line
     if not special:
         jsonschema = pytest.importorskip("jsonschema")
-        from asperity.gauge_file import schema
+        from asperity.laws.gauge_schema import schema
         if "consistent" not in msg and "format" not in msg:
             assert not jsonschema.Draft202012Validator(schema()).is_valid(obj), \
                 "the shipped schema refuses it too"
 
 
 def test_ellipse_gauge_file_errors(fitted, tmp_path):
-    from asperity.gauge_file import GaugeFileError, read_gauge, to_dict
+    from asperity.laws.gauge_file import GaugeFileError, read_gauge, to_dict
     obj = to_dict(fitted[("all-faces", "truncated-ellipse")])
     obj["parameters"]["mu_b_minus"] = 0
     f = tmp_path / "bad.json"
@@ -331,7 +341,7 @@ def test_ellipse_gauge_file_errors(fitted, tmp_path):
 
 
 def test_report_section_tables_fits_and_figure7(tmp_path):
-    from asperity.report_gauges import section
+    from asperity.report.gauges import section
     src = tmp_path / "surfaces"
     src.mkdir()
     for name in ("wedge-symmetric-30", "self-locking"):

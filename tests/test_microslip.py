@@ -8,9 +8,11 @@ import numpy as np
 import pytest
 
 from asperity.errors import InputError
-from asperity.microslip import (Loading, SlideOffError, elastic_limit, long_life, simulate,
-                                simulate_dynamic, strip_chain, strip_dT_c, two_node_chain,
-                                two_node_drift_per_cycle, two_node_dT_c)
+from asperity.microslip.chains import SlideOffError, elastic_limit, strip_chain, two_node_chain
+from asperity.microslip.closed_forms import strip_dT_c, two_node_drift_per_cycle, two_node_dT_c
+from asperity.microslip.dynamic import simulate_dynamic
+from asperity.microslip.loading import Loading
+from asperity.microslip.quasi_static import long_life, simulate
 
 # SPEC.md section 5 numeric check
 K, KT, N, MUP, MUM, AT, L0 = 1e6, 5e5, 100.0, 0.2, 0.1, 1.2e-5, 0.1
@@ -114,7 +116,7 @@ def naive_increment(chain, dT, F, u, s_old, sweeps=20000):
 
 
 def test_increment_against_naive_minimisation():
-    from asperity._microslip_kernels import solve_step
+    from asperity.microslip._chain_kernels import solve_step
     rng = np.random.default_rng(3)
     n = 7
     base = two_node()

@@ -1,4 +1,4 @@
-"""Moreau time-stepping (asperity.moreau) and the planar laws (asperity.laws): closed forms,
+"""Moreau time-stepping (asperity.dynamics) and the planar laws (asperity.laws.planar): closed forms,
 invariants (exact stick, energy), convergence towards a tight ODE reference, deflection,
 ratcheting, and the kernels against slow NumPy versions."""
 from __future__ import annotations
@@ -8,10 +8,11 @@ import math
 import numpy as np
 import pytest
 
-from asperity import laws as L
-from asperity import moreau as M
+from asperity.dynamics import moreau as M
+from asperity.dynamics import references as R
 from asperity.errors import InputError
-from asperity.gauges import unit
+from asperity.laws import planar as L
+from asperity.laws.geometry import unit
 
 G = 9.81
 
@@ -79,7 +80,7 @@ def test_isotropic_stop_time_and_distance(dt, angle):
     u0, mu = 2.0, 0.3
     r = M.slide(L.coulomb_law(mu), u0, angle, dt=dt)
     assert r.ok
-    T, S = M.coulomb_stop_time(u0, mu), M.coulomb_stop_distance(u0, mu)
+    T, S = R.coulomb_stop_time(u0, mu), R.coulomb_stop_distance(u0, mu)
     assert 0 <= r.stop_time - T < dt, "stop time u0/(mu g) within one step"
     assert abs(np.hypot(*r.q_final) - S) < u0 * dt, "stop distance u0^2/(2 mu g) within O(dt)"
     assert abs(M.deflection_deg(angle, r.q_final)) < 1e-9, "isotropic: no deflection"
@@ -94,7 +95,7 @@ def test_principal_axes_stop_like_coulomb(law, axes):
     u0, dt = 1.5, 1e-4
     for angle, mu in zip((0.0, 180.0, 90.0, 270.0), axes):
         r = M.slide(law, u0, angle, dt=dt)
-        T, S = M.coulomb_stop_time(u0, mu), M.coulomb_stop_distance(u0, mu)
+        T, S = R.coulomb_stop_time(u0, mu), R.coulomb_stop_distance(u0, mu)
         assert abs(r.stop_time - T) < dt * 1.0001, f"stop time along {angle} deg with mu {mu}"
         d = r.q_final
         along = d @ unit(math.radians(angle))[0]
@@ -179,7 +180,7 @@ def references():
     out = {}
     for name, law, angle in (("ellipse", L.ellipse_law(0.6, 0.3), 30.0),
                              ("windward star", L.windward_star_law(), 45.0)):
-        out[name] = (law, angle, M.reference_path(law, 2.0, angle, rtol=1e-11))
+        out[name] = (law, angle, R.reference_path(law, 2.0, angle, rtol=1e-11))
     return out
 
 
@@ -187,7 +188,7 @@ def references():
 def test_first_order_convergence_to_the_ode_reference(references, name):
     law, angle, (t_stop, rest, dense) = references[name]
     dts = [2e-3, 1e-3, 5e-4, 2.5e-4]
-    err = [M.path_error(M.slide(law, 2.0, angle, dt=dt), dense) for dt in dts]
+    err = [R.path_error(M.slide(law, 2.0, angle, dt=dt), dense) for dt in dts]
     order = np.log2(np.array(err[:-1]) / np.array(err[1:]))
     assert np.all((order > 0.85) & (order < 1.15)), f"{name}: orders {order}, errors {err}"
     assert err[-1] < 0.25 * dts[-1] * 2.0, "error O(u0 dt)"
@@ -217,7 +218,7 @@ def test_collinear_law_goes_straight():
         r = M.slide(law, 2.0, angle, dt=1e-4)
         assert abs(M.deflection_deg(angle, r.q_final)) < 1e-9
         mu = law.radial(math.radians(angle))[0]
-        assert abs(r.stop_time - M.coulomb_stop_time(2.0, mu)) < 1e-4
+        assert abs(r.stop_time - R.coulomb_stop_time(2.0, mu)) < 1e-4
 
 
 # ----------------------------------------------------------------------------- ratcheting
@@ -232,7 +233,7 @@ def test_ratchet_drift_per_cycle_matches_the_closed_form(mu_p, mu_m, F0):
                    force=M.Force(amplitude=(F, 0.0), period=T, waveform="square"),
                    record_every=int(round(T / dt)))
     drift = np.diff(r.q[:, 0])[1:]          # cycle 1 lacks the stop of its slip (in cycle 2)
-    ref = M.ratchet_drift_square(F, m, T, mu_p, mu_m)
+    ref = R.ratchet_drift_square(F, m, T, mu_p, mu_m)
     assert ref != 0 and np.sign(ref) == (-1 if mu_m < mu_p else 1), "towards low friction"
     np.testing.assert_allclose(drift, ref, rtol=5e-3, err_msg="drift per cycle")
     assert np.all(r.q[:, 1] == 0)
@@ -241,7 +242,7 @@ def test_ratchet_drift_per_cycle_matches_the_closed_form(mu_p, mu_m, F0):
 def test_ratchet_converges_at_first_order():
     m, T, mu_p, mu_m, F = 1.0, 0.4, 0.3, 0.15, 0.2 * G
     law = L.truncated_ellipse_law(mu_p, mu_m, 0.2, 0.2)
-    ref = M.ratchet_drift_square(F, m, T, mu_p, mu_m)
+    ref = R.ratchet_drift_square(F, m, T, mu_p, mu_m)
     errs = []
     for dt in (4e-3, 2e-3, 1e-3, 5e-4):
         # from rest at T/2 (sticking) to 3.5 T: three whole slip-and-stop cycles
@@ -268,7 +269,7 @@ def test_no_drift_without_asymmetry():
         slip = abs(r.q[:, 0]).max()
         assert np.abs(drift[-10:]).max() < 1e-6 * slip, f"{wave}: drift {drift[-10:]}"
     with pytest.raises(InputError, match="both"):
-        M.ratchet_drift_square(0.5 * G, m, T, mu, mu)
+        R.ratchet_drift_square(0.5 * G, m, T, mu, mu)
 
 
 # ----------------------------------------------------------------------------- status, input
@@ -294,10 +295,10 @@ def test_bad_input_names_the_field():
 
 
 def test_gauge_file_laws(tmp_path):
-    from asperity.derive import derive
-    from asperity.gauge_file import write_gauge
-    from asperity.gauges import fit_derivation
-    from asperity.texture import WedgeTexture
+    from asperity.friction.derive import derive
+    from asperity.laws.fitting import fit_derivation
+    from asperity.laws.gauge_file import write_gauge
+    from asperity.texture.wedges import WedgeTexture
     d = derive(WedgeTexture(30, 10, 0.1, 0.2), "windward", "closed-form", 180)
     for kind, name in (("star", "star"), ("truncated-ellipse", "truncated-ellipse")):
         gl = fit_derivation(d, kind, holdout=False)

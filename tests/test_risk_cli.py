@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from asperity.assembly import load_assembly
-from asperity.cli.main import main
 from cli_run import run, run_json
+
+from asperity.cli.main import main
 from asperity.errors import InputError
+from asperity.microslip.assembly import load_assembly
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 WEDGE = ["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.2"]

@@ -5,9 +5,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import run, run_json
 
 from asperity.cli.main import main
-from cli_run import run, run_json
 
 SURF = Path(__file__).resolve().parents[1] / "surfaces"
 G = 9.81
@@ -73,8 +73,8 @@ def test_deflection_sign_per_law(capsys):
 
 
 def test_gauge_files_drive_the_law(gauges, capsys):
-    from asperity import laws as L
-    from asperity.moreau import slide
+    from asperity.dynamics.moreau import slide
+    from asperity.laws import planar as L
     d = slide_json(capsys, gauges["star"], "--u0", 2, "--angle", 45, "--dt", 1e-4)
     assert d["law"] == "star" and d["status"] == "ok" and d["gauge"] == str(gauges["star"])
     r = slide(L.from_gauge(gauges["star"]), 2.0, 45.0, dt=1e-4)

@@ -13,11 +13,11 @@ import math
 import numpy as np
 import pytest
 
-from asperity.closed_form import compute_reservoir
 from asperity.errors import InputError
-from asperity.springs import (LoadingCurve, SlidingResult, SpringModel, simulate_loading_curve,
-                              simulate_reservoir, simulate_sliding)
-from asperity.texture import GaussianWedgeTexture, WedgeTexture
+from asperity.friction.faces import compute_reservoir
+from asperity.texture.spring_model import LoadingCurve, SlidingResult, SpringModel
+from asperity.texture.springs import simulate_loading_curve, simulate_reservoir, simulate_sliding
+from asperity.texture.wedges import GaussianWedgeTexture, WedgeTexture
 
 TEXTURES = [
     WedgeTexture(30, 10, 0.1, 0.2),   # SPEC check values
@@ -174,15 +174,16 @@ def test_self_locking_loading_curve():
 
 
 def test_kernel_against_naive_reference():
-    from asperity import _spring_kernels as K
     from naive_springs import naive_rigid_p
+
+    from asperity.texture import _spring_kernels as K
 
     tex = WedgeTexture(30, 10, 0.1, 0.2)
     prof = tex.profile()
     psi = math.radians(40.0)
     X0 = np.linspace(0.0, prof.period, 7, endpoint=False) + 0.1e-6
     ux = np.linspace(0.0, 0.9, 13) * prof.period
-    import asperity.springs as S
+    import asperity.texture.spring_model as S
     st = S._setup(tex, psi, SpringModel(), "all-faces")
     sums, status, _ = K.run_rigid(st.xs, st.zs, st.seg_px, st.seg_py, st.seg_lock, st.seg_loaded,
                                   X0, ux, K_N, 0.0)
@@ -197,7 +198,7 @@ def test_kernel_against_naive_reference():
 @pytest.mark.parametrize("kf", [1e2, 1e3, 1e6])
 def test_face_return_mapping_conditions(g, mu, dytr, bx, kf):
     """Sliding solution: R on the cone boundary, R_t opposite to the slip; stick: in cone."""
-    from asperity import _spring_kernels as K
+    from asperity.texture import _tip_kernels as K
 
     kn, zr, xl, zl, xo = 1e3, -0.2e-6, 0.0, 0.3e-6, 0.8e-6
     code, xn, dyn, sl = K._face_return(g, mu, kn, kf, zr, xl, zl, xo, dytr, bx)
@@ -257,9 +258,10 @@ def test_default_model_along_the_ridges_agrees(kf):
     """psi = 90/270 deg with the default spring count: the body does not travel across the
     texture, so the simulation samples the period with steps_per_period springs per pitch.
     (With 64 springs the narrow 60-deg face was sampled by ~8 springs: 1.6e-1 error.)"""
-    from asperity.closed_form import compute_reservoir
-    from asperity.springs import SpringModel, simulate_reservoir
-    from asperity.texture import WedgeTexture
+    from asperity.friction.faces import compute_reservoir
+    from asperity.texture.spring_model import SpringModel
+    from asperity.texture.springs import simulate_reservoir
+    from asperity.texture.wedges import WedgeTexture
     t = WedgeTexture(60, 15, 0.3, 0.1)
     psi = np.radians([90.0, 270.0])
     cf = compute_reservoir(t, psi)

@@ -4,12 +4,14 @@ import math
 import numpy as np
 import pytest
 
-from asperity.closed_form import compute_reservoir, directions
-from asperity.derive import derive
 from asperity.errors import InputError
-from asperity.surface import mesh_facets, heightmap_facets, wedge_heightmap, wedge_mesh
-from asperity.surface_io import TriangleMesh
-from asperity.texture import GaussianWedgeTexture, WedgeTexture
+from asperity.friction.derive import derive
+from asperity.friction.faces import compute_reservoir
+from asperity.friction.reservoir import directions
+from asperity.surface.facets import heightmap_facets, mesh_facets
+from asperity.surface.topography import TriangleMesh
+from asperity.surface.wedge_surfaces import wedge_heightmap, wedge_mesh
+from asperity.texture.wedges import GaussianWedgeTexture, WedgeTexture
 
 PSI = directions(72)
 TEXTURES = [WedgeTexture(30, 10, 0.1, 0.2), WedgeTexture(60, 15, 0.3, 0.1),
@@ -139,7 +141,7 @@ def test_heightmap_undefined_pixels_skip_their_triangles():
     hm, _ = wedge_heightmap(tex, 32, periods=2, ny=8)
     z = hm.heights.copy()
     z[5, 3] = np.nan
-    from asperity.surface_io import HeightMap
+    from asperity.surface.topography import HeightMap
     s = heightmap_facets(HeightMap(heights=z, dx=hm.dx, dy=hm.dy, source="t", n_undefined=1),
                          mu=0.2)
     assert s.n_undefined == 1

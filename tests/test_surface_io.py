@@ -12,8 +12,11 @@ import numpy as np
 import pytest
 
 from asperity.errors import InputError, TextureFileError
-from asperity.surface_io import (HeightMap, TriangleMesh, detrend, read_friction_map,
-                                 read_surface, read_x3p)
+from asperity.surface.detrend import detrend
+from asperity.surface.friction_map import read_friction_map
+from asperity.surface.readers import read_surface
+from asperity.surface.readers.x3p import read_x3p
+from asperity.surface.topography import HeightMap, TriangleMesh
 
 DATA = Path(__file__).parents[2] / "shared" / "data" / "surfaces"
 needs_data = pytest.mark.skipif(
@@ -451,7 +454,7 @@ def test_without_surfacetopography(tmp_path, monkeypatch):
 
 
 def test_import_stays_light():
-    code = ("import sys, asperity, asperity.surface_io; "
+    code = ("import sys, asperity, asperity.surface.readers; "
             "print(sorted(m for m in ('trimesh', 'SurfaceTopography', 'xml.etree.ElementTree')"
             " if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

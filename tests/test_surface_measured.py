@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from asperity.cli.main import main
-from asperity.closed_form import compute_reservoir
-from asperity.derive import derive
-from asperity.surface import load_surface
+from asperity.friction.derive import derive
+from asperity.friction.faces import compute_reservoir
+from asperity.surface.facets import load_surface
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "surfaces"
 pytestmark = pytest.mark.skipif(not DATA.is_dir(),
@@ -82,8 +82,8 @@ def test_every_shared_file_goes_through_the_cli(capsys):
 
 @pytest.mark.parametrize("name,law", [("matrix-4.txt.gz", "star"), ("mi-1.mi", "truncated-ellipse")])
 def test_gauge_of_a_measured_surface_reloads_bit_for_bit(tmp_path, name, law):
-    from asperity.gauge_file import read_gauge, to_dict, write_gauge
-    from asperity.gauges import fit_derivation
+    from asperity.laws.fitting import fit_derivation
+    from asperity.laws.gauge_file import read_gauge, to_dict, write_gauge
     d = derive(load_surface(DATA / name, height_scale=20.0 if name == "mi-1.mi" else 1.0),
                "windward", n_directions=72)
     gl = fit_derivation(d, law)

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 
 
 def add_parser(sub) -> None:
@@ -34,36 +33,20 @@ def add_parser(sub) -> None:
     p.set_defaults(func=main)
 
 
-def force_json(gl, psi_deg: float) -> dict:
-    """The object printed by ``asperity law --psi DEG --json``."""
-    import numpy as np
-    from ..errors import InputError
-    x = float(psi_deg)
-    if not math.isfinite(x):   # NaN and +-inf
-        raise InputError(f"--psi must be a finite angle in deg, got {x:g}")
-    f = gl.force(np.array([math.radians(x)]))
-    out = {"psi_deg": x, "p": [float(f.p[0, 0]), float(f.p[0, 1])],
-           "tangential": float(f.tangential[0]), "lateral": float(f.lateral[0]),
-           "alpha": float(f.alpha[0]), "set_valued": bool(f.set_valued[0])}
-    if f.set_valued[0]:
-        out["segment"] = [f.p_minus[0].tolist(), f.p_plus[0].tolist()]
-    return out
-
-
 def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json."""
-    from ..gauge_file import read_gauge
-    from .fit import summary
+    from ..laws.gauge_file import read_gauge
+    from ..laws.summary import force_at, summary
     gl = read_gauge(args.gauge)
-    obj = force_json(gl, args.psi) if args.psi is not None else summary(gl)
+    obj = force_at(gl, args.psi) if args.psi is not None else summary(gl)
     if args.csv:
-        from ..export import write_csv
+        from ..laws.export import write_csv
         write_csv(args.csv, gl, args.csv_directions)
     if args.abaqus:
-        from ..export import write_abaqus
+        from ..laws.export import write_abaqus
         write_abaqus(args.abaqus, gl)
     if args.plot:
-        from ..report_gauges import plot_law
+        from ..laws.plot import plot_law
         plot_law(gl, args.plot)
     return gl, obj
 
@@ -82,7 +65,7 @@ def main(args) -> int:
             print(f"set-valued: any force on the segment ({a[0]:.6f}, {a[1]:.6f}) -- "
                   f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
     else:
-        from .fit import format_fit
+        from ..laws.summary import format_fit
         print(f"gauge file: {args.gauge}")
         print(format_fit(gl))
     for flag, what in (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot")):

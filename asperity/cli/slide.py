@@ -56,14 +56,14 @@ def add_parser(sub) -> None:
 
 def build_law(args):
     """The PlanarLaw selected by the arguments (validated)."""
-    from .. import laws as L
     from ..errors import InputError, check_range
+    from ..laws import planar as L
     if args.gauge:
         if args.mu1 is not None or args.mu2 is not None:
             raise InputError("--mu1/--mu2 do not apply with a gauge file (the file holds the law)")
         if args.law == "coulomb":
             raise InputError("--law coulomb takes --mu1, not a gauge file")
-        from ..gauge_file import read_gauge
+        from ..laws.gauge_file import read_gauge
         gl = read_gauge(args.gauge)
         kind = args.law
         if kind == "ellipse" and gl.kind != "truncated-ellipse":
@@ -96,8 +96,9 @@ def build_law(args):
 
 def run(args):
     """Python API of the command: (law, Result, the JSON object printed with --json)."""
+    from ..dynamics.moreau import Settings, point_mass, simulate
+    from ..dynamics.summary import path_csv, slide_summary
     from ..errors import InputError, check_int, check_range
-    from ..moreau import Settings, deflection_deg, simulate, point_mass
     u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
     angle = check_range("--angle", args.angle, -360.0, 360.0, unit="deg")
     mass = check_range("--mass", args.mass, 0.0, 1e9, low_open=True, unit="kg")
@@ -119,70 +120,17 @@ def run(args):
     res = simulate(point_mass(law, mass), [u0 * math.cos(a), u0 * math.sin(a)], dt=dt,
                    t_end=t_end, g=g, settings=Settings(tol=tol, max_iterations=maxit),
                    record_every=rec, halt_at_rest=halt)
-    x, y = (float(v) for v in res.q_final)
-    stopped = res.stop_step is not None
-    obj = {
-        "law": law.name, "description": law.description,
-        "u0": u0, "angle_deg": angle, "mass": mass, "g": g, "dt": dt,
-        "t_end": None if halt else t_end,
-        "rest": [x, y] if stopped else None,
-        "final_position": [x, y],
-        "final_velocity": [float(v) for v in res.u_final],
-        "distance": math.hypot(x, y),
-        "stop_time": res.stop_time,
-        "deflection_deg": deflection_deg(angle, (x, y)),
-        "steps": res.steps,
-        "max_iterations_used": res.max_iterations_used,
-        "mean_iterations": res.mean_iterations,
-        "tolerance": tol,
-        "status": res.status,
-        "status_message": res.status_message(),
-        "fail_step": res.fail_step,
-        "fail_residual": res.fail_residual,
-        "units": {"rest": "m (t_a, t_b)", "stop_time": "s", "deflection_deg": "deg, "
-                  "counter-clockwise (towards t_b) from the initial velocity"},
-    }
+    obj = slide_summary(law, res, u0=u0, angle_deg=angle, mass=mass, g=g, dt=dt,
+                        t_end=None if halt else t_end, tol=tol)
     if args.gauge:
         obj["gauge"] = str(args.gauge)
     if args.csv:
-        write_csv(args.csv, res)
+        from ..io import write_text_atomic
+        write_text_atomic(args.csv, path_csv(res))
     if args.plot:
+        from ..dynamics.plot import plot_path
         plot_path(args.plot, res, law, angle)
     return law, res, obj
-
-
-def write_csv(path, res) -> None:
-    """t,x,y,vx,vy of the recorded states (atomic write)."""
-    from ..io import write_text_atomic
-    lines = ["t_s,x_m,y_m,vx_m_s,vy_m_s"]
-    for t, q, u in zip(res.t, res.q, res.u):
-        lines.append(",".join(repr(float(v)) for v in (t, q[0], q[1], u[0], u[1])))
-    write_text_atomic(path, "\n".join(lines) + "\n")
-
-
-def plot_path(path, res, law, angle_deg: float) -> None:
-    """The path from the origin to the rest point, with the launch direction."""
-    from ..io import save_figure_atomic
-    from ..plotting import _plt
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 5.4))
-    ax.plot(res.q[:, 0], res.q[:, 1], color="tab:blue", lw=2, label=f"path ({law.name})")
-    d = max(float(abs(res.q).max()), 1e-12)
-    a = math.radians(angle_deg)
-    ax.plot([0, d * math.cos(a)], [0, d * math.sin(a)], color="0.5", ls="--", lw=1,
-            label="initial velocity direction")
-    ax.plot(0, 0, "ko", ms=4)
-    ax.plot(res.q_final[0], res.q_final[1], "s", color="tab:red", ms=6,
-            label="rest" if res.stop_step is not None else "end (still moving)")
-    ax.set_xlabel("x along t_a (m)")
-    ax.set_ylabel("y along t_b (m)")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title(law.description, fontsize=8)
-    fig.tight_layout()
-    save_figure_atomic(fig, path, dpi=120)
-    plt.close(fig)
 
 
 def main(args) -> int:

@@ -1,0 +1,6 @@
+"""Law -> motion: Moreau time-stepping of bodies sliding on a friction law (SPEC.md 4).
+
+* :mod:`.moreau` -- bodies, forces, the solver and ``slide`` (kernels in
+  :mod:`._moreau_kernels`);
+* :mod:`.references` -- closed forms and ODE reference paths beside it.
+"""

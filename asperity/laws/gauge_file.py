@@ -1,0 +1,151 @@
+"""Gauge files: a fitted friction law as versioned JSON (format "asperity-gauge", version 1).
+
+The layout is the JSON Schema shipped with the package, ``asperity/schemas/gauge-1.schema.json``
+(:func:`schema`).  :func:`write_gauge` writes atomically; :func:`read_gauge` refuses an
+unknown format or version, then checks the file against the schema (by hand, for the
+schema keywords the file uses: one error line naming the field) and rebuilds the law, whose
+own checks (polygon order, support-function consistency, convexity of D) follow.
+
+Floats are written with ``repr`` (shortest round-trip form), so a law reloads bit for bit.
+Non-finite numbers (``NaN``, ``Infinity``, ``1e999``) are refused.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from .. import __version__
+from ..errors import InputError
+from .convex_set import ConvexSet
+from .fitting import FitReport, GaugeLaw, ReservoirData
+from .gauge_schema import FORMAT, VERSION, _parse_constant, validate
+from .sets import StarSet, TruncatedEllipse
+from .walker_leine import WalkerLeineLaw, associated
+
+UNITS = {"force": "per unit normal load (dimensionless): p = -lambda_T / lambda_N",
+         "angles": "rad in *_rad fields (sliding direction psi from the x axis of the force "
+                   "frame towards y), deg in *_deg fields"}
+
+
+class GaugeFileError(InputError):
+    """A gauge file cannot be read or does not follow the format."""
+
+
+def to_dict(gl: GaugeLaw) -> dict:
+    """The JSON object of a gauge file."""
+    law = gl.law
+    if gl.kind == "truncated-ellipse":
+        e = law.C
+        params = {**e.axes, "theta_rad": float(e.theta)}
+    else:
+        params = {"C": {"points": law.C.points.tolist()},
+                  "D": {"psi_rad": law.D.psi.tolist(), "h": law.D.h.tolist(),
+                        "dh_dpsi": law.D.dh.tolist()}}
+    return {
+        "format": FORMAT,
+        "version": VERSION,
+        "asperity_version": __version__,
+        "law": gl.kind,
+        "units": dict(UNITS),
+        "frame": {"principal_direction_deg": float(gl.principal_direction_deg),
+                  "description": "forces and directions in the frame of the source: wedge "
+                                 "textures t_a (across the ridges), t_b (along them); "
+                                 "surfaces x, y of the file, t_a at principal_direction_deg"},
+        "parameters": params,
+        "data": {"psi_rad": gl.data.psi.tolist(), "p": gl.data.p.tolist(),
+                 "limit": [int(v) for v in gl.data.limit]},
+        "fit": gl.fit.to_dict(),
+        "source": gl.source,
+    }
+
+
+def dumps(obj) -> str:
+    """JSON text: objects indented, arrays of numbers (and of number pairs) on one line."""
+    def enc(x, ind):
+        pad = "  " * ind
+        if isinstance(x, dict):
+            if not x:
+                return "{}"
+            items = [f'{pad}  {json.dumps(k)}: {enc(v, ind + 1)}' for k, v in x.items()]
+            return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+        if isinstance(x, list):
+            if all(not isinstance(v, (dict, list)) for v in x) or all(
+                    isinstance(v, list) and all(not isinstance(w, (dict, list)) for w in v)
+                    for v in x):
+                return json.dumps(x, allow_nan=False, separators=(", ", ": "))
+            return "[\n" + ",\n".join(f"{pad}  {enc(v, ind + 1)}" for v in x) + "\n" + pad + "]"
+        return json.dumps(x, allow_nan=False)
+    return enc(obj, 0) + "\n"
+
+
+def write_gauge(path, gl: GaugeLaw) -> dict:
+    """Write the gauge file of ``gl`` atomically; returns its JSON object."""
+    from ..io import write_text_atomic
+    obj = to_dict(gl)
+    try:
+        text = dumps(obj)
+    except ValueError as exc:                                   # a non-finite number
+        raise GaugeFileError(f"cannot write {path}: {exc}") from None
+    validate(obj)
+    write_text_atomic(path, text)
+    return obj
+
+
+def read_gauge(path) -> GaugeLaw:
+    """Read and check a gauge file; raises GaugeFileError with one line naming the field."""
+    p = Path(path)
+    if not p.is_file():
+        raise GaugeFileError(f"gauge file {str(p)!r} does not exist")
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise GaugeFileError(f"{p}: cannot be read ({exc})") from None
+    try:
+        obj = json.loads(text, parse_constant=_parse_constant)
+    except json.JSONDecodeError as exc:
+        raise GaugeFileError(f"{p}: not valid JSON ({exc.msg} at line {exc.lineno}, "
+                             f"column {exc.colno})") from None
+    try:
+        return from_dict(obj)
+    except InputError as exc:
+        raise GaugeFileError(f"{p}: {exc}") from None
+
+
+def from_dict(obj) -> GaugeLaw:
+    """Rebuild the law of a gauge-file object (checked first)."""
+    validate(obj)
+    kind = obj["law"]
+    prm = obj["parameters"]
+    if kind == "truncated-ellipse":
+        e = TruncatedEllipse(prm["mu_a_plus"], prm["mu_a_minus"], prm["mu_b_plus"],
+                             prm["mu_b_minus"], theta=prm["theta_rad"])
+        law = associated(e)
+    else:
+        try:
+            C = StarSet(np.array(prm["C"]["points"], dtype=float))
+        except InputError as exc:
+            raise InputError(f"field parameters.C.{exc}") from None
+        D = prm["D"]
+        n = {len(D["psi_rad"]), len(D["h"]), len(D["dh_dpsi"])}
+        if len(n) != 1:
+            raise InputError("field parameters.D: psi_rad, h and dh_dpsi must have the same "
+                             f"length, got {len(D['psi_rad'])}, {len(D['h'])}, {len(D['dh_dpsi'])}")
+        try:
+            Dset = ConvexSet(np.array(D["psi_rad"], dtype=float), np.array(D["h"], dtype=float),
+                             np.array(D["dh_dpsi"], dtype=float))
+        except InputError as exc:
+            raise InputError(f"field parameters.D: {exc}") from None
+        law = WalkerLeineLaw(C, Dset)
+    d = obj["data"]
+    if not len(d["psi_rad"]) == len(d["p"]) == len(d["limit"]):
+        raise InputError(f"field data: psi_rad, p and limit must have the same length, got "
+                         f"{len(d['psi_rad'])}, {len(d['p'])}, {len(d['limit'])}")
+    data = ReservoirData(np.array(d["psi_rad"], dtype=float), np.array(d["p"], dtype=float),
+                         np.array(d["limit"], dtype=np.int64))
+    fit = obj["fit"]
+    known = set(FitReport.__dataclass_fields__)
+    rep = FitReport(**{k: v for k, v in fit.items() if k in known})
+    return GaugeLaw(kind, law, data, rep, obj["source"],
+                    float(obj["frame"]["principal_direction_deg"]))

@@ -1,0 +1,334 @@
+"""Planar friction laws for the Moreau solver, and their proximal maps (SPEC.md sections 3, 4).
+
+Every law is a Walker-Leine pair ``(C, D)`` (:class:`~asperity.laws.walker_leine.WalkerLeineLaw`):
+``-lambda_T in lambda_N C`` and ``gamma_T in N_D(-alpha lambda_T)``,
+``alpha = 1/(k_D(-lambda_T) - k_C(-lambda_T) + 1)``.  Forces are per unit normal load, in
+the frame of the law (``t_a`` = x, ``t_b`` = y).  The built-in laws:
+
+* :func:`coulomb_law` -- isotropic Coulomb, C = D = disc (associated);
+* :func:`ellipse_law` -- associated orthotropic ellipse (mu1 along t_a, mu2 along t_b);
+* :func:`truncated_ellipse_law` -- Antoni et al.'s truncated ellipse (mu_a+-, mu_b+-),
+  associated: asymmetric friction, e.g. for ratcheting;
+* :func:`collinear_law` -- force parallel to the sliding direction with magnitude from a
+  radial function (C = the given set, D = a disc: its normal cone is the ray of the force);
+* :func:`star_law` -- Walker-Leine law with a non-convex, star-shaped C and convex D: the
+  windward wedge reservoir (alpha = beta = 30 deg, mu = 0.3, rigid asperities) stretched
+  along t_a and t_b to mu1 and mu2 (:func:`windward_star_law` gives it unstretched);
+* :func:`from_gauge` -- the law of a gauge file written by ``asperity fit`` (truncated
+  ellipse or star), directly or as its collinear variant.
+
+Inside the solver D may be rescaled (D matters only up to scale, SPEC.md 3): it is shrunk
+to the largest copy that fits in C, so that k_D >= k_C on C and alpha <= 1 (the iteration's
+effective r_i = alpha_i r then stays in the convergence range of r).
+
+Proximal maps (Euclidean projections), usable outside the solver (e.g. microslip):
+:func:`prox_interval` (1D asymmetric Coulomb), :func:`prox_set` (onto the D or C of a law),
+:func:`law_point` (the full Walker-Leine map, prox onto D then back to C).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import InputError, check_range
+from .convex_set import ConvexSet
+from .geometry import polar_angle, unit
+from .sets import Disc, StarSet, TruncatedEllipse
+from .walker_leine import WalkerLeineLaw, associated
+
+#: set kinds of the kernels (same numbers as asperity.laws._set_kernels.SET_*)
+SET_DISC, SET_ELLIPSE, SET_STAR, SET_SUPPORT = 0, 1, 2, 3
+LAW_NAMES = ("coulomb", "ellipse", "truncated-ellipse", "collinear", "star")
+#: directions sampled when D is fitted inside C
+_SCALE_DIRECTIONS = 7200
+
+
+def _set_tables(S) -> tuple[int, np.ndarray, np.ndarray]:
+    """(kind, par (8,), table (n, 8)) of a set for the kernels."""
+    par = np.zeros(8)
+    if isinstance(S, Disc):
+        par[0] = S.mu
+        return SET_DISC, par, np.zeros((1, 8))
+    if isinstance(S, TruncatedEllipse):
+        par[:6] = (S.mu_a_plus, S.mu_a_minus, S.mu_b_plus, S.mu_b_minus,
+                   math.cos(S.theta), math.sin(S.theta))
+        return SET_ELLIPSE, par, np.zeros((1, 8))
+    if isinstance(S, StarSet):
+        tab = np.zeros((S.n, 8))
+        tab[:, :2] = S.points
+        tab[:, 2] = S.angles[:-1]
+        return SET_STAR, par, tab
+    if isinstance(S, ConvexSet):
+        tab = np.zeros((S.psi.size, 8))
+        tab[:, 0] = S.psi
+        tab[:, 1] = S.ln_h
+        tab[:, 2] = S.delta
+        tab[:, 3] = S.h
+        tab[:, 4] = S.dh
+        tab[:, 5] = np.cos(S.psi)
+        tab[:, 6] = np.sin(S.psi)
+        if not np.all(np.diff(S.psi) >= 0):                      # pragma: no cover
+            raise InputError("D.psi must be non-decreasing")
+        return SET_SUPPORT, par, tab
+    raise InputError(f"unsupported set {type(S).__name__}: expected Disc, TruncatedEllipse, "
+                     "StarSet or ConvexSet")
+
+
+def scale_set(S, c: float):
+    """The set S scaled by c > 0 about the origin."""
+    if isinstance(S, Disc):
+        return Disc(S.mu * c)
+    if isinstance(S, TruncatedEllipse):
+        return TruncatedEllipse(S.mu_a_plus * c, S.mu_a_minus * c, S.mu_b_plus * c,
+                                S.mu_b_minus * c, theta=S.theta)
+    if isinstance(S, ConvexSet):
+        return ConvexSet(S.psi, S.h * c, S.dh * c)
+    if isinstance(S, StarSet):
+        return StarSet(S.points * c)
+    raise InputError(f"cannot scale {type(S).__name__}")
+
+
+@dataclass(frozen=True)
+class PlanarLaw:
+    """A friction law of the solver: a Walker-Leine pair (C, D) with a name.
+
+    name : "coulomb", "ellipse", "truncated-ellipse", "collinear" or "star"
+    law  : the WalkerLeineLaw (C reservoir, D sliding set); ``law.force(psi)`` is the
+           sliding force per unit normal load
+    description : one line saying what the law is
+    """
+
+    name: str
+    law: WalkerLeineLaw
+    description: str = ""
+    _kernel: tuple = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        C, D = self.law.C, self.law.D
+        assoc = C is D or (type(C) is type(D) and C == D and not isinstance(C, ConvexSet))
+        if not assoc:
+            D = scale_set(D, self.d_scale_of(C, D))
+        ck, cp, ct = _set_tables(C)
+        if assoc:
+            dk, dp, dt = ck, cp, ct
+        else:
+            dk, dp, dt = _set_tables(D)
+            if dk == SET_STAR:
+                raise InputError("D must be convex (Disc, TruncatedEllipse or ConvexSet), "
+                                 "got a StarSet")
+        object.__setattr__(self, "_kernel", (bool(assoc), ck, cp, ct, dk, dp, dt))
+
+    @staticmethod
+    def d_scale_of(C, D) -> float:
+        """min over directions of rho_C / rho_D: D times this lies in C (k_D >= k_C there)."""
+        phi = 2 * math.pi * np.arange(_SCALE_DIRECTIONS) / _SCALE_DIRECTIONS
+        if isinstance(C, StarSet):
+            phi = np.concatenate([phi, C.angles[:-1]])
+        return float(np.min(C.radial(phi) / D.radial(phi)))
+
+    @property
+    def associated(self) -> bool:
+        return self._kernel[0]
+
+    @property
+    def kernel_sets(self) -> tuple:
+        """(assoc, c_kind, c_par, c_tab, d_kind, d_par, d_tab) as the kernels take them
+        (D already scaled inside C)."""
+        return self._kernel
+
+    def force(self, psi) -> np.ndarray:
+        """(m, 2) sliding force p = -lambda_T/lambda_N for the directions psi (rad)."""
+        return self.law.force(psi).p
+
+    def radial(self, phi) -> np.ndarray:
+        """Radial function of the reservoir C."""
+        return self.law.C.radial(np.atleast_1d(np.asarray(phi, dtype=float)))
+
+    def min_tangential(self, n: int = 3600) -> float:
+        """min over sliding directions of p.s (the smallest decelerating coefficient)."""
+        psi = 2 * math.pi * np.arange(n) / n
+        return float(np.min(np.einsum("ij,ij->i", self.force(psi), unit(psi))))
+
+    def axes(self) -> dict:
+        """|p| for sliding along +t_a, -t_a, +t_b, -t_b."""
+        f = self.force(np.array([0.0, math.pi, 0.5 * math.pi, 1.5 * math.pi]))
+        r = np.hypot(f[:, 0], f[:, 1])
+        return {"mu_a_plus": float(r[0]), "mu_a_minus": float(r[1]),
+                "mu_b_plus": float(r[2]), "mu_b_minus": float(r[3])}
+
+
+# ----------------------------------------------------------------------------- built-in laws
+
+def _mu(name, v) -> float:
+    return check_range(name, v, 0.0, 100.0, low_open=True)
+
+
+def coulomb_law(mu: float) -> PlanarLaw:
+    """Isotropic Coulomb friction of coefficient mu."""
+    d = Disc(_mu("mu", mu))
+    return PlanarLaw("coulomb", WalkerLeineLaw(d, d), f"isotropic Coulomb, mu = {mu:g}")
+
+
+def ellipse_law(mu1: float, mu2: float) -> PlanarLaw:
+    """Associated orthotropic ellipse: semi-axis mu1 along t_a, mu2 along t_b."""
+    mu1, mu2 = _mu("mu1", mu1), _mu("mu2", mu2)
+    e = TruncatedEllipse(mu1, mu1, mu2, mu2)
+    return PlanarLaw("ellipse", associated(e),
+                     f"associated orthotropic ellipse, mu1 = {mu1:g} (t_a), mu2 = {mu2:g} (t_b)")
+
+
+def truncated_ellipse_law(mu_a_plus, mu_a_minus, mu_b_plus, mu_b_minus,
+                          theta: float = 0.0) -> PlanarLaw:
+    """Associated truncated ellipse (Antoni et al. eq. 18), asymmetric in general."""
+    e = TruncatedEllipse(_mu("mu_a_plus", mu_a_plus), _mu("mu_a_minus", mu_a_minus),
+                         _mu("mu_b_plus", mu_b_plus), _mu("mu_b_minus", mu_b_minus),
+                         theta=float(theta))
+    return PlanarLaw("truncated-ellipse", associated(e),
+                     f"associated truncated ellipse, mu_a+ = {mu_a_plus:g}, mu_a- = "
+                     f"{mu_a_minus:g}, mu_b+ = {mu_b_plus:g}, mu_b- = {mu_b_minus:g}")
+
+
+def collinear_law(C=None, mu1: float | None = None, mu2: float | None = None) -> PlanarLaw:
+    """Collinear law: the force is parallel to the sliding direction, |p| = rho_C(psi).
+
+    C: the set whose radial function gives the magnitude (default: the ellipse mu1, mu2).
+    D is a disc: its normal cone at y is the ray of y, so the force p (on the ray of y)
+    points along the sliding direction."""
+    if C is None:
+        if mu1 is None or mu2 is None:
+            raise InputError("collinear_law needs C or both mu1 and mu2")
+        mu1, mu2 = _mu("mu1", mu1), _mu("mu2", mu2)
+        C = TruncatedEllipse(mu1, mu1, mu2, mu2)
+        what = f"ellipse mu1 = {mu1:g}, mu2 = {mu2:g}"
+    else:
+        what = type(C).__name__
+    return PlanarLaw("collinear", WalkerLeineLaw(C, Disc(1.0)),
+                     f"collinear: force along the sliding direction, |p| from the radial "
+                     f"function of the {what}")
+
+
+@lru_cache(maxsize=4)
+def _windward_fit(alpha_deg: float, beta_deg: float, mu_alpha: float, mu_beta: float,
+                  directions: int):
+    from ..friction.derive import derive
+    from ..texture.wedges import WedgeTexture
+    from .fitting import fit_derivation
+    d = derive(WedgeTexture(alpha_deg, beta_deg, mu_alpha, mu_beta), "windward", "closed-form",
+               directions)
+    return fit_derivation(d, "star", holdout=False)
+
+
+def windward_star_law(alpha_deg: float = 30.0, beta_deg: float = 30.0, mu_alpha: float = 0.3,
+                      mu_beta: float = 0.3, directions: int = 360) -> PlanarLaw:
+    """The star-shaped Walker-Leine law fitted to a windward (rigid-asperity) wedge texture
+    (non-convex C, convex D with a flat edge: set-valued along the ridges)."""
+    gl = _windward_fit(float(alpha_deg), float(beta_deg), float(mu_alpha), float(mu_beta),
+                       int(directions))
+    return PlanarLaw("star", gl.law,
+                     f"star-shaped law of the windward wedge texture alpha = {alpha_deg:g}, "
+                     f"beta = {beta_deg:g} deg, mu = {mu_alpha:g}/{mu_beta:g}")
+
+
+def star_law(mu1: float, mu2: float, directions: int = 360) -> PlanarLaw:
+    """Built-in star-shaped law with |p| = mu1 along +-t_a and mu2 along +-t_b: the windward
+    wedge law (30 deg, mu = 0.3) mapped by S = diag(mu1/rho(0), mu2/rho(90 deg)).
+
+    The map keeps C star-shaped (non-convex) and D convex; forces map by S and sliding
+    directions (normals of D) by S^-1, and the law is refitted through the mapped data
+    (fit_star: C the polygon, D integrated from the mapped sliding rule)."""
+    from .fitting import ReservoirData, fit_star
+    mu1, mu2 = _mu("mu1", mu1), _mu("mu2", mu2)
+    gl = _windward_fit(30.0, 30.0, 0.3, 0.3, int(directions))
+    data = gl.data
+    C = gl.law.C
+    sa = mu1 / float(C.radial(np.array([0.0]))[0])
+    sb = mu2 / float(C.radial(np.array([0.5 * math.pi]))[0])
+    p = data.p * np.array([sa, sb])
+    s = unit(data.psi) / np.array([sa, sb])
+    psi = np.mod(polar_angle(s), 2 * math.pi)
+    psi[np.isclose(psi, 2 * math.pi, rtol=0, atol=1e-15)] = 0.0
+    order = np.lexsort((data.limit, psi))
+    law, _ = fit_star(ReservoirData(psi[order], p[order], data.limit[order]))
+    return PlanarLaw("star", law,
+                     f"star-shaped (windward wedge 30/30 deg, mu = 0.3, stretched): "
+                     f"mu1 = {mu1:g} along t_a, mu2 = {mu2:g} along t_b")
+
+
+def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
+    """The law of a gauge file (path or GaugeLaw).
+
+    kind: None or the file's own law ("ellipse" for a truncated-ellipse file, "star" for a
+    star file), or "collinear" (force along the sliding direction, |p| from the file's C)."""
+    from .fitting import GaugeLaw
+    if not isinstance(gauge, GaugeLaw):
+        from .gauge_file import read_gauge
+        gauge = read_gauge(gauge)
+    own = "ellipse" if gauge.kind == "truncated-ellipse" else "star"
+    kind = own if kind is None else kind
+    src = gauge.source.get("texture", {})
+    what = src.get("kind", "?") if isinstance(src, dict) else "?"
+    if kind == "collinear":
+        return collinear_law(gauge.law.C)
+    if kind != own:
+        raise InputError(f"--law must be {own} or collinear for a {gauge.kind} gauge file, "
+                         f"got {kind}")
+    if own == "ellipse":
+        return PlanarLaw("truncated-ellipse", gauge.law,
+                         f"truncated ellipse of a gauge file ({what}, {gauge.source.get('contact')})")
+    return PlanarLaw("star", gauge.law,
+                     f"star-shaped law of a gauge file ({what}, {gauge.source.get('contact')})")
+
+
+# ----------------------------------------------------------------------------- proximal maps
+
+def prox_interval(x, mu_minus: float, mu_plus: float, normal=1.0) -> np.ndarray:
+    """Projection of x onto the asymmetric interval [-mu_minus N, mu_plus N] (1D Coulomb).
+
+    The implicit 1D law of a tangential impulse Lambda (force on the body, +x positive) with
+    slip rate gamma: ``-Lambda = prox_interval(-Lambda + r gamma, mu_minus, mu_plus, N)``:
+    sliding towards +x resists with mu_plus N, towards -x with mu_minus N."""
+    n = np.asarray(normal, dtype=float)
+    return np.clip(np.asarray(x, dtype=float), -mu_minus * n, mu_plus * n)
+
+
+def prox_set(law: PlanarLaw, x, normal: float = 1.0, which: str = "D"):
+    """((m, 2) projections, (m,) inside flags) of the points x onto ``normal`` times the
+    convex set D of the law (or C when it is convex and ``which`` = "C").  For an
+    associated law (C = D) this is the whole prox of the law.  D is the solver's scaled D."""
+    from ._set_kernels import project_many
+    assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
+    kind, par, tab = (dk, dp, dt) if which == "D" else (ck, cp, ct)
+    if kind == SET_STAR:
+        raise InputError("C of this law is a star-shaped polygon: no projection onto it")
+    x = np.atleast_2d(np.asarray(x, dtype=float)) / float(normal)
+    y, ins = project_many(kind, par, tab, np.ascontiguousarray(x))
+    return y * float(normal), ins
+
+
+def law_point(law: PlanarLaw, x, normal: float = 1.0):
+    """The Walker-Leine map at prox arguments x: y = prox_D(x), then the force P on the ray
+    of y with alpha(P) P = y.  Returns ((m, 2) P, (m,) inside = sticking)."""
+    from ._law_kernels import law_point_many
+    assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
+    x = np.atleast_2d(np.asarray(x, dtype=float)) / float(normal)
+    P, ins = law_point_many(assoc, ck, cp, ct, dk, dp, dt, np.ascontiguousarray(x))
+    return P * float(normal), ins
+
+
+def kernel_radial(law: PlanarLaw, phi, which: str = "C") -> np.ndarray:
+    """Radial function of C (or of the solver's D) as the kernels compute it."""
+    from ._set_kernels import radial_many
+    assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
+    kind, par, tab = (ck, cp, ct) if which == "C" else (dk, dp, dt)
+    return radial_many(kind, par, tab, np.atleast_1d(np.asarray(phi, dtype=float)))
+
+
+def solver_D(law: PlanarLaw):
+    """The D the solver uses (scaled inside C for a non-associated law)."""
+    C, D = law.law.C, law.law.D
+    if law.associated:
+        return D
+    return scale_set(D, PlanarLaw.d_scale_of(C, D))

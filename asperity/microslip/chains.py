@@ -1,0 +1,183 @@
+"""Cumulative microslip (ratcheting) of assemblies under thermal cycles (SPEC.md section 5).
+
+An assembly is a chain of contact nodes on a rigid support along one slip axis ``x``: node
+``i`` carries an elastic tangential spring ``k_t,i`` in series with a slider that moves
+towards ``+x`` when the spring force ``q_i = k_t,i (u_i - s_i)`` reaches ``mu+ N_i`` and
+towards ``-x`` when it reaches ``-mu- N_i`` (the regularised asymmetric Coulomb law);
+consecutive nodes are joined by elastic elements of stiffness ``k_e`` and length ``l_e``
+that expand freely by ``alpha_T l_e dT``.  An external tangential force ``F`` may act,
+shared by the nodes in fixed proportions.
+
+Sign convention: ``x`` is the assembly's slip axis; ``u > 0`` is a displacement towards
+``+x``; ``mu+`` resists sliding towards ``+x``, ``mu-`` towards ``-x``.  With ``mu+ > mu-``
+the assembly creeps towards ``-x`` (the side of the smaller coefficient): a negative drift.
+
+* :func:`two_node_chain`, :func:`strip_chain` build the two models of Antoni et al.;
+* :func:`two_node_dT_c`, :func:`two_node_drift_per_cycle`, :func:`strip_dT_c` are the closed
+  forms (SPEC.md 5) beside the numerics;
+* :func:`simulate` marches cycles quasi-statically (exact incremental solution of the
+  slider chain: one backward-Euler increment per monotone load segment is exact while every
+  slider's slip is monotone over it; ``substeps`` refines) and detects the stabilised cycle,
+  from which the drift after any number of cycles is extrapolated exactly;
+* :func:`simulate_dynamic` solves the same chain with small masses and slow loading by
+  Moreau's midpoint time-stepping, friction impulses from the proximal equation onto
+  ``[-mu- N dt, mu+ N dt]``.
+
+Units: SI (m, N, K, Pa).  The strip is per unit width (p in Pa, k_t in Pa/m, F in N/m).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import AsperityError, InputError, check_int, check_range
+
+MODES = ("quasi-static", "dynamic")
+
+
+class SlideOffError(AsperityError):
+    """A physical outcome: the external load exceeds what the sliders can hold."""
+
+
+class SolverError(AsperityError):
+    """The active-set or the proximal iteration did not converge (a numerical failure)."""
+
+
+@dataclass(frozen=True)
+class MicroslipTolerances:
+    """The tolerances of this module, in one place."""
+
+    #: the cycle is stabilised when the contact forces at the end of two consecutive cycles
+    #: differ by at most this, relative to the largest slider threshold
+    stabilised: float = 1e-9
+    #: a drift per cycle below this, relative to the thermal displacement scale
+    #: alpha_T * length * dT range, counts as no drift
+    no_drift: float = 1e-9
+    #: Newton iterations per load increment
+    max_newton: int = 500
+    #: Moreau: fixed-point tolerance (relative to the impulse bound), iteration limit, r/G
+    prox_tol: float = 1e-12
+    prox_max_iter: int = 100
+    prox_r_factor: float = 1.0
+
+
+TOL = MicroslipTolerances()
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A slider chain (see :mod:`asperity.microslip._chain_kernels` for the equations).
+
+    kind : "two-node" or "strip"
+    x    : (n,) node positions along the slip axis, m
+    kb, le : (n-1,) element stiffness (N/m) and length (m)
+    kt   : (n,) contact stiffness (N/m);  cp, cm : (n,) thresholds mu+ N_i, mu- N_i (N)
+    fw   : (n,) share of the external force on each node (sums to 1)
+    weight : (n,) contact-area share of each node (sums to 1): the assembly's displacement
+             is the weighted mean of the node displacements
+    """
+
+    kind: str
+    x: np.ndarray
+    kb: np.ndarray
+    le: np.ndarray
+    kt: np.ndarray
+    cp: np.ndarray
+    cm: np.ndarray
+    fw: np.ndarray
+    weight: np.ndarray
+    alpha_T: float
+    mu_plus: float
+    mu_minus: float
+    params: dict = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return int(self.x.size)
+
+    @property
+    def length(self) -> float:
+        return float(self.le.sum())
+
+    def with_friction(self, mu_plus: float, mu_minus: float) -> "Chain":
+        """The same chain with other coefficients (thresholds scaled from the normal loads)."""
+        Nn = self.normal_loads
+        from dataclasses import replace
+        return replace(self, cp=mu_plus * Nn, cm=mu_minus * Nn, mu_plus=float(mu_plus),
+                       mu_minus=float(mu_minus))
+
+    @property
+    def normal_loads(self) -> np.ndarray:
+        return np.asarray(self.params["normal_loads"])
+
+
+def _check_mu(name, x) -> float:
+    v = check_range(name, x, 0.0, None)
+    return v
+
+
+def _positive(name, x, unit="") -> float:
+    v = check_range(name, x, 0.0, None, low_open=True, unit=unit)
+    if not math.isfinite(v):
+        raise InputError(f"{name} must be finite, got {v:g}")
+    return v
+
+
+def two_node_chain(k, l0, alpha_T, k_t, N, mu_plus, mu_minus) -> Chain:
+    """Antoni et al.'s two-node model: a bar (stiffness k, length l0, expansion alpha_T)
+    whose two ends rest on the support under the normal force N each."""
+    k = _positive("k", k, "N/m")
+    l0 = _positive("l0", l0, "m")
+    alpha_T = _positive("alpha_T", alpha_T, "1/K")
+    k_t = _positive("k_t", k_t, "N/m")
+    N = _positive("N", N, "N")
+    mp, mm = _check_mu("mu_plus", mu_plus), _check_mu("mu_minus", mu_minus)
+    Nn = np.array([N, N])
+    return Chain("two-node", np.array([0.0, l0]), np.array([k]), np.array([l0]),
+                 np.array([k_t, k_t]), mp * Nn, mm * Nn, np.array([0.5, 0.5]),
+                 np.array([0.5, 0.5]), alpha_T, mp, mm,
+                 {"k": k, "l0": l0, "alpha_T": alpha_T, "k_t": k_t, "N": N,
+                  "normal_loads": Nn})
+
+
+def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
+    """The continuous strip (per unit width) discretised into ``n`` equally spaced nodes:
+    linear elements of stiffness E h / dx; node i carries the bed over its tributary length
+    (dx, dx/2 at the free ends): stiffness k_t dx, normal load p dx (lumped)."""
+    h = _positive("h", h, "m")
+    E = _positive("E", E, "Pa")
+    p = _positive("p", p, "Pa")
+    l = _positive("l", l, "m")
+    k_t = _positive("k_t", k_t, "Pa/m")
+    alpha_T = _positive("alpha_T", alpha_T, "1/K")
+    n = check_int("n", n, 2, 10_000_000)
+    mp, mm = _check_mu("mu_plus", mu_plus), _check_mu("mu_minus", mu_minus)
+    dx = l / (n - 1)
+    trib = np.full(n, dx)
+    trib[0] = trib[-1] = 0.5 * dx
+    Nn = p * trib
+    return Chain("strip", np.linspace(0.0, l, n), np.full(n - 1, E * h / dx), np.full(n - 1, dx),
+                 k_t * trib, mp * Nn, mm * Nn, trib / l, trib / l, alpha_T, mp, mm,
+                 {"h": h, "E": E, "p": p, "l": l, "k_t": k_t, "alpha_T": alpha_T, "n": n,
+                  "normal_loads": Nn})
+
+
+def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
+    """dT_c of the chain: the temperature change (heating if ``sign`` > 0, else cooling),
+    from the stress-free state without external force, at which the first slider slips
+    (K; inf if none ever does)."""
+    from ._chain_kernels import _solve_tridiag
+    n = chain.n
+    rhs = np.zeros(n)
+    e = chain.kb * chain.alpha_T * chain.le * sign
+    rhs[1:] += e
+    rhs[:-1] -= e
+    u = np.empty(n)
+    _solve_tridiag(chain.kb, chain.kt, rhs, u, np.empty(n), np.empty(n))
+    q = chain.kt * u                                     # contact forces per K
+    with np.errstate(divide="ignore"):
+        lim = np.where(q > 0, chain.cp / np.where(q > 0, q, 1.0),
+                       np.where(q < 0, chain.cm / np.where(q < 0, -q, 1.0), np.inf))
+    return float(lim.min())

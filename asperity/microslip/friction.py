@@ -1,0 +1,109 @@
+"""mu+ and mu- along an assembly's slip axis, from explicit coefficients, a gauge file or
+a texture (wedge or surface).
+
+Sign convention: ``mu_plus`` resists sliding of the assembly towards +x over the support,
+``mu_minus`` towards -x.  With a texture on the support, ``mu_plus`` = T(psi) and
+``mu_minus`` = T(psi + 180 deg) with psi = slip_axis_deg, T = p . s the tangential friction
+of the texture; with the texture on the part the two swap.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..friction.sources import load_texture_or_surface
+from .assembly import Assembly, AssemblyFileError
+
+
+@dataclass(frozen=True)
+class Friction:
+    """mu+ and mu- along the slip axis and where they come from."""
+
+    mu_plus: float
+    mu_minus: float
+    source: str                       # "explicit", "gauge", "texture"
+    detail: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        def num(x):
+            return float(x) if math.isfinite(x) else None
+        return {"source": self.source, "mu_plus": num(self.mu_plus),
+                "mu_minus": num(self.mu_minus),
+                "self_locking": [d for d, x in (("+x", self.mu_plus), ("-x", self.mu_minus))
+                                 if not math.isfinite(x)], **self.detail}
+
+
+def friction_from_texture(texture, contact: str = "all-faces", slip_axis_deg=None,
+                          textured: str = "support", source_name: str = "") -> Friction:
+    """mu+ and mu- of ``texture`` (a wedge texture or a surface) along the slip axis.
+
+    The axis: ``slip_axis_deg`` in the texture's frame (wedges: from t_a towards t_b;
+    surfaces: from the file's +x towards +y), by default the principal direction t_a (wedges:
+    0; surfaces: the direction of largest friction found by ``derive``, in [0, 180) deg).
+    mu+ = T(psi), mu- = T(psi + 180 deg) for a textured support (swapped for a textured
+    part), T = p . s the tangential component of the friction force; the lateral component
+    L = p . s_perp is carried by the assembly's guidance and reported only."""
+    from ..friction.faces import compute_faces_reservoir
+    surface = getattr(texture, "kind", "") == "surface"
+    if slip_axis_deg is None:
+        if surface:
+            from ..friction.derive import derive
+            psi_deg = derive(texture, contact).principal_direction_deg
+        else:
+            psi_deg = 0.0
+        axis = "principal direction t_a"
+    else:
+        psi_deg = float(slip_axis_deg)
+        axis = "given"
+    psi = math.radians(psi_deg) + np.array([0.0, math.pi])
+    res = compute_faces_reservoir(texture.faces(), psi, contact)
+    T = np.where(res.locked, np.inf, res.tangential)
+    L = np.where(res.locked, np.nan, res.lateral)
+    plus, minus = (1, 0) if textured == "part" else (0, 1)
+    detail = {"slip_axis_deg": psi_deg, "slip_axis": axis, "textured": textured,
+              "contact": contact, "texture": source_name or texture.to_dict().get("kind", ""),
+              "lateral_plus": _num(L[plus]), "lateral_minus": _num(L[minus])}
+    return Friction(float(T[plus]), float(T[minus]), "texture", detail)
+
+
+def friction_from_gauge(law, slip_axis_deg=None, textured: str = "support",
+                        source_name: str = "") -> Friction:
+    """mu+ and mu- of a fitted law (:class:`~asperity.laws.fitting.GaugeLaw`) along the slip axis
+    (default: the law's principal direction t_a), as :func:`friction_from_texture`."""
+    psi_deg = law.principal_direction_deg if slip_axis_deg is None else float(slip_axis_deg)
+    psi = math.radians(psi_deg) + np.array([0.0, math.pi])
+    f = law.force(psi)
+    s = np.column_stack([np.cos(psi), np.sin(psi)])
+    T = np.sum(f.p * s, axis=1)
+    L = f.p[:, 1] * s[:, 0] - f.p[:, 0] * s[:, 1]
+    plus, minus = (1, 0) if textured == "part" else (0, 1)
+    return Friction(float(T[plus]), float(T[minus]), "gauge",
+                    {"slip_axis_deg": psi_deg, "slip_axis": "principal direction t_a"
+                     if slip_axis_deg is None else "given", "textured": textured,
+                     "gauge": source_name, "lateral_plus": float(L[plus]),
+                     "lateral_minus": float(L[minus])})
+
+
+def resolve_friction(asm: Assembly) -> Friction:
+    """The friction of an assembly file's [friction] table (files relative to it)."""
+    fr = asm.friction_table
+    if "mu_plus" in fr:
+        return Friction(float(fr["mu_plus"]), float(fr["mu_minus"]), "explicit")
+    axis = fr.get("slip_axis_deg")
+    textured = fr.get("textured", "support")
+    if "gauge" in fr:
+        from ..laws.gauge_file import read_gauge
+        path = asm.folder / fr["gauge"]
+        return friction_from_gauge(read_gauge(path), axis, textured, str(path))
+    if "texture" in fr:
+        path = asm.folder / fr["texture"]
+        return friction_from_texture(load_texture_or_surface(path), fr.get("contact", "all-faces"),
+                                     axis, textured, str(path))
+    raise AssemblyFileError("no friction: give a texture on the command line, or mu_plus and "
+                            "mu_minus, a gauge or a texture in the assembly's [friction] table")
+
+
+def _num(x) -> float | None:
+    return float(x) if np.isfinite(x) else None

@@ -1,0 +1,112 @@
+"""Figures of the microslip analysis: node displacements against cycles (and the strip's
+slip profiles), and the risk map over two texture parameters.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int = 6,
+                          substeps: int = 24) -> None:
+    """Node displacement against cycles (Antoni et al. figure 3 redrawn from the model,
+    temperature on a second axis); for a strip also the displacement profiles u(x) at the
+    end of each cycle and at the hottest point of the last one."""
+    from ..io import pyplot, save_figure_atomic
+    from .loading import Loading
+    from .quasi_static import simulate
+    plt = pyplot()
+    L = Loading(loading.dT, loading.F, max(loading.substeps, substeps))
+    n = chain.n
+    strip = chain.kind == "strip"
+    if strip:
+        nodes = np.unique(np.linspace(0, n - 1, min(n, 401)).astype(int))
+    else:
+        nodes = np.arange(n)
+    r = simulate(chain, L, cycles, until_stable=False, record_nodes=nodes)
+    tr = r.trace
+    show = [0, n // 2, n - 1] if strip else list(range(n))
+    cols = {k: c for k, c in zip(show, ["tab:blue", "tab:green", "tab:red"])}
+    if strip:
+        fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12.5, 4.6))
+    else:
+        fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    for k in show:
+        j = int(np.searchsorted(nodes, k))
+        lab = f"node {k + 1} (x = {chain.x[k]:.3g} m)"
+        ax.plot(tr["t"], tr["u"][:, j] * 1e6, color=cols[k], lw=1.6, label=lab)
+    ax.set_xlabel("cycles")
+    ax.set_ylabel("node displacement u (um)")
+    ax.grid(alpha=0.3)
+    axT = ax.twinx()
+    axT.plot(tr["t"], tr["dT"], color="0.6", lw=0.8, ls=":")
+    axT.set_ylabel("dT (K, dotted)", color="0.4")
+    d = r.drift_per_cycle
+    ax.set_title((title + ": " if title else "") + f"mu+={chain.mu_plus:.4g}, "
+                 f"mu-={chain.mu_minus:.4g}; drift {d * 1e6:+.4g} um/cycle", fontsize=10)
+    ax.legend(fontsize=8, loc="best")
+    if strip:
+        x = chain.x[nodes] * 1e3
+        cmap = plt.get_cmap("viridis")
+        for c in range(1, r.cycles_run + 1):
+            ax2.plot(chain.x * 1e3, r.u_end[c] * 1e6, color=cmap(c / (r.cycles_run + 1)),
+                     lw=1.4, label=f"end of cycle {c}")
+        per = L.cycle_points()[0].size
+        hot = int(np.argmax(L.cycle_points()[0]))
+        j = 1 + (r.cycles_run - 1) * per + hot + (len(tr["t"]) - 1 - r.cycles_run * per)
+        ax2.plot(x, tr["u"][j] * 1e6, color="tab:red", ls="--", lw=1.2,
+                 label=f"cycle {r.cycles_run} at dT = {tr['dT'][j]:g} K")
+        ax2.set_xlabel("x (mm)")
+        ax2.set_ylabel("displacement u(x) (um)")
+        ax2.set_title("strip displacement profiles", fontsize=10)
+        ax2.grid(alpha=0.3)
+        ax2.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    save_figure_atomic(fig, path, dpi=110)
+    plt.close(fig)
+
+
+def plot_risk_map(out: dict, path) -> None:
+    """Drift per cycle over the grid of ``asperity risk --map`` (signed colour, um/cycle),
+    shakedown cells hatched grey, slide-off cells black."""
+    from matplotlib.colors import TwoSlopeNorm
+
+    from ..io import pyplot, save_figure_atomic
+    plt = pyplot()
+    m = out["map"]
+    xs, ys = np.array(m["x"]["values"]), np.array(m["y"]["values"])
+    d = np.array([[np.nan if v is None else v for v in row] for row in m["drift_per_cycle_m"]])
+    verdict = np.array(m["verdict"], dtype=object)
+    fig, ax = plt.subplots(figsize=(7.2, 5.4))
+    z = d * 1e6
+    lim = np.nanmax(np.abs(z)) if np.isfinite(z).any() and np.nanmax(np.abs(z)) > 0 else 1.0
+    im = ax.pcolormesh(_edges(xs), _edges(ys), np.where(verdict == "ratchet", z, np.nan),
+                       cmap="coolwarm", norm=TwoSlopeNorm(0.0, -lim, lim), shading="flat")
+    fig.colorbar(im, ax=ax, label="drift per cycle (um; < 0: towards -x)")
+    for j, y in enumerate(ys):
+        for i, x in enumerate(xs):
+            v = verdict[j, i]
+            if v == "shakedown":
+                ax.add_patch(plt.Rectangle((_edges(xs)[i], _edges(ys)[j]),
+                                           np.diff(_edges(xs))[i], np.diff(_edges(ys))[j],
+                                           facecolor="0.9", edgecolor="0.6", hatch="//", lw=0.3))
+            elif v != "ratchet":
+                ax.add_patch(plt.Rectangle((_edges(xs)[i], _edges(ys)[j]),
+                                           np.diff(_edges(xs))[i], np.diff(_edges(ys))[j],
+                                           facecolor="k"))
+    ax.plot([], [], marker="s", ls="", color="0.85", label="shakedown (hatched)")
+    if np.any((verdict != "ratchet") & (verdict != "shakedown")):
+        ax.plot([], [], marker="s", ls="", color="k", label="slides off")
+    ax.legend(fontsize=8, loc="upper right")
+    unit = {"alpha": " (deg)", "beta": " (deg)"}
+    ax.set_xlabel(m["x"]["parameter"] + unit.get(m["x"]["parameter"], ""))
+    ax.set_ylabel(m["y"]["parameter"] + unit.get(m["y"]["parameter"], ""))
+    ax.set_title(f"risk map: {out['assembly']['name']}, {out['contact']}, texture on the "
+                 f"{out['textured']}", fontsize=10)
+    fig.tight_layout()
+    save_figure_atomic(fig, path, dpi=110)
+    plt.close(fig)
+
+
+def _edges(v: np.ndarray) -> np.ndarray:
+    mid = 0.5 * (v[1:] + v[:-1])
+    return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])

@@ -1,0 +1,191 @@
+"""The risk analysis of an assembly as a library API (``asperity risk`` and the report
+call it): friction along the slip axis -> quasi-static ratchet analysis -> verdict, the
+Moreau cross-check, and the risk map over two wedge parameters.
+
+The results are the JSON objects that ``asperity risk --json`` prints (keys documented in
+README); :mod:`asperity.microslip.risk_text` turns them into the terminal text.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..errors import InputError, check_int, check_range
+from .assembly import Assembly
+from .friction import Friction, friction_from_texture, resolve_friction
+
+#: wedge parameters a risk map may vary -> field of the wedge texture
+MAP_PARAMS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
+              "mu_beta": "mu_beta"}
+#: cycles of the Moreau cross-check
+DYNAMIC_CYCLES = 3
+
+
+def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
+                      contact: str = "all-faces", slip_axis_deg: float | None = None,
+                      textured: str | None = None) -> Friction:
+    """mu+ and mu- along the slip axis of ``asm``.
+
+    With ``texture`` (a wedge texture or a surface) its friction replaces the source of the
+    file's ``[friction]`` table, whose ``slip_axis_deg`` and ``textured`` still apply unless
+    given here; without it the table's source is used (explicit coefficients, a gauge or a
+    texture file).  ``slip_axis_deg`` and ``textured`` override the table's.
+    """
+    fr = asm.friction_table
+    if slip_axis_deg is not None:
+        slip_axis_deg = check_range("slip_axis_deg", slip_axis_deg, -360.0, 360.0, unit="deg")
+    if textured is not None and textured not in ("support", "part"):
+        raise InputError(f"textured must be support or part, got {textured!r}")
+    axis = slip_axis_deg if slip_axis_deg is not None else fr.get("slip_axis_deg")
+    face = textured or fr.get("textured", "support")
+    if texture is not None:
+        f = friction_from_texture(texture, contact, axis, face, texture_name)
+        if fr:
+            f.detail["note"] = ("texture from the command line instead of the file's friction "
+                                "source; its slip_axis_deg and textured still apply")
+        return f
+    if slip_axis_deg is not None or textured is not None:
+        if "mu_plus" in fr:
+            raise InputError("a slip axis or textured face (--slip-axis, --textured) applies "
+                             "to a texture or gauge, not to explicit mu_plus/mu_minus")
+        fr = dict(fr)
+        if slip_axis_deg is not None:
+            fr["slip_axis_deg"] = slip_axis_deg
+        if textured is not None:
+            fr["textured"] = textured
+        asm = replace(asm, friction_table=fr)
+    return resolve_friction(asm)
+
+
+def _life(asm: Assembly, cycles, tolerance) -> tuple[float, float | None]:
+    cycles = check_range("cycles", asm.cycles or 1e6 if cycles is None else cycles, 1.0, 1e15)
+    if tolerance is not None:
+        tolerance = check_range("tolerance", tolerance, 0.0, None, low_open=True, unit="m")
+    else:
+        tolerance = asm.tolerance
+    return cycles, tolerance
+
+
+def assess_assembly(asm: Assembly, friction: Friction, *, cycles: float | None = None,
+                    tolerance: float | None = None, max_marched: int = 200,
+                    dynamic_steps: int | None = None) -> dict:
+    """The verdict of ``asm`` with ``friction``: the JSON object of ``asperity risk --json``.
+
+    cycles        : life to assess (default: the file's ``loading.cycles``, else 1e6)
+    tolerance     : displacement the assembly may drift, m (default: the file's)
+    max_marched   : cycles marched at most while looking for the stabilised cycle
+    dynamic_steps : also solve the assembly by Moreau time-stepping with this many steps
+                    per load segment and report it under ``dynamic``
+
+    The private key ``_chain`` holds the slider chain (for plots); drop the keys starting
+    with ``_`` before writing JSON.
+    """
+    from .. import __version__
+    from .verdict import assess
+    cycles, tolerance = _life(asm, cycles, tolerance)
+    max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
+    chain = asm.chain(friction.mu_plus, friction.mu_minus)
+    out = {"asperity_version": __version__, "assembly": asm.to_dict(),
+           "loading": loading_dict(asm), "friction": friction.to_dict()}
+    out.update(assess(chain, asm.loading, cycles, tolerance,
+                      dT_c_closed_form=asm.dT_c_closed_form(friction.mu_plus,
+                                                            friction.mu_minus),
+                      max_marched=max_marched))
+    if dynamic_steps is not None and out["verdict"] != "slides-off":
+        out["dynamic"] = dynamic_check(chain, asm.loading, dynamic_steps,
+                                       out["drift_per_cycle_m"])
+    out["_chain"] = chain
+    return out
+
+
+def dynamic_check(chain, loading, steps: int, drift_qs: float) -> dict:
+    """Drift per cycle of the Moreau solution (3 cycles) against the quasi-static one."""
+    from .dynamic import simulate_dynamic
+    steps = check_int("dynamic_steps", steps, 100, 10_000_000)
+    r = simulate_dynamic(chain, loading, DYNAMIC_CYCLES, steps_per_segment=steps)
+    d = float(r.drift_per_cycle)
+    scale = max(abs(drift_qs), 1e-12 * max(abs(x) for x in (d, drift_qs, 1.0)))
+    return {"steps_per_segment": steps, "cycles": DYNAMIC_CYCLES, "drift_per_cycle_m": d,
+            "difference_m": d - drift_qs, "relative_difference":
+            abs(d - drift_qs) / scale if drift_qs != 0.0 else None, "solver": r.solver}
+
+
+def loading_dict(asm: Assembly) -> dict:
+    """The JSON description of an assembly's load cycle."""
+    L = asm.loading
+    return {"history_K": [float(x) for x in L.dT], "force_history": [float(x) for x in L.F],
+            "force_unit": "N/m" if asm.model == "strip" else "N", "force_at": asm.force_at,
+            "substeps": L.substeps}
+
+
+def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], texture=None, *,
+             contact: str | None = None, slip_axis_deg: float | None = None,
+             textured: str | None = None, cycles: float | None = None,
+             max_marched: int = 200) -> dict:
+    """Verdict and drift per cycle over a grid of two wedge parameters.
+
+    x, y    : (parameter, values), parameter one of :data:`MAP_PARAMS`
+    texture : the wedge texture whose other parameters stay fixed (default: the texture
+              of the assembly file's ``[friction]`` table, with its contact regime)
+    The other arguments as :func:`assembly_friction` and :func:`assess_assembly`.
+    """
+    import numpy as np
+
+    from .. import __version__
+    from .chains import SlideOffError
+    from .quasi_static import long_life
+    (px, xs), (py, ys) = x, y
+    for p in (px, py):
+        if p not in MAP_PARAMS:
+            raise InputError(f"map parameter must be one of {', '.join(MAP_PARAMS)}, got {p!r}")
+    if px == py:
+        raise InputError(f"a risk map needs two different parameters, got {px} twice")
+    xs, ys = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)
+    cycles, _ = _life(asm, cycles, None)
+    max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
+    fr = asm.friction_table
+    if texture is None:
+        if "texture" not in fr:
+            raise InputError("a risk map needs a wedge texture: a texture file, the wedge flags, or "
+                             "a texture in the assembly's [friction] table")
+        from ..friction.sources import load_texture_or_surface
+        texture = load_texture_or_surface(asm.folder / fr["texture"])
+        contact = contact or fr.get("contact", "all-faces")
+    contact = contact or "all-faces"
+    if getattr(texture, "kind", "") not in ("wedge", "gaussian-wedge"):
+        raise InputError("a risk map varies wedge parameters: give a wedge texture, not a surface")
+    axis = slip_axis_deg if slip_axis_deg is not None else fr.get("slip_axis_deg")
+    face = textured or fr.get("textured", "support")
+    shape = (ys.size, xs.size)
+    verdict = np.empty(shape, dtype=object)
+    drift, mup, mum = (np.full(shape, np.nan) for _ in range(3))
+    for j, yv in enumerate(ys):
+        for i, xv in enumerate(xs):
+            try:
+                tex = replace(texture, **{MAP_PARAMS[px]: float(xv), MAP_PARAMS[py]: float(yv)})
+            except InputError as exc:
+                raise InputError(f"risk map: {exc}") from None
+            f = friction_from_texture(tex, contact, axis, face)
+            mup[j, i], mum[j, i] = f.mu_plus, f.mu_minus
+            try:
+                r = long_life(asm.chain(f.mu_plus, f.mu_minus), asm.loading, cycles,
+                              max_marched=max_marched)
+            except SlideOffError:
+                verdict[j, i] = "slides-off"
+                continue
+            verdict[j, i] = "ratchet" if r.ratchet else "shakedown"
+            drift[j, i] = r.drift_per_cycle
+
+    def grid(a):
+        return [[(float(v) if np.isfinite(v) else None) for v in row] for row in a]
+    from .verdict import SIGN_CONVENTION
+    return {"asperity_version": __version__, "assembly": asm.to_dict(),
+            "loading": loading_dict(asm), "contact": contact, "textured": face,
+            "slip_axis_deg": 0.0 if axis is None else float(axis),
+            "base_texture": texture.to_dict(),
+            "map": {"x": {"parameter": px, "values": xs.tolist()},
+                    "y": {"parameter": py, "values": ys.tolist()},
+                    "verdict": verdict.tolist(), "drift_per_cycle_m": grid(drift),
+                    "mu_plus": grid(mup), "mu_minus": grid(mum)},
+            "cycles": cycles,
+            "drift_after_cycles_m": grid(drift * cycles),
+            "sign_convention": SIGN_CONVENTION}

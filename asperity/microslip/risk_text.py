@@ -1,0 +1,100 @@
+"""The terminal text of a risk verdict and of a risk map."""
+from __future__ import annotations
+
+
+def _len(x) -> str:
+    if x is None:
+        return "-"
+    a = abs(x)
+    if a == 0:
+        return "0 m"
+    if a >= 1e-2:
+        return f"{x:+.4g} m"
+    if a >= 1e-5:
+        return f"{x * 1e3:+.4g} mm"
+    return f"{x * 1e6:+.4g} um"
+
+
+def format_text(out: dict) -> str:
+    a = out["assembly"]
+    f = out["friction"]
+    L = out["loading"]
+
+    def mu(x):
+        return "inf (self-locking)" if x is None else f"{x:.6f}"
+    size = (f"strip, {a['n']} nodes, l = {a['l']:g} m" if a["model"] == "strip"
+            else f"two-node, l0 = {a['l0']:g} m")
+    src = {"explicit": "explicit coefficients",
+           "gauge": f"gauge {f.get('gauge', '')}",
+           "texture": f"texture {f.get('texture', '')} ({f.get('contact', '')})"}[f["source"]]
+    lines = [f"assembly: {a['name']} ({size})", f"friction: {src}"]
+    if f["source"] != "explicit":
+        lines.append(f"  slip axis +x at {f['slip_axis_deg']:g} deg in the texture frame "
+                     f"({f['slip_axis']}), texture on the {f['textured']}")
+    if f.get("note"):
+        lines.append(f"  ({f['note']})")
+    lines.append(f"  mu+ (assembly sliding towards +x) = {mu(f['mu_plus'])}   "
+                 f"mu- (towards -x) = {mu(f['mu_minus'])}")
+    hist = " -> ".join(f"{x:g}" for x in L["history_K"])
+    Fmax = out["max_tangential_load"]
+    lines.append(f"loading: dT {hist} K per cycle, "
+                 + (f"tangential load up to {Fmax:g} {L['force_unit']} ({L['force_at']})"
+                    if Fmax else "no tangential load"))
+    dc = out["dT_c_K"]
+    cf = out["dT_c_closed_form_K"]
+    lines.append("elastic limit dT_c = " + ("inf (no slider ever slips)" if dc is None else
+                 f"{dc:.4g} K" + (f" (closed form {cf:.4g} K)" if cf is not None else ""))
+                 + f"; dT range {out['dT_range_K']:g} K; margin dT_range / (2 dT_c) = "
+                 f"{out['margin']:.3g}")
+    v = out["verdict"]
+    if v == "slides-off":
+        lines.append(f"verdict: SLIDES OFF -- {out['reason']}")
+    else:
+        d = out["drift_per_cycle_m"]
+        st = out["stabilised_at_cycle"]
+        stab = f"stabilised from cycle {st}" if st else "NOT stabilised"
+        if v == "ratchet":
+            lines.append(f"verdict: RATCHET -- {_len(d)} per cycle (towards "
+                         f"{out['drift_direction']}), {stab}")
+        else:
+            lines.append(f"verdict: SHAKEDOWN -- no drift per cycle ({out['regime']}, {stab})")
+        how = (f"extrapolated from {out['cycles_marched']} marched cycles"
+               if out.get("extrapolated") else "marched")
+        lines.append(f"  displacement after {out['cycles']:g} cycles: "
+                     f"{_len(out['drift_after_cycles_m'])} ({how})")
+        if out["tolerance_m"] is not None:
+            c = out["cycles_to_tolerance"]
+            lines.append(f"  tolerance {out['tolerance_m'] * 1e3:g} mm: " +
+                         ("never reached" if c is None else f"reached after {c:,} cycles"))
+        if out.get("warning"):
+            lines.append(f"  WARNING: {out['warning']}")
+        if a["model"] == "strip" and v == "shakedown" and out["margin"] > 1:
+            lines.append("  (for a strip, margin > 1 is necessary but not sufficient: its ends "
+                         "slip back and forth while its middle sticks)")
+    dyn = out.get("dynamic")
+    if dyn:
+        rel = dyn["relative_difference"]
+        lines.append(f"Moreau time-stepping ({dyn['steps_per_segment']} steps per load segment, "
+                     f"{dyn['cycles']} cycles): drift {_len(dyn['drift_per_cycle_m'])} per cycle"
+                     + (f", {rel:.2g} from the quasi-static value" if rel is not None else
+                        f" (quasi-static: none; difference {_len(dyn['difference_m'])})")
+                     + f"; solver {dyn['solver'].get('status', '?')}")
+    lines.append(f"sign convention: {out['sign_convention']}")
+    return "\n".join(lines)
+
+
+def format_map(out: dict) -> str:
+    m = out["map"]
+    px, py = m["x"]["parameter"], m["y"]["parameter"]
+    head = f"{py} \\ {px}"
+    lines = [f"risk map: {out['assembly']['name']}, drift per cycle (um; S = shakedown, "
+             f"X = slides off), {out['contact']}, texture on the {out['textured']}",
+             f"{head:>14s} " + " ".join(f"{x:>9.4g}" for x in m["x"]["values"])]
+    for y, vs, ds in zip(m["y"]["values"], m["verdict"], m["drift_per_cycle_m"]):
+        cells = []
+        for v, d in zip(vs, ds):
+            cells.append(f"{'S':>9s}" if v == "shakedown" else f"{'X':>9s}" if v != "ratchet"
+                         else f"{d * 1e6:>+9.3g}")
+        lines.append(f"{y:>14.4g} " + " ".join(cells))
+    lines.append(f"sign convention: {out['sign_convention']}")
+    return "\n".join(lines)

@@ -1,0 +1,74 @@
+"""The verdict of a slider chain under its load cycles: shakedown, ratchet or slides-off,
+with dT_c, the margin, the drift per cycle, the drift after N cycles and the cycles until a
+tolerance is reached (the JSON keys of ``asperity risk``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import check_range
+from .chains import TOL, Chain, MicroslipTolerances, SlideOffError, elastic_limit
+from .loading import Loading
+from .quasi_static import long_life
+
+SIGN_CONVENTION = ("x is the assembly's slip axis; displacements and drift are positive "
+                   "towards +x; mu+ resists sliding of the assembly towards +x over the "
+                   "support, mu- towards -x; with mu+ > mu- the assembly creeps towards -x "
+                   "(negative drift)")
+
+
+def _jnum(x) -> float | None:
+    return float(x) if x is not None and math.isfinite(x) else None
+
+
+def assess(chain: Chain, loading: Loading, cycles: float = 1e6, tolerance: float | None = None,
+           *, dT_c_closed_form: float | None = None, max_marched: int = 200,
+           tol: MicroslipTolerances = TOL) -> dict:
+    """The ratchet verdict of an assembly over ``cycles`` load cycles (JSON-ready dict).
+
+    verdict "ratchet" if the stabilised cycle drifts, "shakedown" if not, "slides-off" if
+    the tangential load exceeds what the sliders hold (a physical outcome, with the reason).
+    dT_c: the elastic limit of the model (heating from the stress-free state, no external
+    force); margin = dT range / (2 dT_c) (for the two-node model ratcheting iff margin > 1;
+    for the strip margin > 1 is necessary, not sufficient: its ends can slip back and forth
+    while its middle sticks)."""
+    cycles = check_range("cycles", cycles, 1.0, 1e15)
+    if tolerance is not None:
+        tolerance = check_range("tolerance", tolerance, 0.0, None, low_open=True, unit="m")
+    dT_c = elastic_limit(chain)
+    rng = loading.dT_range
+    out = {"sign_convention": SIGN_CONVENTION,
+           "mu_plus": _jnum(chain.mu_plus), "mu_minus": _jnum(chain.mu_minus),
+           "dT_c_K": _jnum(dT_c), "dT_c_closed_form_K": _jnum(dT_c_closed_form),
+           "dT_range_K": rng,
+           "margin": (rng / (2.0 * dT_c)) if math.isfinite(dT_c) and dT_c > 0 else 0.0,
+           "cycles": cycles, "tolerance_m": tolerance,
+           "max_tangential_load": float(np.abs(loading.F).max())}
+    try:
+        r = long_life(chain, loading, cycles, max_marched=max_marched, tol=tol)
+    except SlideOffError as exc:
+        out.update({"verdict": "slides-off", "regime": "slides off", "reason": str(exc),
+                    "drift_per_cycle_m": None, "drift_direction": None,
+                    "drift_after_cycles_m": None, "cycles_to_tolerance": 0 if tolerance else None,
+                    "stabilised_at_cycle": None, "cycles_marched": 0})
+        return out
+    d = r.drift_per_cycle
+    out.update({
+        "verdict": "ratchet" if r.ratchet else "shakedown",
+        "regime": r.regime,
+        "drift_per_cycle_m": d,
+        "drift_direction": "-x" if d < 0 else "+x" if d > 0 else "none",
+        "drift_after_cycles_m": r.drift_after(cycles),
+        "cycles_to_tolerance": None if tolerance is None else r.cycles_to(tolerance),
+        "stabilised_at_cycle": r.stabilised_at,
+        "cycles_marched": r.cycles_run,
+        "extrapolated": bool(cycles > r.cycles_run),
+        "solver": r.solver,
+    })
+    if r.stabilised_at is None:
+        out["warning"] = (f"the cycle did not stabilise within {r.cycles_run} cycles: the drift "
+                          "per cycle is that of the last cycle marched")
+    out["_result"] = r
+    return out

@@ -1,0 +1,127 @@
+"""Reading measured surfaces: height maps and triangle meshes, in metres.
+
+Two kinds of surface come out of :func:`read_surface`:
+
+* :class:`HeightMap` -- heights on a regular grid, ``heights[i, j] = z(x_i, y_j)`` with
+  ``x_i = i dx`` and ``y_j = j dy`` (the first index runs along x), NaN where the
+  instrument recorded nothing;
+* :class:`TriangleMesh` -- vertices and triangles of an open (or closed) sheet.
+
+Formats, chosen by the file's suffix; a trailing ``.gz`` is decompressed first, for
+every format (``surface.stl.gz``, ``matrix.txt.gz``, ``scan.x3p.gz`` ...):
+
+``.stl .obj .ply`` (meshes, read by trimesh)
+    Mesh files carry no length unit, so ``unit`` is required.  Vertices with identical
+    coordinates are merged, and degenerate triangles (a repeated vertex or zero area)
+    are dropped and counted in :attr:`TriangleMesh.n_degenerate`.
+``.npy`` / ``.npz`` (height maps)
+    The array is ``heights[i, j]`` as in :class:`HeightMap` (first index along x), in
+    ``unit``, on a grid of spacing ``pixel_size``; both are required.  NaN marks
+    undefined pixels.  A ``.npz`` holds the array as ``heights`` (or as its only
+    array) and optionally a boolean ``mask`` (True = undefined).
+``.txt .asc .csv .dat`` (ASCII matrix)
+    One line per y (the first line is y = 0), one column per x, so
+    ``heights = matrix.T``; values separated by blanks, tabs, commas or semicolons;
+    ``nan`` marks undefined pixels.  A header is read when present: Gwyddion-style
+    ``# Width: 10.00 µm`` / ``# Height: 10.00 µm`` / ``# Value units: m`` lines, and
+    ``key=value`` lines as in ``h=305 w=75`` / ``pixel size=3.69862e-007 m`` /
+    ``data unit=rad`` / ``height conversion factor (-> m)=2.91818e-008``.  Width and
+    Height are the physical size of the whole scan and the spacing is ``width / nx``
+    (as in SurfaceTopography, whose ``physical_sizes`` are ``nx * dx``).  What the
+    header does not state must be passed (``unit`` for the heights, ``pixel_size``);
+    explicit arguments override the header (``unit`` then applies to the raw numbers
+    in the file, ``pixel_size`` to the spacing).
+``.x3p`` (ISO 25178-72) and the instrument formats (``.mi .sur .opd .datx .plu .nms``, ...)
+    Read with SurfaceTopography (the ``metrology`` extra), which knows the units and
+    pixel sizes from the file.  Of a multi-channel file (``.mi``) the first height
+    channel is read, and :attr:`HeightMap.source` names it.  ``.x3p`` files are read by the built-in reader (:func:`read_x3p`, about 30 times
+    faster and tolerant of an empty z-offset element), SurfaceTopography being the
+    fallback for x3p variants it does not know.
+
+Every error a user can cause (missing file, unknown suffix or unit, malformed header or
+matrix, non-positive pixel size) is an :class:`~asperity.errors.InputError` (a
+:class:`~asperity.errors.TextureFileError` for a file that does not follow its format)
+with a one-line message naming the file.
+
+The heavy libraries (trimesh, SurfaceTopography, zip and XML parsing) are imported only
+when a file needs them.
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from pathlib import Path
+
+from ...errors import InputError
+from ..topography import HeightMap, TriangleMesh, _positive_length, unit_factor
+from ._files import read_bytes, split_suffix
+
+
+@dataclass(frozen=True)
+class Reader:
+    """One format family: the suffixes it claims and the module whose ``read`` reads it.
+
+    ``read(data, *, suffix, gz, name, unit, pixel_size, height_scale)`` gets the file's bytes
+    (gunzipped) and returns a :class:`HeightMap` or a :class:`TriangleMesh` in metres.
+    """
+
+    name: str
+    format: str
+    suffixes: tuple[str, ...]     # () claims every suffix (the last reader, a catch-all)
+    module: str                   # module of this package holding ``read``
+    sizes: str                    # where the lengths come from (README's table)
+    takes_pixel_size: bool = True
+
+    def can_read(self, suffix: str) -> bool:
+        return not self.suffixes or suffix in self.suffixes
+
+    def read(self, data: bytes, **kwargs):
+        return importlib.import_module(f"{__name__}.{self.module}").read(data, **kwargs)
+
+
+#: the readers in the order they are asked; the first whose ``can_read`` says yes reads
+READERS = (
+    Reader("mesh", "triangle mesh (trimesh)", (".stl", ".obj", ".ply"), "mesh",
+           "none in the file: unit required", takes_pixel_size=False),
+    Reader("array", "NumPy height map", (".npy", ".npz"), "array",
+           "none in the file: unit and pixel size required"),
+    Reader("text", "ASCII matrix, one line per y", (".txt", ".asc", ".csv", ".dat"), "text",
+           "from a header, else unit and pixel size"),
+    Reader("x3p", "ISO 25178-72 x3p (built in)", (".x3p",), "x3p", "from the file"),
+    Reader("instrument", "instrument formats through SurfaceTopography", (), "instrument",
+           "from the file"),
+)
+
+
+def reader_for(path) -> tuple[Reader, str, bool]:
+    """(reader, format suffix, gzipped?) of a file name."""
+    suffix, gz = split_suffix(Path(path))
+    return next(r for r in READERS if r.can_read(suffix)), suffix, gz
+
+
+def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0) -> HeightMap | TriangleMesh:
+    """Read a mesh or height-map file (format by suffix, see the module docstring).
+
+    unit         : length unit of the numbers in the file, one of m, mm, um/µm, nm (long
+                   names such as 'micrometre' too).  Required for meshes, ``.npy``/``.npz``
+                   and text matrices without a value unit in their header; for a text
+                   matrix with a header it overrides the header's height unit.  Files
+                   in instrument formats state their own unit and pixel size and reject
+                   both arguments (unless the file lacks them, then both are required).
+    pixel_size   : grid spacing of a height map in ``unit``, a number or (dx, dy).
+                   Required for ``.npy``/``.npz`` and headerless text matrices; overrides
+                   a text header's sizes (and then needs ``unit``).
+    height_scale : factor (> 0) applied to the heights (z) after conversion to metres,
+                   e.g. to make nanometre-high AFM relief steep enough for friction work.
+
+    Returns a :class:`HeightMap` or a :class:`TriangleMesh`, in metres.
+    """
+    p = Path(path)
+    hs = _positive_length("height_scale", height_scale)
+    reader, suffix, gz = reader_for(p)
+    if unit is not None:
+        unit_factor(unit)                 # fail early on an unknown unit
+    if pixel_size is not None and not reader.takes_pixel_size:
+        raise InputError(f"{p}: pixel_size applies to height maps, not to a mesh file")
+    return reader.read(read_bytes(p, gz), suffix=suffix, gz=gz, name=p, unit=unit,
+                       pixel_size=pixel_size, height_scale=hs)

@@ -1,0 +1,125 @@
+"""Instrument formats (``.mi .sur .opd .datx .plu .nms`` ...) through SurfaceTopography
+(the ``metrology`` extra), which knows the units and pixel sizes from the file.  Of a
+multi-channel file (``.mi``) the first height channel is read, and
+:attr:`HeightMap.source` names it.
+"""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import InputError, TextureFileError
+from ..topography import HeightMap, _finish_heightmap, _one_line, _pixel_pair, unit_factor
+from ._files import FORMATS_HELP, INSTRUMENT_EXAMPLES, METROLOGY_HINT
+
+_HEIGHT_CHANNEL = re.compile(r"topo|height|z ?sensor|^z$|^default$|surface", re.I)
+
+
+def have_surfacetopography() -> bool:
+    try:
+        import SurfaceTopography  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
+         height_scale: float) -> HeightMap:
+    """Any other format, through SurfaceTopography (which detects it from the content)."""
+    if not have_surfacetopography():
+        if suffix in INSTRUMENT_EXAMPLES:
+            raise InputError(f"{name}: reading {suffix} files needs the metrology extra: "
+                             f"{METROLOGY_HINT}")
+        raise InputError(f"{name}: unknown surface file suffix {suffix or '(none)'!r}; "
+                         f"supported: {FORMATS_HELP} (instrument formats need the metrology "
+                         f"extra: {METROLOGY_HINT})")
+    return read_with_surfacetopography(data, suffix, gz, name, unit, pixel_size, height_scale)
+
+
+def read_with_surfacetopography(data: bytes, suffix: str, gz: bool, name: Path, unit,
+                                 pixel_size, height_scale: float) -> HeightMap:
+    import os
+    import tempfile
+
+    from SurfaceTopography import open_topography
+    from SurfaceTopography.Support.UnitConversion import get_unit_conversion_factor
+
+    with tempfile.TemporaryDirectory(prefix="asperity-") as tmp:
+        if gz:
+            src = os.path.join(tmp, "surface" + suffix)
+            with open(src, "wb") as fh:
+                fh.write(data)
+        else:
+            src = str(name)
+        try:
+            reader = open_topography(src)
+            channels = list(reader.channels)
+        except Exception as exc:
+            kind = type(exc).__name__
+            if kind == "CannotDetectFileFormat":
+                raise InputError(f"{name}: unknown surface file format (suffix "
+                                 f"{suffix or '(none)'!r}); supported: {FORMATS_HELP}") from None
+            raise TextureFileError(f"{name}: cannot be read as a surface ({kind}: "
+                                   f"{_one_line(exc)})") from None
+        areal = [c for c in channels if getattr(c, "dim", 2) == 2]
+        if not areal:
+            raise InputError(f"{name}: holds line scans only; a height map (areal scan) is "
+                             f"needed")
+        pick = next((c for c in areal if _HEIGHT_CHANNEL.search(str(c.name or ""))), None)
+        if pick is None:
+            default = getattr(reader, "default_channel", None)
+            pick = default if default in areal else areal[0]
+        source = name.name
+        if len(channels) > 1:
+            source += (f" [channel {pick.name!r}, {channels.index(pick) + 1} of "
+                       f"{len(channels)}]")
+        kwargs = {}
+        if pick.physical_sizes is None or pick.unit is None:
+            if unit is None or pixel_size is None:
+                fmt = getattr(reader, "_format", None) or type(reader).__name__
+                raise InputError(f"{name}: read as {fmt!r} by SurfaceTopography, which finds no "
+                                 f"pixel size or unit in it; pass unit and pixel_size")
+            nxy = pick.nb_grid_pts
+            ddx, ddy = _pixel_pair(pixel_size, 1.0)
+            kwargs = dict(physical_sizes=(nxy[0] * ddx, nxy[1] * ddy), unit=_st_unit(unit))
+        elif unit is not None or pixel_size is not None:
+            raise InputError(f"{name}: the file states its unit and pixel size; do not pass "
+                             f"unit or pixel_size (height_scale scales the heights)")
+        try:
+            topo = reader.topography(channel_index=pick.index, **kwargs)
+            h = topo.heights()
+            sizes = topo.physical_sizes
+            nb = topo.nb_grid_pts
+            tunit = topo.unit
+        except Exception as exc:
+            raise TextureFileError(f"{name}: cannot be read as a surface ({type(exc).__name__}: "
+                                   f"{_one_line(exc)})") from None
+        finally:
+            close = getattr(reader, "close", None)
+            if close is not None:
+                try:
+                    close()
+                except Exception:
+                    pass
+    if np.ndim(h) != 2:
+        raise InputError(f"{name}: holds a line scan; a height map (areal scan) is needed")
+    if not getattr(topo, "is_uniform", True):
+        raise InputError(f"{name}: holds a non-uniform grid; a regular height map is needed")
+    try:
+        f = float(get_unit_conversion_factor(tunit, "m"))
+    except Exception:
+        raise TextureFileError(f"{name}: unknown length unit {tunit!r} in the file") from None
+    z = np.ma.filled(np.ma.asarray(h, dtype=np.float64), np.nan) * f
+    dx = float(sizes[0]) * f / int(nb[0])
+    dy = float(sizes[1]) * f / int(nb[1])
+    if not (dx > 0 and dy > 0 and math.isfinite(dx * dy)):
+        raise TextureFileError(f"{name}: the file states a non-positive pixel size")
+    return _finish_heightmap(z, dx, dy, source, height_scale, name)
+
+
+def _st_unit(unit: str) -> str:
+    """SurfaceTopography's name for one of our units."""
+    return {1.0: "m", 1e-3: "mm", 1e-6: "µm", 1e-9: "nm"}[unit_factor(unit)]

@@ -1,0 +1,193 @@
+"""ASCII matrices (``.txt .asc .csv .dat``), with or without a header.
+
+One line per y (the first line is y = 0), one column per x, so ``heights = matrix.T``;
+values separated by blanks, tabs, commas or semicolons; ``nan`` marks undefined pixels.  A
+header is read when present: Gwyddion-style ``# Width: 10.00 µm`` / ``# Height: 10.00 µm`` /
+``# Value units: m`` lines, and ``key=value`` lines as in ``h=305 w=75`` /
+``pixel size=3.69862e-007 m`` / ``data unit=rad`` / ``height conversion factor
+(-> m)=2.91818e-008``.  Width and Height are the physical size of the whole scan and the
+spacing is ``width / nx`` (as in SurfaceTopography, whose ``physical_sizes`` are
+``nx * dx``).  What the header does not state must be passed (``unit`` for the heights,
+``pixel_size``); explicit arguments override the header.
+"""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import InputError, TextureFileError
+from ..topography import _UNIT_HELP, HeightMap, _finish_heightmap, _pixel_pair, unit_factor
+
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+_SEPARATORS = re.compile(r"[\s,;]+")
+
+
+def _decode(data: bytes) -> str:
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+
+
+def _is_number(tok: str) -> bool:
+    try:
+        float(tok)
+    except ValueError:
+        return False
+    return True
+
+
+def _parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], int]:
+    """(matrix as in the file: rows = lines, header {lowercase key: value}, header lines).
+
+    Leading lines that are not rows of numbers form the header: ``# key: value`` and
+    ``key=value`` entries (several per line, as ``h=305 w=75``) are collected; other header
+    lines are ignored.  After the first row of numbers every non-blank line must be a row
+    of numbers with the same count; '#' comment lines are skipped anywhere.
+    """
+    if b"\x00" in data[:4096]:
+        raise TextureFileError(f"{name}: a text matrix was expected, this is a binary file")
+    text = _decode(data)
+    header: dict[str, str] = {}
+    rows: list[list[str]] = []
+    linenos: list[int] = []
+    n_header = 0
+    width = None
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line:
+            continue
+        if line.startswith("#") or line.startswith("%"):
+            if not rows:
+                n_header += 1
+                _header_entry(line.lstrip("#%").strip(), header)
+            continue
+        toks = [t for t in _SEPARATORS.split(line) if t]
+        if not rows and not all(_is_number(t) for t in toks):
+            n_header += 1
+            _header_entry(line, header)
+            continue
+        if width is None:
+            width = len(toks)
+        elif len(toks) != width:
+            raise TextureFileError(f"{name}: line {lineno} has {len(toks)} values, the matrix "
+                                   f"rows above have {width}")
+        rows.append(toks)
+        linenos.append(lineno)
+    if not rows:
+        raise TextureFileError(f"{name}: no matrix of numbers found (rows of values separated by "
+                               f"blanks, tabs, commas or semicolons)")
+    try:
+        m = np.array(rows, dtype=np.float64)
+    except ValueError:
+        k, bad = next(((k, t) for k, r in enumerate(rows) for t in r if not _is_number(t)),
+                      (0, "?"))
+        raise TextureFileError(f"{name}: line {linenos[k]}: {bad!r} in the matrix is not a "
+                               f"number") from None
+    if np.isinf(m).any():
+        raise TextureFileError(f"{name}: the matrix contains infinite values")
+    return m, header, n_header
+
+
+def _header_entry(line: str, header: dict[str, str]) -> None:
+    if "=" in line:
+        # key=value pairs; several may share a line ("h=305 w=75")
+        parts = re.findall(r"([^=]+?)\s*=\s*([^=]*?)(?=\s+[^\s=]+\s*=|$)", line)
+        for k, v in parts:
+            header[k.strip().lower()] = v.strip()
+    elif ":" in line:
+        k, v = line.split(":", 1)
+        header[k.strip().lower()] = v.strip()
+
+
+def _header_length(header: dict[str, str], key: str, unit, name) -> float:
+    """A 'number unit' header value in metres (the unit from the value, else ``unit``)."""
+    raw = header[key]
+    m = _NUMBER_UNIT.match(raw)
+    if not m:
+        raise TextureFileError(f"{name}: header entry {key!r} should be a number and a length "
+                               f"unit, got {raw!r}")
+    value, u = float(m.group(1)), m.group(2)
+    if u:
+        try:
+            f = unit_factor(u)
+        except InputError:
+            raise TextureFileError(f"{name}: header entry {key!r} has unit {u!r}; allowed: "
+                                   f"{_UNIT_HELP}") from None
+    elif unit is not None:
+        f = unit_factor(unit)
+    else:
+        raise TextureFileError(f"{name}: header entry {key!r} = {raw!r} gives no unit; pass unit")
+    if not (value > 0 and math.isfinite(value)):
+        raise TextureFileError(f"{name}: header entry {key!r} must be positive, got {raw!r}")
+    return value * f
+
+
+_WIDTH_KEYS = ("width", "x-length", "x length", "xlength")
+_HEIGHT_KEYS = ("height", "y-length", "y length", "ylength")
+_VALUE_UNIT_KEYS = ("value units", "value unit", "data unit", "z unit", "zunit", "units")
+_FACTOR_KEYS = ("height conversion factor (-> m)", "height conversion factor")
+_PIXEL_KEYS = ("pixel size", "pixel_size", "pixelsize")
+
+
+def _first_key(header: dict[str, str], keys) -> str | None:
+    return next((k for k in keys if k in header), None)
+
+
+def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
+                         height_scale: float) -> HeightMap:
+    m, header, _ = _parse_text_matrix(data, name)
+    ny, nx = m.shape
+    # grid counts stated in the header must match the matrix
+    for key, n, what in (("w", nx, "columns"), ("h", ny, "rows")):
+        if key in header:
+            try:
+                stated = int(float(header[key]))
+            except ValueError:
+                raise TextureFileError(f"{name}: header entry {key}={header[key]!r} is not a "
+                                       f"whole number") from None
+            if stated != n:
+                raise TextureFileError(f"{name}: header says {key}={stated} but the matrix has "
+                                       f"{n} {what}")
+    # heights: metres per number in the file
+    if unit is not None:
+        zfac = unit_factor(unit)
+    elif (k := _first_key(header, _FACTOR_KEYS)) is not None:
+        try:
+            zfac = float(header[k])
+        except ValueError:
+            raise TextureFileError(f"{name}: header entry {k!r} is not a number: "
+                                   f"{header[k]!r}") from None
+        if not (math.isfinite(zfac) and zfac != 0):
+            raise TextureFileError(f"{name}: header entry {k!r} must be a non-zero number")
+    elif (k := _first_key(header, _VALUE_UNIT_KEYS)) is not None:
+        try:
+            zfac = unit_factor(header[k])
+        except InputError:
+            raise InputError(f"{name}: the values are in {header[k]!r}, not a length unit "
+                             f"({_UNIT_HELP}); pass unit to read them as lengths") from None
+    else:
+        raise InputError(f"{name}: the text matrix states no height unit; pass unit "
+                         f"(one of {_UNIT_HELP}; on the command line --unit)")
+    # spacing
+    if pixel_size is not None:
+        if unit is None:
+            raise InputError(f"{name}: pixel_size is given in unit; pass unit too "
+                             f"(one of {_UNIT_HELP})")
+        dx, dy = _pixel_pair(pixel_size, unit_factor(unit))
+    elif (k := _first_key(header, _PIXEL_KEYS)) is not None:
+        dx = dy = _header_length(header, k, unit, name)
+    else:
+        kw, kh = _first_key(header, _WIDTH_KEYS), _first_key(header, _HEIGHT_KEYS)
+        if kw is not None and kh is not None:
+            dx = _header_length(header, kw, unit, name) / nx
+            dy = _header_length(header, kh, unit, name) / ny
+        else:
+            part = (f" (the header gives {'Width' if kw else 'Height'} only)"
+                    if (kw or kh) else "")
+            raise InputError(f"{name}: the text matrix states no pixel size{part}; pass "
+                             f"pixel_size (in unit, a number or (dx, dy))")
+    return _finish_heightmap(m.T * zfac, dx, dy, name.name, height_scale, name)

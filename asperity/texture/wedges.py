@@ -1,0 +1,300 @@
+"""Wedge textures: the periodic sawtooth and the Gaussian-height wedge texture.
+
+Frame (SPEC.md section 1): ``t_a`` across the ridges (x), ``t_b`` along the ridges (y),
+heights z above the wedges' common base line (the mean line, z = 0).  One wedge has a
+face of slope angle ``alpha`` rising towards ``+t_a`` with local friction ``mu_alpha``
+and a face of slope angle ``beta`` falling towards ``+t_a`` with ``mu_beta``.
+
+A texture gives two things:
+
+* :meth:`faces` -- the distinct faces as (gradient, friction, horizontal-area weight),
+  all that the closed form needs;
+* :meth:`profile` -- the actual piecewise-linear height profile z(x) over one period of
+  the texture (nodes ``x``, ``z``, period ``L``), which the spring simulation slides over.
+
+Angles are in degrees at the interface (files, CLI) and in radians inside.  Lengths in
+metres.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import MISSING as _MISSING
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError, TextureFileError, check_int, check_mu, check_range
+from ..friction.reservoir import Faces
+from ..io import read_toml
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A periodic piecewise-linear profile z(x) along t_a, uniform along t_b.
+
+    x : (k+1,) float, nodes from 0 to ``period`` (x[0] = 0, x[-1] = period), metres
+    z : (k+1,) float, heights at the nodes (z[0] == z[-1]), metres
+    mu : (k,) float, friction of segment i (between nodes i and i+1)
+    face : (k,) int, index into :meth:`faces` of segment i (-1 for a flat gap)
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+    mu: np.ndarray
+    face: np.ndarray
+
+    @property
+    def period(self) -> float:
+        return float(self.x[-1])
+
+    def height(self, xq) -> np.ndarray:
+        """Heights at the points ``xq`` (any shape), the profile repeated periodically."""
+        xq = np.mod(np.asarray(xq, dtype=float), self.period)
+        return np.interp(xq, self.x, self.z)
+
+
+def _check_angle(name: str, value) -> float:
+    return check_range(name, value, 0.0, 90.0, low_open=True, high_open=True, unit="deg")
+
+
+def _check_length(name: str, value, allow_zero: bool = False) -> float:
+    x = check_range(name, value, 0.0, None, low_open=not allow_zero, unit="m")
+    if not math.isfinite(x):
+        raise InputError(f"{name} must be finite, got {x:g}")
+    return x
+
+
+@dataclass(frozen=True)
+class WedgeTexture:
+    """Periodic sawtooth of identical wedges (Antoni et al. section 3.1).
+
+    alpha_deg, beta_deg : face slope angles in (0, 90) deg
+    mu_alpha, mu_beta   : local friction of the alpha and beta faces, >= 0
+    height              : wedge height h in metres (> 0); the friction does not depend on it
+    """
+
+    alpha_deg: float
+    beta_deg: float
+    mu_alpha: float
+    mu_beta: float
+    height: float = 1e-6
+    kind = "wedge"
+
+    def __post_init__(self):
+        object.__setattr__(self, "alpha_deg", _check_angle("alpha_deg", self.alpha_deg))
+        object.__setattr__(self, "beta_deg", _check_angle("beta_deg", self.beta_deg))
+        object.__setattr__(self, "mu_alpha", check_mu("mu_alpha", self.mu_alpha))
+        object.__setattr__(self, "mu_beta", check_mu("mu_beta", self.mu_beta))
+        object.__setattr__(self, "height", _check_length("height", self.height))
+
+    @property
+    def alpha(self) -> float:
+        """alpha in radians."""
+        return math.radians(self.alpha_deg)
+
+    @property
+    def beta(self) -> float:
+        """beta in radians."""
+        return math.radians(self.beta_deg)
+
+    def faces(self) -> Faces:
+        ta, tb = math.tan(self.alpha), math.tan(self.beta)
+        return Faces(
+            gradient=np.array([[ta, 0.0], [-tb, 0.0]]),
+            mu=np.array([self.mu_alpha, self.mu_beta]),
+            weight=np.array([tb / (ta + tb), ta / (ta + tb)]),
+            names=("alpha", "beta"),
+        )
+
+    def profile(self) -> Profile:
+        h = self.height
+        xa = h / math.tan(self.alpha)
+        period = xa + h / math.tan(self.beta)
+        return Profile(
+            x=np.array([0.0, xa, period]),
+            z=np.array([0.0, h, 0.0]),
+            mu=np.array([self.mu_alpha, self.mu_beta]),
+            face=np.array([0, 1]),
+        )
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, **{f.name: getattr(self, f.name) for f in fields(self)}}
+
+
+@dataclass(frozen=True)
+class GaussianWedgeTexture:
+    """Wedges of fixed angles whose heights follow a normal distribution.
+
+    The wedges stand on one base line (z = 0) at random positions: consecutive wedges are
+    separated by flat gaps drawn from an exponential distribution of mean ``mean_gap``.
+    Heights are drawn from N(height_mean, height_std) truncated to positive values
+    (non-positive draws are drawn again).  The profile repeats with the total length.
+
+    alpha_deg, beta_deg, mu_alpha, mu_beta : as for :class:`WedgeTexture`
+    height_mean : mean wedge height, m (> 0)
+    height_std  : standard deviation of the heights, m (>= 0)
+    n_wedges    : number of wedges in one period of the texture (>= 1)
+    seed        : random seed (>= 0), so a texture file always gives the same profile
+    mean_gap    : mean flat gap between wedges, m (>= 0); default: half the mean base width
+    """
+
+    alpha_deg: float
+    beta_deg: float
+    mu_alpha: float
+    mu_beta: float
+    height_mean: float
+    height_std: float
+    n_wedges: int = 200
+    seed: int = 0
+    mean_gap: float | None = None
+    kind = "gaussian-wedge"
+    _profile: Profile | None = field(default=None, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "alpha_deg", _check_angle("alpha_deg", self.alpha_deg))
+        object.__setattr__(self, "beta_deg", _check_angle("beta_deg", self.beta_deg))
+        object.__setattr__(self, "mu_alpha", check_mu("mu_alpha", self.mu_alpha))
+        object.__setattr__(self, "mu_beta", check_mu("mu_beta", self.mu_beta))
+        object.__setattr__(self, "height_mean", _check_length("height_mean", self.height_mean))
+        object.__setattr__(self, "height_std",
+                           _check_length("height_std", self.height_std, allow_zero=True))
+        object.__setattr__(self, "n_wedges", check_int("n_wedges", self.n_wedges, 1, 10_000_000))
+        object.__setattr__(self, "seed", check_int("seed", self.seed, 0, 2**63 - 1))
+        if self.mean_gap is None:
+            width = self.height_mean * (1 / math.tan(self.alpha) + 1 / math.tan(self.beta))
+            object.__setattr__(self, "mean_gap", 0.5 * width)
+        else:
+            object.__setattr__(self, "mean_gap",
+                               _check_length("mean_gap", self.mean_gap, allow_zero=True))
+        if self.height_std > 3.0 * self.height_mean:
+            raise InputError(
+                f"height_std must be at most 3 x height_mean ({3 * self.height_mean:g} m) "
+                f"so that positive heights can be drawn, got {self.height_std:g}"
+            )
+
+    alpha = WedgeTexture.alpha
+    beta = WedgeTexture.beta
+
+    def faces(self) -> Faces:
+        # Every wedge, whatever its height, has the same two faces in the same
+        # proportion of horizontal length; the flat gaps carry no load once the
+        # springs' rest level is above the base line.
+        return WedgeTexture.faces(self)  # type: ignore[arg-type]
+
+    def heights(self) -> np.ndarray:
+        """The n_wedges drawn heights (m), reproducible from ``seed``."""
+        rng = np.random.default_rng(self.seed)
+        h = rng.normal(self.height_mean, self.height_std, self.n_wedges)
+        for _ in range(1000):
+            bad = h <= 0.0
+            if not bad.any():
+                break
+            h[bad] = rng.normal(self.height_mean, self.height_std, int(bad.sum()))
+        return h
+
+    def profile(self) -> Profile:
+        if self._profile is not None:
+            return self._profile
+        rng = np.random.default_rng([self.seed, 1])
+        h = self.heights()
+        gaps = rng.exponential(self.mean_gap, self.n_wedges) if self.mean_gap > 0 else \
+            np.zeros(self.n_wedges)
+        ca, cb = 1 / math.tan(self.alpha), 1 / math.tan(self.beta)
+        # nodes per wedge: valley, ridge, valley, then the gap to the next valley
+        xs = [0.0]
+        zs = [0.0]
+        mus = []
+        face = []
+        x = 0.0
+        for hj, gj in zip(h, gaps):
+            x += hj * ca
+            xs.append(x); zs.append(hj); mus.append(self.mu_alpha); face.append(0)
+            x += hj * cb
+            xs.append(x); zs.append(0.0); mus.append(self.mu_beta); face.append(1)
+            if gj > 0:
+                x += gj
+                xs.append(x); zs.append(0.0); mus.append(self.mu_alpha); face.append(-1)
+        prof = Profile(np.array(xs), np.array(zs), np.array(mus), np.array(face, dtype=np.int64))
+        object.__setattr__(self, "_profile", prof)
+        return prof
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, **{f.name: getattr(self, f.name) for f in fields(self)
+                                      if not f.name.startswith("_")}}
+
+
+Texture = WedgeTexture | GaussianWedgeTexture
+_TEXTURE_KINDS = {"wedge": WedgeTexture, "gaussian-wedge": GaussianWedgeTexture}
+_TOP_KEYS = {"name", "description", "texture", "springs"}
+
+
+def _dataclass_keys(cls) -> set[str]:
+    return {f.name for f in fields(cls) if not f.name.startswith("_")}
+
+
+def texture_from_dict(d: dict, where: str = "texture") -> Texture:
+    """Build a texture from the ``[texture]`` table of a texture file.
+
+    Raises TextureFileError naming the missing or unknown key and the allowed ones.
+    """
+    if not isinstance(d, dict):
+        raise TextureFileError(f"{where} must be a table")
+    kind = d.get("kind", "wedge")
+    cls = _TEXTURE_KINDS.get(kind)
+    if cls is None:
+        raise TextureFileError(
+            f"{where}.kind must be one of {', '.join(sorted(_TEXTURE_KINDS))}, got {kind!r}")
+    allowed = _dataclass_keys(cls) | {"kind"}
+    unknown = sorted(set(d) - allowed)
+    if unknown:
+        raise TextureFileError(
+            f"unknown key {where}.{unknown[0]} for kind {kind!r}; allowed: {', '.join(sorted(allowed))}")
+    required = [f.name for f in fields(cls)
+                if not f.name.startswith("_") and f.default is _MISSING and f.default_factory is _MISSING]
+    missing = [k for k in required if k not in d]
+    if missing:
+        raise TextureFileError(f"missing key {where}.{missing[0]} (kind {kind!r} needs "
+                               f"{', '.join(required)})")
+    return build_from_table(cls, {k: v for k, v in d.items() if k != "kind"}, where,
+                            TextureFileError)
+
+
+def build_from_table(cls, d: dict, where: str, error=InputError):
+    """``cls(**d)``, with a field error re-raised as ``error`` prefixed by the table name."""
+    try:
+        return cls(**d)
+    except InputError as exc:
+        raise error(f"{where}.{exc}") from None
+
+
+@dataclass(frozen=True)
+class TextureFile:
+    """A parsed texture file: the texture and the optional spring-model table."""
+
+    texture: Texture
+    springs: dict
+    name: str
+    description: str
+
+
+def load_texture_file(path: str | Path) -> TextureFile:
+    """Read a TOML texture file (format documented in README.md)."""
+    p = Path(path)
+    data = read_toml(p, "texture file", _TOP_KEYS, TextureFileError)
+    if "texture" not in data:
+        raise TextureFileError(f"{p}: missing table [texture]")
+    try:
+        tex = texture_from_dict(data["texture"])
+    except TextureFileError as exc:
+        raise TextureFileError(f"{p}: {exc}") from None
+    springs = data.get("springs", {})
+    if not isinstance(springs, dict):
+        raise TextureFileError(f"{p}: springs must be a table")
+    return TextureFile(tex, dict(springs), str(data.get("name", p.stem)),
+                       str(data.get("description", "")))
+
+
+def load_texture(path: str | Path) -> Texture:
+    """Read the texture of a TOML texture file."""
+    return load_texture_file(path).texture
