@@ -24,6 +24,7 @@ _LAZY = {
     "FacetSurface": "asperity.surface.facets",
     "read_surface": "asperity.surface.readers",
     "compute_facet_reservoir": "asperity.friction.facet_reservoir",
+    "derive": "asperity.friction.derive",
     "fit_derivation": "asperity.laws.fitting",
     "WalkerLeineLaw": "asperity.laws.walker_leine",
     "TruncatedEllipse": "asperity.laws.sets",
@@ -47,6 +48,9 @@ _LAZY = {
     "strip_chain": "asperity.microslip.chains",
     "Loading": "asperity.microslip.loading",
     "load_assembly": "asperity.microslip.assembly",
+    "assembly_friction": "asperity.microslip.risk",
+    "assess_assembly": "asperity.microslip.risk",
+    "risk_map": "asperity.microslip.risk",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }

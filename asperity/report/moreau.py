@@ -193,5 +193,5 @@ def section(folder: Path) -> list[str]:
     plot_ratchet(folder / "moreau_ratchet.png")
     lines += ["", "With mu+ = mu- and F0 below the threshold the block does not move at all "
               "(last row); above it, it slips both ways and the drift per cycle dies out "
-              "(tests/test_moreau.py).", "", "![ratchet](moreau_ratchet.png)", ""]
+              "(tests/test_dynamics_moreau.py).", "", "![ratchet](moreau_ratchet.png)", ""]
     return lines

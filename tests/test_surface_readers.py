@@ -1,7 +1,6 @@
-"""Surface readers: formats, units, errors, detrending, friction maps, measured files."""
+"""Surface readers: formats, units, errors, and the measured files."""
 from __future__ import annotations
 
-import gzip
 import io
 import subprocess
 import sys
@@ -10,10 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from surface_files import gz_copy, mesh_with_degenerates, write_matrix, write_x3p
 
 from asperity.errors import InputError, TextureFileError
 from asperity.surface.detrend import detrend
-from asperity.surface.friction_map import read_friction_map
 from asperity.surface.readers import read_surface
 from asperity.surface.readers.x3p import read_x3p
 from asperity.surface.topography import HeightMap, TriangleMesh
@@ -28,12 +27,6 @@ try:
 except ImportError:
     HAVE_ST = False
 needs_st = pytest.mark.skipif(not HAVE_ST, reason="SurfaceTopography (metrology extra) missing")
-
-
-def _gz(path: Path) -> Path:
-    out = path.with_name(path.name + ".gz")
-    out.write_bytes(gzip.compress(path.read_bytes()))
-    return out
 
 
 def _slopes(hm: HeightMap):
@@ -87,7 +80,7 @@ def test_npy_pixel_pair_height_scale_and_gz(tmp_path):
     z = np.arange(12.0).reshape(3, 4)
     p = tmp_path / "z.npy"
     np.save(p, z)
-    hm = read_surface(_gz(p), unit="um", pixel_size=(2, 3), height_scale=10)
+    hm = read_surface(gz_copy(p), unit="um", pixel_size=(2, 3), height_scale=10)
     np.testing.assert_allclose(hm.heights, z * 1e-5)
     assert (hm.dx, hm.dy) == pytest.approx((2e-6, 3e-6))
 
@@ -148,14 +141,10 @@ def test_missing_file_unknown_suffix_and_bad_content(tmp_path):
 
 # --- text matrices --------------------------------------------------------------------------
 
-def _write_matrix(path: Path, m: np.ndarray, header: str = "", sep: str = " "):
-    lines = [sep.join(f"{v:.17g}" for v in row) for row in m]
-    path.write_text(header + "\n".join(lines) + "\n", encoding="utf-8")
-
 
 def test_text_without_header_needs_unit_and_pixel_size(tmp_path):
     m = np.random.default_rng(2).normal(size=(3, 5))       # 3 lines (y) of 5 values (x)
-    _write_matrix(tmp_path / "a.txt", m)
+    write_matrix(tmp_path / "a.txt", m)
     hm = read_surface(tmp_path / "a.txt", unit="nm", pixel_size=(4, 2))
     assert hm.heights.shape == (5, 3)                      # (nx, ny)
     np.testing.assert_allclose(hm.heights, m.T * 1e-9)
@@ -167,8 +156,8 @@ def test_text_without_header_needs_unit_and_pixel_size(tmp_path):
     # csv with commas, nan, and gzip give the same
     m2 = m.copy()
     m2[1, 1] = np.nan
-    _write_matrix(tmp_path / "b.csv", m2, sep=",")
-    hm2 = read_surface(_gz(tmp_path / "b.csv"), unit="nm", pixel_size=(4, 2))
+    write_matrix(tmp_path / "b.csv", m2, sep=",")
+    hm2 = read_surface(gz_copy(tmp_path / "b.csv"), unit="nm", pixel_size=(4, 2))
     assert hm2.n_undefined == 1 and np.isnan(hm2.heights[1, 1])
     np.testing.assert_allclose(hm2.heights[~np.isnan(hm2.heights)], (m2.T * 1e-9)[~np.isnan(m2.T)])
 
@@ -176,7 +165,7 @@ def test_text_without_header_needs_unit_and_pixel_size(tmp_path):
 def test_text_gwyddion_header(tmp_path):
     m = np.arange(20.0).reshape(4, 5)                       # ny = 4, nx = 5
     hdr = "# Channel: Height\n# Width: 10.00 µm\n# Height: 2.00 µm\n# Value units: nm\n"
-    _write_matrix(tmp_path / "g.txt", m, hdr, sep="\t")
+    write_matrix(tmp_path / "g.txt", m, hdr, sep="\t")
     hm = read_surface(tmp_path / "g.txt")
     np.testing.assert_allclose(hm.heights, m.T * 1e-9)
     assert hm.dx == pytest.approx(10e-6 / 5) and hm.dy == pytest.approx(2e-6 / 4)
@@ -186,12 +175,12 @@ def test_text_gwyddion_header(tmp_path):
     np.testing.assert_allclose(hm.heights, m.T * 1e-6)
     assert (hm.dx, hm.dy) == pytest.approx((1e-6, 1e-6))
     # a value unit that is not a length
-    _write_matrix(tmp_path / "v.txt", m, "# Width: 1 um\n# Height: 1 um\n# Value units: V\n")
+    write_matrix(tmp_path / "v.txt", m, "# Width: 1 um\n# Height: 1 um\n# Value units: V\n")
     with pytest.raises(InputError, match=r"v\.txt.*'V', not a length"):
         read_surface(tmp_path / "v.txt")
     assert read_surface(tmp_path / "v.txt", unit="nm").dx == pytest.approx(0.2e-6)
     # an unknown length unit in the header
-    _write_matrix(tmp_path / "u.txt", m, "# Width: 1 furlong\n# Height: 1 um\n# Value units: m\n")
+    write_matrix(tmp_path / "u.txt", m, "# Width: 1 furlong\n# Height: 1 um\n# Value units: m\n")
     with pytest.raises(TextureFileError, match=r"u\.txt.*'width' has unit 'furlong'"):
         read_surface(tmp_path / "u.txt")
 
@@ -200,12 +189,12 @@ def test_text_key_value_header(tmp_path):
     m = np.random.default_rng(3).normal(size=(6, 3))       # h = 6 lines, w = 3 columns
     hdr = ("h=6 w=3\npixel size=3.69862e-007 m\ndata unit=rad\n"
            "height conversion factor (-> m)=2.91818e-008\n")
-    _write_matrix(tmp_path / "k.txt", m, hdr)
+    write_matrix(tmp_path / "k.txt", m, hdr)
     hm = read_surface(tmp_path / "k.txt")
     assert hm.heights.shape == (3, 6)
     np.testing.assert_allclose(hm.heights, m.T * 2.91818e-8)
     assert hm.dx == hm.dy == pytest.approx(3.69862e-7)
-    _write_matrix(tmp_path / "bad.txt", m, hdr.replace("w=3", "w=4"))
+    write_matrix(tmp_path / "bad.txt", m, hdr.replace("w=3", "w=4"))
     with pytest.raises(TextureFileError, match=r"bad\.txt.*w=4 but the matrix has 3 columns"):
         read_surface(tmp_path / "bad.txt")
 
@@ -232,22 +221,16 @@ def test_binary_data_in_a_text_suffix(tmp_path):
 
 # --- meshes ---------------------------------------------------------------------------------
 
-def _mesh_with_degenerates():
-    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 1], [2, 0, 0], [3, 0, 0]], float)
-    f = np.array([[0, 1, 2], [1, 3, 2], [0, 1, 1],          # repeated vertex
-                  [0, 1, 4], [1, 3, 4]])                    # collinear (zero area), good
-    return v, f
-
 
 @pytest.mark.parametrize("file_type,suffix", [("stl", ".stl"), ("stl_ascii", ".stl"),
                                               ("obj", ".obj"), ("ply", ".ply")])
 def test_mesh_round_trip_drops_degenerate_triangles(tmp_path, file_type, suffix):
     import trimesh
-    v, f = _mesh_with_degenerates()
+    v, f = mesh_with_degenerates()
     data = trimesh.Trimesh(v, f, process=False).export(file_type=file_type)
     p = tmp_path / ("m" + suffix)
     p.write_bytes(data.encode() if isinstance(data, str) else data)
-    for path in (p, _gz(p)):
+    for path in (p, gz_copy(p)):
         mesh = read_surface(path, unit="mm")
         assert isinstance(mesh, TriangleMesh)
         assert mesh.n_degenerate == 2 and mesh.faces.shape == (3, 3)
@@ -262,7 +245,7 @@ def test_mesh_round_trip_drops_degenerate_triangles(tmp_path, file_type, suffix)
 
 def test_mesh_requires_unit(tmp_path):
     import trimesh
-    v, f = _mesh_with_degenerates()
+    v, f = mesh_with_degenerates()
     (tmp_path / "m.stl").write_bytes(trimesh.Trimesh(v, f, process=False).export(file_type="stl"))
     with pytest.raises(InputError, match=r"m\.stl.*no length unit; pass unit.*--unit"):
         read_surface(tmp_path / "m.stl")
@@ -273,112 +256,7 @@ def test_mesh_requires_unit(tmp_path):
         read_surface(tmp_path / "bad.ply", unit="mm")
 
 
-# --- detrending -----------------------------------------------------------------------------
-
-def _grid(nx=40, ny=30, dx=2e-6, dy=3e-6):
-    x = np.arange(nx)[:, None] * dx
-    y = np.arange(ny)[None, :] * dy
-    return x, y
-
-
-def test_detrend_removes_exact_plane_and_quadratic():
-    x, y = _grid()
-    plane = 1e-6 + 0.3 * x - 0.2 * y
-    quad = plane + 4e3 * x ** 2 - 2e3 * x * y + 1e3 * y ** 2
-    for z, deg in ((plane, 1), (quad, 2), (quad, 3), (np.full_like(plane, 5e-6), 0)):
-        z = z.copy()
-        z[3, 4] = np.nan
-        hm = HeightMap(heights=z, dx=2e-6, dy=3e-6, source="t", n_undefined=1)
-        out = detrend(hm, deg)
-        assert isinstance(out, HeightMap) and out is not hm and out.n_undefined == 1
-        assert np.isnan(out.heights[3, 4])
-        assert np.nanmax(np.abs(out.heights)) < 1e-12 * np.nanmax(np.abs(z)), deg
-        assert np.isnan(hm.heights[3, 4]) and np.nanmax(np.abs(hm.heights)) > 0  # untouched
-    # a plane fit leaves the quadratic's curvature
-    hm = HeightMap(heights=quad, dx=2e-6, dy=3e-6, source="t", n_undefined=0)
-    assert np.max(np.abs(detrend(hm, 1).heights)) > 1e-9
-
-
-def test_detrend_mesh_and_bad_degree():
-    rng = np.random.default_rng(4)
-    xy = rng.uniform(0, 1e-3, size=(50, 2))
-    z = 2e-4 + 0.1 * xy[:, 0] + 0.05 * xy[:, 1]
-    mesh = TriangleMesh(vertices=np.column_stack([xy, z]), faces=np.array([[0, 1, 2], [2, 3, 4]]),
-                        source="t", n_degenerate=0)
-    out = detrend(mesh, 1)
-    assert isinstance(out, TriangleMesh)
-    assert np.max(np.abs(out.vertices[:, 2])) < 1e-12 * np.max(z)
-    np.testing.assert_array_equal(out.vertices[:, :2], xy)
-    for bad in (-1, 1.5, "two"):
-        with pytest.raises(InputError, match="degree"):
-            detrend(mesh, bad)
-
-
-# --- friction maps --------------------------------------------------------------------------
-
-def test_friction_map_heightmap_orientation_and_errors(tmp_path):
-    hm = HeightMap(heights=np.zeros((4, 3)), dx=1e-6, dy=1e-6, source="s", n_undefined=0)
-    mu = np.random.default_rng(5).uniform(0.1, 0.3, size=(4, 3))
-    np.save(tmp_path / "mu.npy", mu)
-    np.testing.assert_array_equal(read_friction_map(tmp_path / "mu.npy", hm), mu)
-    _write_matrix(tmp_path / "mu.txt", mu.T, "# local friction\n")    # 3 lines of 4 values
-    np.testing.assert_allclose(read_friction_map(tmp_path / "mu.txt", hm), mu)
-    np.save(tmp_path / "wrong.npy", mu.T)
-    with pytest.raises(InputError, match=r"wrong\.npy.*shape \(3, 4\), expected \(4, 3\)"):
-        read_friction_map(tmp_path / "wrong.npy", hm)
-    for bad in (-0.1, np.nan, np.inf):
-        m = mu.copy()
-        m[1, 1] = bad
-        np.save(tmp_path / "bad.npy", m)
-        with pytest.raises(InputError, match=r"bad\.npy.*finite and >= 0"):
-            read_friction_map(tmp_path / "bad.npy", hm)
-    with pytest.raises(InputError, match="friction map must be"):
-        read_friction_map(tmp_path / "mu.stl", hm)
-
-
-def test_friction_map_mesh_per_face(tmp_path):
-    import trimesh
-    v, f = _mesh_with_degenerates()
-    (tmp_path / "m.ply").write_bytes(trimesh.Trimesh(v, f, process=False).export(file_type="ply"))
-    mesh = read_surface(tmp_path / "m.ply", unit="mm")
-    (tmp_path / "kept.txt").write_text("0.1\n0.2\n0.3\n")
-    np.testing.assert_allclose(read_friction_map(tmp_path / "kept.txt", mesh), [0.1, 0.2, 0.3])
-    np.save(tmp_path / "all.npy", np.array([0.1, 0.2, 9.0, 9.0, 0.5]))   # one per file triangle
-    np.testing.assert_allclose(read_friction_map(tmp_path / "all.npy", mesh), [0.1, 0.2, 0.5])
-    np.save(tmp_path / "short.npy", np.array([0.1, 0.2]))
-    with pytest.raises(InputError, match=r"short\.npy.*2 values, expected 3 \(or 5"):
-        read_friction_map(tmp_path / "short.npy", mesh)
-
-
 # --- x3p ------------------------------------------------------------------------------------
-
-def _x3p(path: Path, z_raw: np.ndarray, dtype: str, *, inc="1e-6", off="<Offset/>",
-         valid: np.ndarray | None = None, dx=1e-6, dy=2e-6):
-    """A minimal x3p file; ``z_raw`` is (nx, ny), written x fastest."""
-    nx, ny = z_raw.shape
-    np_dt = {"I": "<i2", "L": "<i4", "F": "<f4", "D": "<f8"}[dtype]
-    zinc = f"<Increment>{inc}</Increment>" if inc is not None else ""
-    vlink = "<ValidPointsLink>bindata/valid.bin</ValidPointsLink>" if valid is not None else ""
-    xml = f"""<?xml version="1.0" encoding="UTF-8"?>
-<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2">
- <Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType>
-  <Axes>
-   <CX><AxisType>I</AxisType><DataType>D</DataType><Increment>{dx}</Increment><Offset>0</Offset></CX>
-   <CY><AxisType>I</AxisType><DataType>D</DataType><Increment>{dy}</Increment><Offset>0</Offset></CY>
-   <CZ><AxisType>A</AxisType><DataType>{dtype}</DataType>{zinc}{off}</CZ>
-  </Axes></Record1>
- <Record2><Date>2024-01-01T00:00:00</Date></Record2>
- <Record3><MatrixDimension><SizeX>{nx}</SizeX><SizeY>{ny}</SizeY><SizeZ>1</SizeZ></MatrixDimension>
-  <DataLink><PointDataLink>bindata/data.bin</PointDataLink>{vlink}</DataLink></Record3>
- <Record4><ChecksumFile>md5checksum.hex</ChecksumFile></Record4>
-</p:ISO5436_2>"""
-    with zipfile.ZipFile(path, "w") as zf:
-        zf.writestr("main.xml", xml)
-        zf.writestr("bindata/data.bin", np.ascontiguousarray(z_raw.T).astype(np_dt).tobytes())
-        if valid is not None:
-            zf.writestr("bindata/valid.bin",
-                        np.packbits(valid.T.ravel(), bitorder="little").tobytes())
-        zf.writestr("md5checksum.hex", "0" * 32)
 
 
 def test_builtin_x3p_int16_with_empty_offset_and_valid_mask(tmp_path):
@@ -386,8 +264,8 @@ def test_builtin_x3p_int16_with_empty_offset_and_valid_mask(tmp_path):
     valid = np.ones((4, 3), bool)
     valid[2, 1] = False
     p = tmp_path / "i.x3p"
-    _x3p(p, raw, "I", inc="2e-9", off="<Offset/>", valid=valid)
-    for hm in (read_x3p(p), read_surface(p), read_surface(_gz(p))):
+    write_x3p(p, raw, "I", inc="2e-9", off="<Offset/>", valid=valid)
+    for hm in (read_x3p(p), read_surface(p), read_surface(gz_copy(p))):
         assert hm.heights.shape == (4, 3) and (hm.dx, hm.dy) == pytest.approx((1e-6, 2e-6))
         assert hm.n_undefined == 1 and np.isnan(hm.heights[2, 1])
         expect = raw * 2e-9
@@ -397,7 +275,7 @@ def test_builtin_x3p_int16_with_empty_offset_and_valid_mask(tmp_path):
 def test_builtin_x3p_float_offset_nan_and_inf(tmp_path):
     raw = np.random.default_rng(6).normal(size=(5, 4)) * 1e-6
     raw[0, 3], raw[4, 0] = np.nan, np.inf
-    _x3p(tmp_path / "f.x3p", raw, "D", inc=None, off="<Offset>1e-6</Offset>")
+    write_x3p(tmp_path / "f.x3p", raw, "D", inc=None, off="<Offset>1e-6</Offset>")
     hm = read_x3p(tmp_path / "f.x3p")
     assert hm.n_undefined == 2
     ok = np.isfinite(raw)
@@ -411,7 +289,7 @@ def test_builtin_x3p_errors(tmp_path):
     with pytest.raises(TextureFileError, match=r"z\.x3p.*zip"):
         read_x3p(tmp_path / "z.x3p")
     p = tmp_path / "short.x3p"
-    _x3p(p, np.zeros((3, 3)), "F")
+    write_x3p(p, np.zeros((3, 3)), "F")
     buf = io.BytesIO()
     with zipfile.ZipFile(p) as src, zipfile.ZipFile(buf, "w") as dst:
         for n in src.namelist():
@@ -448,7 +326,7 @@ def test_without_surfacetopography(tmp_path, monkeypatch):
     (tmp_path / "scan.xyz1").write_bytes(b"?")
     with pytest.raises(InputError, match=r"unknown surface file suffix '\.xyz1'.*metrology"):
         read_surface(tmp_path / "scan.xyz1")
-    _x3p(tmp_path / "a.x3p", np.ones((3, 2)), "F")
+    write_x3p(tmp_path / "a.x3p", np.ones((3, 2)), "F")
     hm = read_surface(tmp_path / "a.x3p")                      # the built-in reader
     np.testing.assert_allclose(hm.heights, np.full((3, 2), 1e-6))
 
@@ -547,3 +425,39 @@ def test_example_stl_gz_mesh():
     assert span[:2] == pytest.approx((21.7e-3, 27.6e-3), rel=2e-3)
     with pytest.raises(InputError, match="--unit"):
         read_surface(DATA / "example_surface.stl.gz")
+
+
+# --- the registry ----------------------------------------------------------------------------
+
+def _registry_samples(tmp_path) -> dict:
+    """One sample file per reader of the registry, with the options it needs."""
+    import trimesh
+    v, f = mesh_with_degenerates()
+    mesh = tmp_path / "m.stl"
+    mesh.write_bytes(trimesh.Trimesh(v, f, process=False).export(file_type="stl"))
+    z = np.random.default_rng(3).normal(size=(6, 4))
+    np.save(tmp_path / "h.npy", z)
+    write_matrix(tmp_path / "h.txt", z.T)
+    write_x3p(tmp_path / "h.x3p", z, "D")
+    return {"mesh": (mesh, dict(unit="mm"), TriangleMesh),
+            "array": (tmp_path / "h.npy", dict(unit="um", pixel_size=1.0), HeightMap),
+            "text": (tmp_path / "h.txt", dict(unit="um", pixel_size=1.0), HeightMap),
+            "x3p": (tmp_path / "h.x3p", {}, HeightMap),
+            "instrument": (DATA / "mi-1.mi", {}, HeightMap)}
+
+
+@needs_data
+@needs_st
+def test_every_reader_of_the_registry_reads_its_sample(tmp_path):
+    """The contract of the ordered registry: each reader claims its sample's suffix (also
+    gzipped), and read_surface returns the kind of surface the reader promises."""
+    from asperity.surface.readers import READERS, reader_for
+    samples = _registry_samples(tmp_path)
+    assert set(samples) == {r.name for r in READERS}, "a reader without a sample"
+    assert not READERS[-1].suffixes, "the last reader is the catch-all"
+    for name, (path, opts, kind) in samples.items():
+        reader, suffix, gz = reader_for(path)
+        assert reader.name == name and not gz, path
+        assert reader_for(str(path) + ".gz")[0].name == name
+        assert all(not r.can_read(suffix) for r in READERS[:READERS.index(reader)])
+        assert isinstance(read_surface(path, **opts), kind), name
