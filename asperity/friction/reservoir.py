@@ -18,12 +18,13 @@ from ..errors import InputError
 
 @dataclass(frozen=True)
 class Faces:
-    """The distinct plane faces of a texture.
+    """The plane faces of a texture or the facets of a surface: what the homogenisation reads.
 
     gradient : (n, 2) float -- (dz/dx, dz/dy) of each face (dimensionless)
     mu       : (n,) float   -- local isotropic friction coefficient of each face
-    weight   : (n,) float   -- horizontal (projected) area fraction, sums to 1
-    names    : tuple of n str
+    weight   : (n,) float   -- horizontal (projected) area weight (wedges: fractions summing
+               to 1; surfaces: area x contact weight, m^2)
+    names    : tuple of n str, or None (facets of a surface are numbered)
     """
 
     gradient: np.ndarray
@@ -35,13 +36,9 @@ class Faces:
 CONTACT_REGIMES = ("all-faces", "windward")
 #: slope g.s below which a face counts as level with the motion (windward regime)
 LEVEL_SLOPE_TOL = 1e-12
-
-
 #: message when, in the windward regime, every face descends in some sliding direction
 NO_WINDWARD_FACE = ("windward contact: in some sliding direction every face descends, so nothing "
                     "is climbed (a tilted surface? remove the tilt, e.g. --detrend slope)")
-
-
 #: vertical force share below which a face is taken as self-locking
 LOCK_TOL = 1e-12
 

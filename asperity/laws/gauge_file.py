@@ -20,7 +20,7 @@ from .. import __version__
 from ..errors import InputError
 from .convex_set import ConvexSet
 from .fitting import FitReport, GaugeLaw, ReservoirData
-from .gauge_schema import FORMAT, VERSION, _parse_constant, validate
+from .gauge_schema import FORMAT, VERSION, parse_constant, validate
 from .sets import StarSet, TruncatedEllipse
 from .walker_leine import WalkerLeineLaw, associated
 
@@ -103,7 +103,7 @@ def read_gauge(path) -> GaugeLaw:
     except (OSError, UnicodeDecodeError) as exc:
         raise GaugeFileError(f"{p}: cannot be read ({exc})") from None
     try:
-        obj = json.loads(text, parse_constant=_parse_constant)
+        obj = json.loads(text, parse_constant=parse_constant)
     except json.JSONDecodeError as exc:
         raise GaugeFileError(f"{p}: not valid JSON ({exc.msg} at line {exc.lineno}, "
                              f"column {exc.colno})") from None

@@ -28,7 +28,7 @@ class _NonFinite:
         self.text = text
 
 
-def _parse_constant(text):
+def parse_constant(text):
     return _NonFinite(text)
 
 

@@ -35,7 +35,7 @@ _REG = 1e-6
 
 
 @njit(cache=True)
-def _solve_tridiag(kb, kd, rhs, u, cw, dw):
+def solve_tridiag(kb, kd, rhs, u, cw, dw):
     """Solve (K_bar + diag(kd)) u = rhs by the Thomas algorithm (K_bar: the chain's
     element stiffness; kd >= 0 with at least one kd > 0).  cw, dw: work arrays (n,)."""
     n = u.size
@@ -150,7 +150,7 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
             # free: a small regularisation keeps the step finite (the line search and the
             # gradient test decide, so the solution does not depend on it)
             kd[i] = kt[i] if cls[i] == 0 else (_REG * kt[i] if nst == 0 else 0.0)
-        _solve_tridiag(kb, kd, g, du, cw, dw)
+        solve_tridiag(kb, kd, g, du, cw, dw)
         slope = 0.0
         for i in range(n):
             slope -= g[i] * du[i]          # g holds -grad

@@ -168,14 +168,14 @@ def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     """dT_c of the chain: the temperature change (heating if ``sign`` > 0, else cooling),
     from the stress-free state without external force, at which the first slider slips
     (K; inf if none ever does)."""
-    from ._chain_kernels import _solve_tridiag
+    from ._chain_kernels import solve_tridiag
     n = chain.n
     rhs = np.zeros(n)
     e = chain.kb * chain.alpha_T * chain.le * sign
     rhs[1:] += e
     rhs[:-1] -= e
     u = np.empty(n)
-    _solve_tridiag(chain.kb, chain.kt, rhs, u, np.empty(n), np.empty(n))
+    solve_tridiag(chain.kb, chain.kt, rhs, u, np.empty(n), np.empty(n))
     q = chain.kt * u                                     # contact forces per K
     with np.errstate(divide="ignore"):
         lim = np.where(q > 0, chain.cp / np.where(q > 0, q, 1.0),

@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import check_int
 from .chains import TOL, Chain, MicroslipTolerances, SolverError
 from .loading import Loading
-from .quasi_static import MicroslipResult, _check_capacity, _scale
+from .quasi_static import MicroslipResult, check_capacity, load_scale
 
 
 def dynamic_parameters(chain: Chain, steps_per_segment: int) -> dict:
@@ -44,7 +44,7 @@ def simulate_dynamic(chain: Chain, loading: Loading, cycles: int = 3, *,
     from ._chain_kernels import STATUS_OK, moreau_chain
     cycles = check_int("cycles", cycles, 1, 1_000_000)
     steps_per_segment = check_int("steps_per_segment", steps_per_segment, 10, 100_000_000)
-    _check_capacity(chain, loading)
+    check_capacity(chain, loading)
     n = chain.n
     par = dynamic_parameters(chain, steps_per_segment)
     lead = not (loading.dT[0] == 0.0 and loading.F[0] == 0.0)
@@ -90,7 +90,7 @@ def simulate_dynamic(chain: Chain, loading: Loading, cycles: int = 3, *,
         u_end.append(u.copy())
     mean_u = np.array(mean_u)
     d = float(mean_u[-1] - mean_u[-2]) if cycles >= 1 else 0.0
-    if abs(d) <= 1e-6 * _scale(chain, loading):
+    if abs(d) <= 1e-6 * load_scale(chain, loading):
         d = 0.0
     tt = np.array(tr_t)
     trace = {"t": (tt - start) / seg, "dT": np.interp(tt, t_pts, dT_pts), "u": np.array(tr_u),

@@ -80,7 +80,7 @@ class MicroslipResult:
         return int(k + max(j, 1))
 
 
-def _scale(chain: Chain, loading: Loading) -> float:
+def load_scale(chain: Chain, loading: Loading) -> float:
     """Thermal displacement scale alpha_T * length * dT range (or the elastic slip scale)."""
     s = chain.alpha_T * chain.length * max(loading.dT_range, float(np.abs(loading.dT).max()))
     fin = np.isfinite(chain.cp) & np.isfinite(chain.cm)
@@ -89,7 +89,7 @@ def _scale(chain: Chain, loading: Loading) -> float:
     return max(s, el, 1e-300)
 
 
-def _check_capacity(chain: Chain, loading: Loading) -> None:
+def check_capacity(chain: Chain, loading: Loading) -> None:
     F = np.concatenate([[0.0], loading.F])
     plus, minus = float(chain.cp.sum()), float(chain.cm.sum())
     hi, lo = float(F.max()), float(F.min())
@@ -115,7 +115,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     """
     from ._chain_kernels import STATUS_OK, STATUS_SLIDE_OFF, march
     cycles = check_int("cycles", cycles, 1, 100_000_000)
-    _check_capacity(chain, loading)
+    check_capacity(chain, loading)
     n = chain.n
     rec = np.array([0, n - 1] if record_nodes is None else record_nodes, dtype=np.int64)
     u = np.zeros(n)
@@ -141,7 +141,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
 
     tr_t, tr_dT, tr_u = [0.0], [0.0], [np.zeros(rec.size)]
     slips = []
-    scale = _scale(chain, loading)
+    scale = load_scale(chain, loading)
     iters = 0
     dT0, F0 = loading.lead_in()
     if dT0.size:

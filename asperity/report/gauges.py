@@ -1,9 +1,6 @@
-"""Figures of fitted laws and the report section on gauges (SPEC.md section 3).
-
-:func:`plot_law` draws a law: C, D, the data and the sliding rule (``asperity law --plot``,
-``asperity fit --plot``).  :func:`section` returns the Markdown lines of the report section
-(and writes its PNGs): fits of both laws to the wedge examples of ``surfaces/*.toml`` in both
-contact regimes, and Antoni et al.'s figure 7 criterion redrawn.
+"""Report section on friction laws and gauges (SPEC.md section 3): fits of both laws to the
+wedge examples of ``surfaces/*.toml`` in both contact regimes (figures drawn by
+:func:`asperity.laws.plot.plot_law`), and Antoni et al.'s figure 7 criterion redrawn.
 """
 from __future__ import annotations
 

@@ -1,15 +1,15 @@
-"""Report section 3: polar diagrams of the reservoir in both contact regimes."""
+"""Report section: polar diagrams of the reservoir in both contact regimes."""
 from __future__ import annotations
 
 from pathlib import Path
 
 
-def _figures(folder: Path) -> list[str]:
+def section(folder: Path) -> list[str]:
     from ..friction.derive import derive
     from ..friction.faces import compute_reservoir
     from ..friction.plot import plot_derivation
     from ..texture.wedges import WedgeTexture
-    out = ["## 3. Polar reservoirs of both contact regimes", ""]
+    out = ["## Polar reservoirs of both contact regimes", ""]
     for contact in ("all-faces", "windward"):
         t = WedgeTexture(30, 30, 0.3, 0.3)
         d = derive(t, contact, "closed-form", 360)

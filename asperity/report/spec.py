@@ -1,10 +1,12 @@
-"""Report section 1: the SPEC.md check values against the closed forms."""
+"""Report section: the SPEC.md check values against the closed forms."""
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 
 
-def _spec_section() -> list[str]:
+def section(folder: Path) -> list[str]:
     from ..friction.faces import compute_axis_coefficients, compute_reservoir
     from ..texture.wedges import WedgeTexture
     rows = []
@@ -18,7 +20,7 @@ def _spec_section() -> list[str]:
     rows += [("windward 30/30, mu=0.3: |p(0)|", 1.061, float(np.hypot(*r.p[0]))),
              ("same: p_a(89 deg)", 0.585, float(r.p[1, 0])),
              ("same: p_b(89 deg)", 0.348, float(r.p[1, 1]))]
-    out = ["## 1. SPEC.md check values (closed form)", "",
+    out = ["## SPEC.md check values (closed form)", "",
            "| quantity | SPEC.md | asperity | difference |", "|---|---|---|---|"]
     out += [f"| {q} | {s:g} | {v:.6f} | {v - s:+.1e} |" for q, s, v in rows]
     return out + [""]

@@ -10,8 +10,8 @@ import numpy as np
 from ..errors import InputError
 from .readers import READERS, reader_for
 from .readers._files import read_bytes
-from .readers.array import _load_array
-from .readers.text import _parse_text_matrix
+from .readers.array import load_array
+from .readers.text import parse_text_matrix
 from .topography import HeightMap, Surface
 
 
@@ -35,9 +35,9 @@ def read_friction_map(path, surface: Surface) -> np.ndarray:
     data = read_bytes(p, gz)
     is_map = isinstance(surface, HeightMap)
     if reader.name == "array":
-        m = _load_array(data, suffix, p)
+        m = load_array(data, suffix, p)
     else:
-        m, _, _ = _parse_text_matrix(data, p)
+        m, _, _ = parse_text_matrix(data, p)
         if is_map:
             m = m.T
     if is_map:

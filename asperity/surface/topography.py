@@ -26,7 +26,7 @@ UNITS = {
 }
 
 
-_UNIT_HELP = "m, mm, um (µm), nm"
+UNIT_HELP = "m, mm, um (µm), nm"
 
 
 @dataclass(frozen=True)
@@ -52,8 +52,8 @@ class HeightMap:
             raise InputError(f"{self.source or 'height map'}: heights must be a 2-D array, "
                              f"got shape {z.shape}")
         object.__setattr__(self, "heights", z)
-        object.__setattr__(self, "dx", _positive_length("dx", self.dx))
-        object.__setattr__(self, "dy", _positive_length("dy", self.dy))
+        object.__setattr__(self, "dx", positive_length("dx", self.dx))
+        object.__setattr__(self, "dy", positive_length("dy", self.dy))
         object.__setattr__(self, "n_undefined", int(self.n_undefined))
 
     @property
@@ -117,7 +117,7 @@ class TriangleMesh:
 Surface = HeightMap | TriangleMesh
 
 
-def _positive_length(name: str, value) -> float:
+def positive_length(name: str, value) -> float:
     x = check_range(name, value, 0.0, None, low_open=True)
     if not math.isfinite(x):
         raise InputError(f"{name} must be finite, got {x:g}")
@@ -131,41 +131,41 @@ def unit_factor(unit, what: str = "unit") -> float:
         f = UNITS.get(key, UNITS.get(key.lower()))
         if f is not None:
             return f
-    raise InputError(f"{what} must be one of {_UNIT_HELP}, got {unit!r}")
+    raise InputError(f"{what} must be one of {UNIT_HELP}, got {unit!r}")
 
 
-def _pixel_pair(pixel_size, factor: float) -> tuple[float, float]:
+def pixel_pair(pixel_size, factor: float) -> tuple[float, float]:
     """(dx, dy) in metres from a number or a pair, given in a unit of ``factor`` metres."""
     if isinstance(pixel_size, (str, bytes)):
         raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
     if np.ndim(pixel_size) == 0:
-        d = _positive_length("pixel_size", pixel_size)
+        d = positive_length("pixel_size", pixel_size)
         return d * factor, d * factor
     vals = list(np.asarray(pixel_size, dtype=object).ravel())
     if len(vals) != 2:
         raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
-    return (_positive_length("pixel_size (dx)", vals[0]) * factor,
-            _positive_length("pixel_size (dy)", vals[1]) * factor)
+    return (positive_length("pixel_size (dx)", vals[0]) * factor,
+            positive_length("pixel_size (dy)", vals[1]) * factor)
 
 
-def _one_line(exc: BaseException, limit: int = 160) -> str:
+def one_line(exc: BaseException, limit: int = 160) -> str:
     text = str(exc).strip().splitlines()
     msg = text[0].strip() if text else type(exc).__name__
     return msg if len(msg) <= limit else msg[: limit - 3] + "..."
 
 
-def _count_undefined(z: np.ndarray) -> int:
+def count_undefined(z: np.ndarray) -> int:
     return int(np.count_nonzero(np.isnan(z)))
 
 
-def _finish_heightmap(z: np.ndarray, dx: float, dy: float, source: str, height_scale: float,
+def finish_heightmap(z: np.ndarray, dx: float, dy: float, source: str, height_scale: float,
                       name) -> HeightMap:
     z = np.array(z, dtype=np.float64)  # a copy that owns its data
     if np.isinf(z).any():
         raise TextureFileError(f"{name}: the heights contain infinite values")
     if z.ndim != 2 or z.shape[0] < 1 or z.shape[1] < 1:
         raise TextureFileError(f"{name}: a height map must be a 2-D array, got shape {z.shape}")
-    n_undef = _count_undefined(z)
+    n_undef = count_undefined(z)
     if n_undef == z.size:
         raise TextureFileError(f"{name}: every pixel is undefined")
     if height_scale != 1.0:

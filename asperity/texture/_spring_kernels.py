@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ._tip_kernels import _FACE, _FREE, _height, _locate, _seg_geom, _update_tip
+from ._tip_kernels import FACE, FREE, height, locate, seg_geom, update_tip
 
 STATUS_OK = 0
 STATUS_LOCKED = 1          # a tip cannot climb its face: force grows without bound
@@ -46,8 +46,8 @@ def run_rigid(xs, zs, seg_px, seg_py, seg_lock, seg_loaded, X0, ux, kn, z_rest):
     for i in prange(n):
         for s in range(m):
             x = X0[i] + ux[s]
-            J = _locate(x, xs)
-            j, xl, xr, zl, zr, g = _seg_geom(J, xs, zs)
+            J = locate(x, xs)
+            j, xl, xr, zl, zr, g = seg_geom(J, xs, zs)
             if seg_loaded[j] == 0:
                 continue
             z = zl + g * (x - xl)
@@ -95,8 +95,8 @@ def run_elastic(xs, zs, seg_mu, seg_loaded, X0, ux, uy, kn, kf, z_rest, cx, n_wi
     lock_seg = np.full(n, -1, np.int64)
     final = np.zeros((n, 3))
     for i in prange(n):
-        mode = _FREE
-        J = _locate(X0[i], xs)
+        mode = FREE
+        J = locate(X0[i], xs)
         xt = X0[i]
         dy = 0.0
         prev_uy = 0.0
@@ -104,22 +104,22 @@ def run_elastic(xs, zs, seg_mu, seg_loaded, X0, ux, uy, kn, kf, z_rest, cx, n_wi
             bx = X0[i] + ux[s]
             dy_tr = dy - (uy[s] - prev_uy)
             prev_uy = uy[s]
-            code, mode, J, xt, dy, sl = _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu,
+            code, mode, J, xt, dy, sl = update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu,
                                                     seg_loaded, kn, kf, z_rest)
             if code != 0:
                 status[i] = code
                 break
-            if mode == _FREE:
+            if mode == FREE:
                 continue
-            z = _height(xt, xs, zs) if mode == _FACE else _seg_geom(J, xs, zs)[3]
+            z = height(xt, xs, zs) if mode == FACE else seg_geom(J, xs, zs)[3]
             Rx = kf * (xt - bx)
             Ry = kf * dy
             Rz = kn * (z - z_rest)
             j = J % k
             if j < 0:
                 j += k
-            if mode == _FACE and not sl:
-                g = _seg_geom(J, xs, zs)[5]
+            if mode == FACE and not sl:
+                g = seg_geom(J, xs, zs)[5]
                 mu = seg_mu[j]
                 # stuck on a face the base climbs, with the limiting force direction
                 # (-s, 0) inside the cone: the tip never slides again

@@ -18,9 +18,9 @@ import numpy as np
 from numba import njit
 
 #: tip modes
-_FREE = 0
-_FACE = 1
-_NODE = 2
+FREE = 0
+FACE = 1
+NODE = 2
 _MAX_CROSSINGS = 64
 _MAX_ITER = 200
 #: relative slack of the Coulomb-cone test (keeps tips left on the cone boundary by the
@@ -29,7 +29,7 @@ _CONE_TOL = 1e-12
 
 
 @njit(cache=True)
-def _locate(x, xs):
+def locate(x, xs):
     """Unwrapped segment index J containing x (xs[j] + qL <= x < xs[j+1] + qL)."""
     k = xs.size - 1
     L = xs[k]
@@ -49,7 +49,7 @@ def _locate(x, xs):
 
 
 @njit(cache=True)
-def _seg_geom(J, xs, zs):
+def seg_geom(J, xs, zs):
     """(j, xl, xr, zl, zr, g) of the unwrapped segment J."""
     k = xs.size - 1
     L = xs[k]
@@ -67,9 +67,9 @@ def _seg_geom(J, xs, zs):
 
 
 @njit(cache=True)
-def _height(x, xs, zs):
-    J = _locate(x, xs)
-    j, xl, xr, zl, zr, g = _seg_geom(J, xs, zs)
+def height(x, xs, zs):
+    J = locate(x, xs)
+    j, xl, xr, zl, zr, g = seg_geom(J, xs, zs)
     return zl + g * (x - xl)
 
 
@@ -213,7 +213,7 @@ def _corner(gl, gr, mul, mur, Rx, Ry, Rz, kf, dy_tr):
 
 
 @njit(cache=True)
-def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_rest):
+def update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_rest):
     """Move one tip to its equilibrium for the new base position.
 
     Returns (code, mode, J, xt, dy, sliding).  code: 0 ok, 2 no convergence,
@@ -222,57 +222,57 @@ def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_re
     came = 0  # +1 arrived at a node moving right, -1 moving left, 0 held there before
     landed = False
     for _ in range(_MAX_CROSSINGS):
-        if mode == _FREE:
-            Jb = _locate(bx, xs)
-            j, xl, xr, zl, zr, g = _seg_geom(Jb, xs, zs)
+        if mode == FREE:
+            Jb = locate(bx, xs)
+            j, xl, xr, zl, zr, g = seg_geom(Jb, xs, zs)
             zb = zl + g * (bx - xl)
             if seg_loaded[j] == 0 or zb <= z_rest or landed:
-                return 0, _FREE, Jb, bx, 0.0, False
+                return 0, FREE, Jb, bx, 0.0, False
             # touch down under the base and relax on that face
             landed = True
-            mode = _FACE
+            mode = FACE
             J = Jb
             xt = bx
             dy_tr = 0.0
             came = 0
             continue
-        if mode == _FACE:
-            j, xl, xr, zl, zr, g = _seg_geom(J, xs, zs)
+        if mode == FACE:
+            j, xl, xr, zl, zr, g = seg_geom(J, xs, zs)
             if seg_loaded[j] == 0:
-                mode = _FREE
+                mode = FREE
                 continue
             code, xn, dyn, sl = _face_return(g, seg_mu[j], kn, kf, z_rest, xl, zl, xt, dy_tr, bx)
             if code == 2:
                 return 2, mode, J, xt, dy_tr, False
             if code == 1:
-                mode = _FREE
+                mode = FREE
                 continue
             if xn > xr:
                 f = (xr - xt) / (xn - xt)
                 dy_tr = dy_tr + f * (dyn - dy_tr)
                 xt = xr
                 J = J + 1
-                mode = _NODE
+                mode = NODE
                 came = 1
                 continue
             if xn < xl:
                 f = (xl - xt) / (xn - xt)
                 dy_tr = dy_tr + f * (dyn - dy_tr)
                 xt = xl
-                mode = _NODE
+                mode = NODE
                 came = -1
                 continue
             if zl + g * (xn - xl) <= z_rest:
-                mode = _FREE
+                mode = FREE
                 continue
-            return 0, _FACE, J, xn, dyn, sl
-        # mode == _NODE: node J = left end of segment J, right end of segment J-1
-        jr, xl_r, xr_r, zl_r, zr_r, gr = _seg_geom(J, xs, zs)
-        jl, xl_l, xr_l, zl_l, zr_l, gl = _seg_geom(J - 1, xs, zs)
+            return 0, FACE, J, xn, dyn, sl
+        # mode == NODE: node J = left end of segment J, right end of segment J-1
+        jr, xl_r, xr_r, zl_r, zr_r, gr = seg_geom(J, xs, zs)
+        jl, xl_l, xr_l, zl_l, zr_l, gl = seg_geom(J - 1, xs, zs)
         xnode = xl_r
         znode = zl_r
         if znode <= z_rest:
-            mode = _FREE
+            mode = FREE
             continue
         first_right = came > 0 or (came == 0 and bx >= xnode)
         moved = False
@@ -281,7 +281,7 @@ def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_re
             if right:
                 if seg_loaded[jr] == 0:
                     if came > 0 or (came == 0 and attempt == 0):
-                        mode = _FREE
+                        mode = FREE
                         moved = True
                         break
                     continue
@@ -291,18 +291,18 @@ def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_re
                     return 2, mode, J, xt, dy_tr, False
                 if code == 1:
                     if attempt == 0:
-                        mode = _FREE
+                        mode = FREE
                         moved = True
                         break
                     continue
                 if (not sl) or xn > xnode:
-                    mode = _FACE
+                    mode = FACE
                     moved = True
                     break
             else:
                 if seg_loaded[jl] == 0:
                     if came < 0 or (came == 0 and attempt == 0):
-                        mode = _FREE
+                        mode = FREE
                         moved = True
                         break
                     continue
@@ -312,12 +312,12 @@ def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_re
                     return 2, mode, J, xt, dy_tr, False
                 if code == 1:
                     if attempt == 0:
-                        mode = _FREE
+                        mode = FREE
                         moved = True
                         break
                     continue
                 if (not sl) or xn < xnode:
-                    mode = _FACE
+                    mode = FACE
                     J = J - 1
                     moved = True
                     break
@@ -330,5 +330,5 @@ def _update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_re
         Ry = kf * dy_tr
         Rz = kn * (znode - z_rest)
         dyn, sl = _corner(gl, gr, seg_mu[jl], seg_mu[jr], Rx, Ry, Rz, kf, dy_tr)
-        return 0, _NODE, J, xnode, dyn, sl
+        return 0, NODE, J, xnode, dyn, sl
     return 3, mode, J, xt, dy_tr, False

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ...errors import InputError
-from ..topography import HeightMap, TriangleMesh, _positive_length, unit_factor
+from ..topography import HeightMap, TriangleMesh, positive_length, unit_factor
 from ._files import read_bytes, split_suffix
 
 
@@ -117,7 +117,7 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0) -> Heigh
     Returns a :class:`HeightMap` or a :class:`TriangleMesh`, in metres.
     """
     p = Path(path)
-    hs = _positive_length("height_scale", height_scale)
+    hs = positive_length("height_scale", height_scale)
     reader, suffix, gz = reader_for(p)
     if unit is not None:
         unit_factor(unit)                 # fail early on an unknown unit

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ...errors import InputError, TextureFileError
-from ..topography import _one_line
+from ..topography import one_line
 
 #: instrument suffixes named in messages (SurfaceTopography reads more)
 INSTRUMENT_EXAMPLES = (".x3p", ".mi", ".sur", ".opd", ".datx", ".plu", ".nms")
@@ -36,5 +36,5 @@ def read_bytes(path: Path, gz: bool) -> bytes:
         try:
             data = gzip.decompress(data)
         except (OSError, EOFError, zlib.error) as exc:
-            raise TextureFileError(f"{path}: not a valid gzip file ({_one_line(exc)})") from None
+            raise TextureFileError(f"{path}: not a valid gzip file ({one_line(exc)})") from None
     return data

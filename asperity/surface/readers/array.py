@@ -11,23 +11,16 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
-from ..topography import (
-    _UNIT_HELP,
-    HeightMap,
-    _finish_heightmap,
-    _one_line,
-    _pixel_pair,
-    unit_factor,
-)
+from ..topography import UNIT_HELP, HeightMap, finish_heightmap, one_line, pixel_pair, unit_factor
 
 
-def _load_array(data: bytes, suffix: str, name) -> np.ndarray:
+def load_array(data: bytes, suffix: str, name) -> np.ndarray:
     """A float array from .npy/.npz bytes, masked pixels (npz 'mask') as NaN."""
     import io
     try:
         obj = np.load(io.BytesIO(data), allow_pickle=False)
     except Exception as exc:
-        raise TextureFileError(f"{name}: not a readable {suffix} file ({_one_line(exc)})") from None
+        raise TextureFileError(f"{name}: not a readable {suffix} file ({one_line(exc)})") from None
     if suffix == ".npz" or hasattr(obj, "files"):
         if not hasattr(obj, "files"):
             raise TextureFileError(f"{name}: not a .npz archive")
@@ -62,11 +55,11 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
         missing = " and ".join(k for k, v in (("unit", unit), ("pixel_size", pixel_size))
                                if v is None)
         raise InputError(f"{name}: a {suffix} height map carries no length unit or pixel size; "
-                         f"pass {missing} (unit one of {_UNIT_HELP}; pixel_size in that unit, "
+                         f"pass {missing} (unit one of {UNIT_HELP}; pixel_size in that unit, "
                          f"a number or (dx, dy))")
     factor = unit_factor(unit)
-    dx, dy = _pixel_pair(pixel_size, factor)
-    z = _load_array(data, suffix, name)
+    dx, dy = pixel_pair(pixel_size, factor)
+    z = load_array(data, suffix, name)
     if z.ndim != 2:
         raise TextureFileError(f"{name}: a height map must be a 2-D array, got shape {z.shape}")
-    return _finish_heightmap(z * factor, dx, dy, name.name, height_scale, name)
+    return finish_heightmap(z * factor, dx, dy, name.name, height_scale, name)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
-from ..topography import HeightMap, _finish_heightmap, _one_line, _pixel_pair, unit_factor
+from ..topography import HeightMap, finish_heightmap, one_line, pixel_pair, unit_factor
 from ._files import FORMATS_HELP, INSTRUMENT_EXAMPLES, METROLOGY_HINT
 
 _HEIGHT_CHANNEL = re.compile(r"topo|height|z ?sensor|^z$|^default$|surface", re.I)
@@ -63,7 +63,7 @@ def read_with_surfacetopography(data: bytes, suffix: str, gz: bool, name: Path, 
                 raise InputError(f"{name}: unknown surface file format (suffix "
                                  f"{suffix or '(none)'!r}); supported: {FORMATS_HELP}") from None
             raise TextureFileError(f"{name}: cannot be read as a surface ({kind}: "
-                                   f"{_one_line(exc)})") from None
+                                   f"{one_line(exc)})") from None
         areal = [c for c in channels if getattr(c, "dim", 2) == 2]
         if not areal:
             raise InputError(f"{name}: holds line scans only; a height map (areal scan) is "
@@ -83,7 +83,7 @@ def read_with_surfacetopography(data: bytes, suffix: str, gz: bool, name: Path, 
                 raise InputError(f"{name}: read as {fmt!r} by SurfaceTopography, which finds no "
                                  f"pixel size or unit in it; pass unit and pixel_size")
             nxy = pick.nb_grid_pts
-            ddx, ddy = _pixel_pair(pixel_size, 1.0)
+            ddx, ddy = pixel_pair(pixel_size, 1.0)
             kwargs = dict(physical_sizes=(nxy[0] * ddx, nxy[1] * ddy), unit=_st_unit(unit))
         elif unit is not None or pixel_size is not None:
             raise InputError(f"{name}: the file states its unit and pixel size; do not pass "
@@ -96,7 +96,7 @@ def read_with_surfacetopography(data: bytes, suffix: str, gz: bool, name: Path, 
             tunit = topo.unit
         except Exception as exc:
             raise TextureFileError(f"{name}: cannot be read as a surface ({type(exc).__name__}: "
-                                   f"{_one_line(exc)})") from None
+                                   f"{one_line(exc)})") from None
         finally:
             close = getattr(reader, "close", None)
             if close is not None:
@@ -117,7 +117,7 @@ def read_with_surfacetopography(data: bytes, suffix: str, gz: bool, name: Path, 
     dy = float(sizes[1]) * f / int(nb[1])
     if not (dx > 0 and dy > 0 and math.isfinite(dx * dy)):
         raise TextureFileError(f"{name}: the file states a non-positive pixel size")
-    return _finish_heightmap(z, dx, dy, source, height_scale, name)
+    return finish_heightmap(z, dx, dy, source, height_scale, name)
 
 
 def _st_unit(unit: str) -> str:

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
-from ..topography import _UNIT_HELP, TriangleMesh, _one_line, unit_factor
+from ..topography import UNIT_HELP, TriangleMesh, one_line, unit_factor
 
 
 def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
@@ -19,7 +19,7 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
     """The mesh in ``data`` (``pixel_size`` does not apply to meshes: refused before)."""
     if unit is None:
         raise InputError(f"{name}: a {suffix} mesh file carries no length unit; pass unit "
-                         f"(one of {_UNIT_HELP}; on the command line --unit)")
+                         f"(one of {UNIT_HELP}; on the command line --unit)")
     factor = unit_factor(unit)
     import io
     import logging
@@ -32,7 +32,7 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
         vertices = np.asarray(mesh.vertices, dtype=np.float64)
         faces = np.asarray(mesh.faces, dtype=np.int64)
     except Exception as exc:  # trimesh raises many kinds on a malformed file
-        raise TextureFileError(f"{name}: not a readable {suffix} mesh ({_one_line(exc)})") from None
+        raise TextureFileError(f"{name}: not a readable {suffix} mesh ({one_line(exc)})") from None
     if faces.ndim != 2 or faces.shape[1] != 3 or faces.shape[0] == 0:
         raise TextureFileError(f"{name}: the {suffix} file holds no triangles")
     if vertices.ndim != 2 or vertices.shape[1] != 3:

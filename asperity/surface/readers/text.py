@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
-from ..topography import _UNIT_HELP, HeightMap, _finish_heightmap, _pixel_pair, unit_factor
+from ..topography import UNIT_HELP, HeightMap, finish_heightmap, pixel_pair, unit_factor
 
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _SEPARATORS = re.compile(r"[\s,;]+")
@@ -40,7 +40,7 @@ def _is_number(tok: str) -> bool:
     return True
 
 
-def _parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], int]:
+def parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], int]:
     """(matrix as in the file: rows = lines, header {lowercase key: value}, header lines).
 
     Leading lines that are not rows of numbers form the header: ``# key: value`` and
@@ -116,7 +116,7 @@ def _header_length(header: dict[str, str], key: str, unit, name) -> float:
             f = unit_factor(u)
         except InputError:
             raise TextureFileError(f"{name}: header entry {key!r} has unit {u!r}; allowed: "
-                                   f"{_UNIT_HELP}") from None
+                                   f"{UNIT_HELP}") from None
     elif unit is not None:
         f = unit_factor(unit)
     else:
@@ -139,7 +139,7 @@ def _first_key(header: dict[str, str], keys) -> str | None:
 
 def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
                          height_scale: float) -> HeightMap:
-    m, header, _ = _parse_text_matrix(data, name)
+    m, header, _ = parse_text_matrix(data, name)
     ny, nx = m.shape
     # grid counts stated in the header must match the matrix
     for key, n, what in (("w", nx, "columns"), ("h", ny, "rows")):
@@ -168,16 +168,16 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
             zfac = unit_factor(header[k])
         except InputError:
             raise InputError(f"{name}: the values are in {header[k]!r}, not a length unit "
-                             f"({_UNIT_HELP}); pass unit to read them as lengths") from None
+                             f"({UNIT_HELP}); pass unit to read them as lengths") from None
     else:
         raise InputError(f"{name}: the text matrix states no height unit; pass unit "
-                         f"(one of {_UNIT_HELP}; on the command line --unit)")
+                         f"(one of {UNIT_HELP}; on the command line --unit)")
     # spacing
     if pixel_size is not None:
         if unit is None:
             raise InputError(f"{name}: pixel_size is given in unit; pass unit too "
-                             f"(one of {_UNIT_HELP})")
-        dx, dy = _pixel_pair(pixel_size, unit_factor(unit))
+                             f"(one of {UNIT_HELP})")
+        dx, dy = pixel_pair(pixel_size, unit_factor(unit))
     elif (k := _first_key(header, _PIXEL_KEYS)) is not None:
         dx = dy = _header_length(header, k, unit, name)
     else:
@@ -190,4 +190,4 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
                     if (kw or kh) else "")
             raise InputError(f"{name}: the text matrix states no pixel size{part}; pass "
                              f"pixel_size (in unit, a number or (dx, dy))")
-    return _finish_heightmap(m.T * zfac, dx, dy, name.name, height_scale, name)
+    return finish_heightmap(m.T * zfac, dx, dy, name.name, height_scale, name)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
-from ..topography import HeightMap, _finish_heightmap, _positive_length
+from ..topography import HeightMap, finish_heightmap, positive_length
 from ._files import read_bytes, split_suffix
 
 _X3P_DTYPES = {"I": "<i2", "L": "<i4", "F": "<f4", "D": "<f8"}
@@ -49,7 +49,7 @@ def read_x3p(path, *, height_scale=1.0) -> HeightMap:
     installed or rejects a file.
     """
     p = Path(path)
-    hs = _positive_length("height_scale", height_scale)
+    hs = positive_length("height_scale", height_scale)
     suffix, gz = split_suffix(p)
     return _read_x3p_bytes(read_bytes(p, gz), p, hs)
 
@@ -155,4 +155,4 @@ def _read_x3p_bytes(data: bytes, name: Path, height_scale: float) -> HeightMap:
             valid = np.unpackbits(bits, bitorder="little")[:n].astype(bool)
             z[~valid] = np.nan
     heights = z.reshape(ny, nx).T              # x runs fastest in the file
-    return _finish_heightmap(heights, dx, dy, name.name, height_scale, name)
+    return finish_heightmap(heights, dx, dy, name.name, height_scale, name)
