@@ -1,13 +1,17 @@
-"""The small hierarchy of user-facing errors.
+"""The small hierarchy of user-facing errors, and the checks that raise them.
 
-Every error a user can cause (bad input, unreadable file) derives from
-:class:`AsperityError`; the command line prints its message on one line and exits
-with status 1, never with a traceback.  Messages name the field, the allowed range
-and what arrived.
+Every error a user can cause (bad input, unreadable file, unwritable output, a request too
+large for the machine) derives from :class:`AsperityError`; the command line prints its
+message on one line and exits with status 1, never with a traceback.  Messages name the
+field, the allowed range and what arrived.
+
+The checks accept real numbers only: a string such as ``"30"`` from a file, a boolean, a
+NaN or (unless ``allow_inf``) an infinity is refused, whatever the range.
 """
 from __future__ import annotations
 
 import math
+import numbers
 
 
 class AsperityError(Exception):
@@ -22,62 +26,172 @@ class TextureFileError(InputError):
     """A texture file cannot be read or does not follow the documented format."""
 
 
+class OutputError(AsperityError, OSError):
+    """An output file cannot be written (missing folder, permissions, full disk)."""
+
+
+class ResourceError(InputError):
+    """A request needs more memory (or work) than this machine can give."""
+
+
+def _kind(value) -> str:
+    if isinstance(value, bool):
+        return "a boolean"
+    if isinstance(value, str):
+        return "text"
+    if value is None:
+        return "nothing (None)"
+    if isinstance(value, (list, tuple, dict)):
+        return f"a {type(value).__name__}"
+    return type(value).__name__
+
+
+def _show(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def as_number(name: str, value) -> float:
+    """``value`` as a float if it is a real number (not text, not a boolean), else
+    InputError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise InputError(f"{name} must be a number, got {_show(value)} ({_kind(value)})")
+    try:
+        return float(value)
+    except OverflowError:
+        raise InputError(f"{name} is too large a number, got {_show(value)}") from None
+
+
+def number_from_text(name: str, text: str) -> float:
+    """A number typed on the command line (``'5'``, ``'1e-3'``), else InputError."""
+    try:
+        return float(str(text).strip())
+    except ValueError:
+        raise InputError(f"{name} must be a number, got {_show(text)}") from None
+
+
 def check_range(name: str, value, low: float | None = None, high: float | None = None, *,
-                low_open: bool = False, high_open: bool = False, unit: str = "") -> float:
+                low_open: bool = False, high_open: bool = False, unit: str = "",
+                allow_inf: bool = False) -> float:
     """Return ``value`` as a float if it lies in the given range, else raise InputError.
 
+    NaN is always refused, infinities unless ``allow_inf`` (and the range reaches them).
     The message names the field, the allowed range and the value that arrived.
     """
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}") from None
-    if isinstance(value, bool):
-        raise InputError(f"{name} must be a number, got {value!r}")
+    x = as_number(name, value)
     lo = "(" if low_open or low is None else "["
     hi = ")" if high_open or high is None else "]"
     rng = f"{lo}{'-inf' if low is None else _fmt(low)}, {'inf' if high is None else _fmt(high)}{hi}"
     u = f" {unit}" if unit else ""
     if x != x:  # NaN
         raise InputError(f"{name} must be in {rng}{u}, got NaN")
+    if math.isinf(x) and not allow_inf:
+        raise InputError(f"{name} must be a finite number in {rng}{u}, got {_fmt(x)}")
     bad = False
     if low is not None and (x < low or (low_open and x == low)):
         bad = True
     if high is not None and (x > high or (high_open and x == high)):
         bad = True
-    if (low is not None or high is not None) and x in (float("inf"), float("-inf")):
-        if not (high is None and x > 0) and not (low is None and x < 0):
-            bad = True
+    if math.isinf(x) and ((x > 0 and high is not None) or (x < 0 and low is not None)):
+        bad = True
     if bad:
         raise InputError(f"{name} must be in {rng}{u}, got {_fmt(x)}")
     return x
 
 
 def check_int(name: str, value, low: int | None = None, high: int | None = None) -> int:
-    """Return ``value`` as an int within [low, high], else raise InputError."""
-    if isinstance(value, bool) or not isinstance(value, (int,)) and not (
-        isinstance(value, float) and value.is_integer()
-    ):
-        try:
-            if isinstance(value, str) and value.strip().lstrip("+-").isdigit():
-                value = int(value)
-            else:
-                raise ValueError
-        except ValueError:
-            raise InputError(f"{name} must be a whole number, got {value!r}") from None
-    n = int(value)
+    """Return ``value`` as an int within [low, high], else raise InputError.  A float with
+    an integral value (``1e6``) is accepted; text and booleans are not."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise InputError(f"{name} must be a whole number, got {_show(value)} ({_kind(value)})")
+    if isinstance(value, numbers.Integral):
+        n = int(value)
+    else:
+        x = float(value)
+        if not (math.isfinite(x) and x.is_integer()):
+            raise InputError(f"{name} must be a whole number, got {_fmt(x)}")
+        n = int(x)
     if (low is not None and n < low) or (high is not None and n > high):
         rng = f"[{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
-        raise InputError(f"{name} must be a whole number in {rng}, got {n}")
+        raise InputError(f"{name} must be a whole number in {rng}, got {_fmt_int(n)}")
     return n
+
+
+def check_mu(name: str, value, high: float = 100.0) -> float:
+    """A local friction coefficient: a finite number in [0, high]."""
+    return check_range(name, value, 0.0, high)
+
+
+def check_choice(name: str, value, choices) -> str:
+    """``value`` if it is one of the strings ``choices``, else InputError listing them."""
+    if not isinstance(value, str) or value not in choices:
+        got = _show(value) if isinstance(value, str) else f"{_show(value)} ({_kind(value)})"
+        raise InputError(f"{name} must be one of {', '.join(choices)}, got {got}")
+    return value
+
+
+def check_text(name: str, value, max_len: int = 4096) -> str:
+    """A string field of a file (a name, a file name)."""
+    if not isinstance(value, str):
+        raise InputError(f"{name} must be text, got {_show(value)} ({_kind(value)})")
+    if len(value) > max_len:
+        raise InputError(f"{name} is too long ({len(value)} characters, at most {max_len})")
+    return value
+
+
+def check_table(where: str, value, allowed=None, required=()) -> dict:
+    """A TOML table (dict) with keys in ``allowed`` and every key of ``required``."""
+    if not isinstance(value, dict):
+        raise InputError(f"{where} must be a table, got {_show(value)} ({_kind(value)})")
+    if allowed is not None:
+        unknown = sorted(set(value) - set(allowed))
+        if unknown:
+            raise InputError(f"unknown key {where}.{unknown[0]}; allowed: "
+                             f"{', '.join(sorted(allowed))}")
+    for k in required:
+        if k not in value:
+            raise InputError(f"missing key {where}.{k}")
+    return value
+
+
+def check_instance(name: str, value, cls, what: str | None = None):
+    """``value`` if it is an instance of ``cls``, else InputError naming what was expected."""
+    if not isinstance(value, cls):
+        names = what or (" or ".join(c.__name__ for c in cls) if isinstance(cls, tuple)
+                         else cls.__name__)
+        raise InputError(f"{name} must be a {names}, got {_show(value)} ({_kind(value)})")
+    return value
+
+
+def check_array(name: str, value, ndim: int | None = None, shape=None, *,
+                finite: bool = True, min_size: int = 0, dtype=float):
+    """``value`` as a NumPy array of ``dtype`` with the given ``ndim``/``shape`` (None in
+    ``shape`` matches any length), finite unless told otherwise; else one InputError line."""
+    import numpy as np
+    if value is None or isinstance(value, (str, bytes, dict)):
+        raise InputError(f"{name} must be an array, got {_show(value)} ({_kind(value)})")
+    try:
+        a = np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(f"{name} must be an array of numbers, got {_show(value)}") from None
+    want = len(shape) if shape is not None else ndim
+    if want is not None and a.ndim != want:
+        raise InputError(f"{name} must have {want} dimension(s), got shape {a.shape}")
+    if shape is not None and any(s is not None and s != n for s, n in zip(shape, a.shape)):
+        exp = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ")"
+        raise InputError(f"{name} must have shape {exp}, got {a.shape}")
+    if a.size < min_size:
+        raise InputError(f"{name} must hold at least {min_size} values, got {a.size}")
+    if finite and a.dtype.kind == "f" and not np.all(np.isfinite(a)):
+        k = int(np.flatnonzero(~np.isfinite(a.ravel()))[0])
+        raise InputError(f"{name} must be finite, got {a.ravel()[k]} at index {k}")
+    return a
 
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
 
 
-def check_mu(name: str, value) -> float:
-    x = check_range(name, value, 0.0, None)
-    if not math.isfinite(x):
-        raise InputError(f"{name} must be in [0, inf) and finite, got {x:g}")
-    return x
+def _fmt_int(n: int) -> str:
+    s = str(n) if abs(n) < 10**30 else f"{float(n):g}"
+    return s

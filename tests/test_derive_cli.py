@@ -128,18 +128,24 @@ def test_derive_surface_friction_map_and_plot(capsys, tmp_path):
 def test_progress_bar_draws_on_a_terminal_only():
     import io
 
-    from asperity.progress import progress_bar
+    from asperity.progress import QUIET_SECONDS, chunks, progress_bar, report
 
     class Tty(io.StringIO):
         def isatty(self):
             return True
-    bar = progress_bar("facets")
-    bar.stream, bar.on = Tty(), True
+    bar = progress_bar("facets", stream=Tty())
     with bar:
+        bar(0.1)                                # within the first half second: silent
+        assert not bar.shown
+        bar.start -= QUIET_SECONDS
         bar(0.5)
-        bar(1.0)
+        report(1.0, "locking share")            # library code reports to the active bar
+        assert [(a, b) for a, b in chunks(10, 4)] == [(0, 4), (4, 8), (8, 10)]
     text = bar.stream.getvalue()
-    assert "50.0 %" in text and "100.0 %" in text and text.endswith("\r")
+    assert "50.0 %" in text and "100.0 %" in text and "locking share" in text
+    assert "s left" in text and text.endswith("\r")
     quiet = progress_bar("facets")          # pytest's stderr is not a terminal
+    quiet.start -= QUIET_SECONDS
     quiet(0.5)
     assert not quiet.shown
+    report(0.5)                             # no active bar: nothing happens

@@ -1,15 +1,59 @@
 """Subcommands of the ``asperity`` command (see :mod:`asperity.cli.main`)."""
 from __future__ import annotations
 
+import math
+
+
+def json_text(obj) -> str:
+    """``obj`` as indented JSON; a NaN or infinity anywhere is refused in one line naming
+    its place (a result that is not a number must never reach a file or a pipe)."""
+    import json
+    where = _non_finite(obj, "")
+    if where is not None:
+        from ..errors import AsperityError
+        raise AsperityError(f"the result is not a finite number at {where or 'the top'}; "
+                            "the inputs are outside what the model can compute")
+    return json.dumps(obj, indent=2, allow_nan=False)
+
+
+def _non_finite(x, path: str):
+    if isinstance(x, float) and not math.isfinite(x):
+        return path
+    if isinstance(x, dict):
+        for k, v in x.items():
+            found = _non_finite(v, f"{path}.{k}" if path else str(k))
+            if found is not None:
+                return found
+    elif isinstance(x, (list, tuple)):
+        for i, v in enumerate(x):
+            found = _non_finite(v, f"{path}[{i}]")
+            if found is not None:
+                return found
+    return None
+
 
 def emit(args, obj: dict, text: str, written: tuple[tuple[str, str], ...] = ()) -> None:
     """Print a command's result: one JSON object with --json, else ``text`` and a line
-    for each file written (``written``: (what, path) pairs; the --plot file is added)."""
-    import json
+    for each file written (``written``: (what, path) pairs; the --plot file is added).
+    When an output file goes to standard output (``-``) the text goes to stderr."""
+    import sys
+    outputs = [(what, path) for what, path in (*written, ("plot", getattr(args, "plot", None)))
+               if path]
+    stream = sys.stderr if any(str(p) == "-" for _, p in outputs) else sys.stdout
     if getattr(args, "json", False):
-        print(json.dumps(obj, indent=2, allow_nan=False))
+        print(json_text(obj), file=stream)
         return
-    print(text)
-    for what, path in (*written, ("plot", getattr(args, "plot", None))):
-        if path:
-            print(f"{what} written to {path}")
+    print(text, file=stream)
+    written_lines(outputs, stream)
+
+
+def written_lines(outputs, stream=None) -> None:
+    """Print "WHAT written to PATH" for each (what, path) once the files are committed."""
+    import sys
+
+    from ..io import on_commit
+    stream = stream or sys.stdout
+    for what, path in outputs:
+        where = "standard output" if str(path) == "-" else path
+        on_commit(lambda what=what, where=where: print(f"{what} written to {where}",
+                                                       file=stream))

@@ -2,7 +2,7 @@
 streamed facet reservoir."""
 from __future__ import annotations
 
-import json
+from . import json_text
 
 PARTS = ("closed-form", "springs", "facets", "microslip", "moreau")
 
@@ -52,7 +52,7 @@ def main(args) -> int:
     if "microslip" in parts:
         out["microslip"] = bench.bench_microslip()
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(json_text(out))
         return 0
     for k, v in out.get("closed_form", {}).items():
         print(f"closed form, {k:9s}: {v['evaluations_per_second']:.3e} reservoir evaluations/s")

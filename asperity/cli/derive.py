@@ -37,7 +37,8 @@ def add_parser(sub) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
                                                       "(surfaces: and a height-map preview)")
-    p.set_defaults(func=main)
+    p.set_defaults(func=main, outputs=[("--plot", "plot", True)],
+                   inputs=["texture", "friction_map"])
 
 
 def run(args) -> dict:

@@ -35,7 +35,8 @@ def add_parser(sub) -> None:
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (law, source, fit quality, output file)")
     p.add_argument("--plot", metavar="FILE.png", help="draw C, D, the data and the sliding rule")
-    p.set_defaults(func=main)
+    p.set_defaults(func=main, outputs=[("-o", "output", False), ("--plot", "plot", True)],
+                   inputs=["texture", "friction_map"])
 
 
 def run(args):

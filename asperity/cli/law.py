@@ -2,7 +2,8 @@
 from __future__ import annotations
 
 import argparse
-import json
+
+from . import json_text, written_lines
 
 
 def add_parser(sub) -> None:
@@ -30,7 +31,9 @@ def add_parser(sub) -> None:
     p.add_argument("--abaqus", metavar="FILE.inp",
                    help="write an Abaqus *FRICTION, ANISOTROPIC block (symmetric orthotropic "
                         "approximation)")
-    p.set_defaults(func=main)
+    p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False),
+                                       ("--abaqus", "abaqus", False)],
+                   inputs=["gauge"])
 
 
 def run(args) -> dict:
@@ -52,24 +55,29 @@ def run(args) -> dict:
 
 
 def main(args) -> int:
+    import sys
     gl, obj = run(args)
+    outputs = [(what, getattr(args, flag)) for flag, what in
+               (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot"))
+               if getattr(args, flag)]
+    stream = sys.stderr if any(v == "-" for _, v in outputs) else sys.stdout
+
+    def say(text):
+        print(text, file=stream)
     if args.json:
-        print(json.dumps(obj, indent=2, allow_nan=False))
-    elif args.psi is not None:
-        line = (f"psi = {obj['psi_deg']:g} deg: p = ({obj['p'][0]:.6f}, {obj['p'][1]:.6f})  "
-                f"tangential = {obj['tangential']:.6f}  lateral = {obj['lateral']:.6f}  "
-                f"alpha = {obj['alpha']:.6f}")
-        print(line)
+        say(json_text(obj))
+        return 0
+    if args.psi is not None:
+        say(f"psi = {obj['psi_deg']:g} deg: p = ({obj['p'][0]:.6f}, {obj['p'][1]:.6f})  "
+            f"tangential = {obj['tangential']:.6f}  lateral = {obj['lateral']:.6f}  "
+            f"alpha = {obj['alpha']:.6f}")
         if obj["set_valued"]:
             a, b = obj["segment"]
-            print(f"set-valued: any force on the segment ({a[0]:.6f}, {a[1]:.6f}) -- "
-                  f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
+            say(f"set-valued: any force on the segment ({a[0]:.6f}, {a[1]:.6f}) -- "
+                f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
     else:
         from ..laws.summary import format_fit
-        print(f"gauge file: {args.gauge}")
-        print(format_fit(gl))
-    for flag, what in (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot")):
-        v = getattr(args, flag)
-        if v and not args.json:
-            print(f"{what} written to {v}")
+        say(f"gauge file: {args.gauge}")
+        say(format_fit(gl))
+    written_lines(outputs, stream)
     return 0

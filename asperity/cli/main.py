@@ -1,8 +1,17 @@
-"""The ``asperity`` command: one module per subcommand, user errors in one line."""
+"""The ``asperity`` command: one module per subcommand, user errors in one line.
+
+Every subcommand runs the same way: the arguments are parsed (a usage error is one line,
+exit status 2), the output paths it declares are checked before any work, the work runs
+inside an output transaction (its files are committed together at the end, or not at all),
+and whatever goes wrong is reported in one line: a user error exits with 1, Ctrl-C with
+130, an output pipe closed early (``| head``) quietly.  An unexpected internal error is
+one line too (status 70), with the full traceback when ``ASPERITY_DEBUG=1``.
+"""
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from .. import __version__
@@ -17,33 +26,102 @@ COMMANDS = {
     "slide": "slide",
     "risk": "risk",
 }
+EXIT_USAGE = 2
+EXIT_INTERRUPTED = 130
+EXIT_INTERNAL = 70
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with a one-line usage error (the usage itself is in --help)."""
+
+    def error(self, message: str):
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="asperity",
         description="Direction-dependent friction from surface textures: "
                     "texture -> friction -> law -> consequences.")
     parser.add_argument("--version", action="version", version=f"asperity {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
     for name, mod in COMMANDS.items():
         importlib.import_module(f"asperity.cli.{mod}").add_parser(sub)
     return parser
 
 
+def check_declared_outputs(args) -> None:
+    """The outputs a subcommand declares (``set_defaults(outputs=[(flag, dest, figure)],
+    inputs=[dest, ...])``): each usable, none twice, none an input."""
+    from ..io import check_outputs
+    outputs = [(flag, getattr(args, dest, None), figure)
+               for flag, dest, figure in getattr(args, "outputs", ())]
+    inputs = [getattr(args, dest, None) for dest in getattr(args, "inputs", ())]
+    check_outputs(outputs, [x for x in inputs if isinstance(x, str)])
+
+
 def main(argv: list[str] | None = None) -> int:
     from ..errors import AsperityError
+    from ..io import output_transaction
+    from ..progress import progress_bar
     parser = build_parser()
     args = parser.parse_args(argv)
+    name = f"asperity {args.command}"
     try:
-        return int(args.func(args) or 0)
+        check_declared_outputs(args)
+        with output_transaction(), progress_bar(args.command):
+            code = int(args.func(args) or 0)
+        sys.stdout.flush()
+        return code
     except AsperityError as exc:
-        print(f"asperity {args.command}: error: {exc}", file=sys.stderr)
+        _say(f"{name}: error: {_one_line(exc)}")
         return 1
     except KeyboardInterrupt:
-        print(f"asperity {args.command}: interrupted", file=sys.stderr)
-        return 130
+        _say(f"{name}: interrupted (no output written)")
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:
+        _quiet_stdout()
+        return 0
+    except MemoryError:
+        _say(f"{name}: error: out of memory; ask for less (fewer directions, a smaller scan, "
+             "fewer steps) or use a machine with more memory")
+        return 1
+    except RecursionError:
+        _say(f"{name}: error: input nested too deeply to be processed")
+        return 1
+    except OSError as exc:
+        where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
+        _say(f"{name}: error:{where} {exc.strerror or type(exc).__name__}")
+        return 1
+    except Exception as exc:                         # a bug: still one line, never a traceback
+        if os.environ.get("ASPERITY_DEBUG"):
+            raise
+        _say(f"{name}: internal error: {type(exc).__name__}: {_one_line(exc)} (please report "
+             "it; ASPERITY_DEBUG=1 shows the traceback)")
+        return EXIT_INTERNAL
+
+
+def _one_line(exc: BaseException, limit: int = 400) -> str:
+    text = " ".join(str(exc).split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _say(line: str) -> None:
+    try:
+        print(line, file=sys.stderr)
+    except (BrokenPipeError, OSError):
+        pass
+
+
+def _quiet_stdout() -> None:
+    """stdout's reader has gone: point stdout at /dev/null so the interpreter's final
+    flush does not raise again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover

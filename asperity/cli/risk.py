@@ -57,7 +57,8 @@ def add_parser(sub) -> None:
     p.add_argument("--plot", metavar="FILE.png",
                    help="node displacement against cycles (and the strip's profiles), or the "
                         "risk map with --map")
-    p.set_defaults(func=main)
+    p.set_defaults(func=main, outputs=[("--plot", "plot", True)],
+                   inputs=["texture", "assembly", "friction_map"])
 
 
 def _settings(args, asm):
@@ -107,7 +108,7 @@ def parse_map_axis(text: str):
     """'alpha=5:40:8' -> ('alpha', values)."""
     import numpy as np
 
-    from ..errors import check_int, check_range
+    from ..errors import check_int, check_range, number_from_text
     if "=" not in text:
         raise InputError(f"--map takes P=LO:HI:N with P one of {', '.join(MAP_PARAMS)}, "
                          f"got {text!r}")
@@ -118,9 +119,9 @@ def parse_map_axis(text: str):
     parts = rng.split(":")
     if len(parts) != 3:
         raise InputError(f"--map {name} takes LO:HI:N, got {rng!r}")
-    lo = check_range(f"--map {name} LO", parts[0])
-    hi = check_range(f"--map {name} HI", parts[1])
-    n = check_int(f"--map {name} N", parts[2], 2, 200)
+    lo = check_range(f"--map {name} LO", number_from_text(f"--map {name} LO", parts[0]))
+    hi = check_range(f"--map {name} HI", number_from_text(f"--map {name} HI", parts[1]))
+    n = check_int(f"--map {name} N", number_from_text(f"--map {name} N", parts[2]), 2, 200)
     if not hi > lo:
         raise InputError(f"--map {name} needs LO < HI, got {lo:g}:{hi:g}")
     return name, np.linspace(lo, hi, n)

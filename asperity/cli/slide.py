@@ -3,8 +3,9 @@ solver until it sticks (deflection of the path by anisotropic friction)."""
 from __future__ import annotations
 
 import argparse
-import json
 import math
+
+from . import json_text, written_lines
 
 LAWS = ("coulomb", "ellipse", "collinear", "star")
 #: rows of the CSV table / points of the plot at most (every k-th step is kept)
@@ -51,7 +52,8 @@ def add_parser(sub) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the path")
     p.add_argument("--csv", metavar="FILE.csv", help="write t,x,y,vx,vy of the path")
-    p.set_defaults(func=main)
+    p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False)],
+                   inputs=["gauge"])
 
 
 def build_law(args):
@@ -136,25 +138,28 @@ def run(args):
 def main(args) -> int:
     import sys
     law, res, obj = run(args)
+    outputs = [(what, getattr(args, flag)) for flag, what in
+               (("csv", "path table"), ("plot", "plot")) if getattr(args, flag)]
+    stream = sys.stderr if any(v == "-" for _, v in outputs) else sys.stdout
+
+    def say(text):
+        print(text, file=stream)
     if args.json:
-        print(json.dumps(obj, indent=2, allow_nan=False))
+        say(json_text(obj))
     else:
-        print(f"law: {law.description}")
+        say(f"law: {law.description}")
         if obj["rest"] is not None:
-            print(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m after "
-                  f"{obj['stop_time']:.6g} s ({obj['steps']} steps of {obj['dt']:g} s), "
-                  f"distance {obj['distance']:.6g} m")
+            say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m after "
+                f"{obj['stop_time']:.6g} s ({obj['steps']} steps of {obj['dt']:g} s), "
+                f"distance {obj['distance']:.6g} m")
         else:
-            print(f"still moving at t = {obj['t_end']:g} s: position "
-                  f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m")
-        print(f"deflection: {obj['deflection_deg']:+.4f} deg (from the initial velocity to the "
-              f"line start -> {'rest' if obj['rest'] is not None else 'end'})")
-        print(f"fixed-point iterations per step: max {obj['max_iterations_used']}, mean "
-              f"{obj['mean_iterations']:.3g}")
-        for flag, what in (("csv", "path table"), ("plot", "plot")):
-            v = getattr(args, flag)
-            if v:
-                print(f"{what} written to {v}")
+            say(f"still moving at t = {obj['t_end']:g} s: position "
+                f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m")
+        say(f"deflection: {obj['deflection_deg']:+.4f} deg (from the initial velocity to the "
+            f"line start -> {'rest' if obj['rest'] is not None else 'end'})")
+        say(f"fixed-point iterations per step: max {obj['max_iterations_used']}, mean "
+            f"{obj['mean_iterations']:.3g}")
+        written_lines(outputs, stream)
     if res.status != "ok":
         print(f"asperity slide: error: {res.status_message()}", file=sys.stderr)
         return EXIT_NOT_CONVERGED

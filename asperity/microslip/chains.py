@@ -114,8 +114,8 @@ class Chain:
 
 
 def _check_mu(name, x) -> float:
-    v = check_range(name, x, 0.0, None)
-    return v
+    """A slider's coefficient: >= 0, infinite for a self-locking direction."""
+    return check_range(name, x, 0.0, None, allow_inf=True)
 
 
 def _positive(name, x, unit="") -> float:

@@ -61,7 +61,8 @@ class SpringModel:
         kf = self.k_f
         if isinstance(kf, str) and kf.strip().lower() in ("inf", "infinity"):
             kf = math.inf
-        object.__setattr__(self, "k_f", check_range("k_f", kf, 0.0, None, low_open=True))
+        object.__setattr__(self, "k_f", check_range("k_f", kf, 0.0, None, low_open=True,
+                                                       allow_inf=True))
         pre = check_range("preload", self.preload)
         if not math.isfinite(pre):
             raise InputError(f"preload must be finite, got {pre:g}")

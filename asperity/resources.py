@@ -1,0 +1,69 @@
+"""What a request costs, checked before the work starts.
+
+:func:`check_memory` refuses a computation whose estimated memory does not fit in what the
+machine (or its container) has free, and :func:`check_work` one whose number of elementary
+steps is beyond any useful run, each with one line that names the limit and the flag (or
+file key) that lowers the cost.  Estimates are deliberately simple (bytes per element
+times elements); they only have to catch what cannot possibly fit.
+"""
+from __future__ import annotations
+
+import os
+
+from .errors import ResourceError
+
+#: share of the free memory a single computation may plan to use
+MEMORY_SHARE = 0.8
+
+
+def available_memory() -> int:
+    """Bytes of memory free for this process: MemAvailable of /proc/meminfo, bounded by a
+    cgroup limit when one is set; the physical memory where /proc is missing."""
+    free = None
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    free = int(line.split()[1]) * 1024
+                    break
+    except (OSError, ValueError, IndexError):
+        pass
+    if free is None:
+        try:
+            free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        except (ValueError, OSError, AttributeError):
+            free = 8 << 30
+    for path in ("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"):
+        try:
+            with open(path, encoding="ascii") as fh:
+                text = fh.read().strip()
+            if text.isdigit():
+                free = min(free, int(text))
+        except OSError:
+            continue
+    return int(free)
+
+
+def format_bytes(n: float) -> str:
+    for unit, size in (("TB", 1 << 40), ("GB", 1 << 30), ("MB", 1 << 20), ("kB", 1 << 10)):
+        if n >= size:
+            return f"{n / size:.3g} {unit}"
+    return f"{n:.0f} bytes"
+
+
+def check_memory(need_bytes: float, what: str, lower: str) -> None:
+    """Refuse ``what`` if it needs more than :data:`MEMORY_SHARE` of the free memory.
+
+    lower : how to lower the cost, e.g. "lower --directions" or "use fewer nodes (n)"
+    """
+    free = available_memory()
+    if need_bytes > MEMORY_SHARE * free:
+        raise ResourceError(f"{what} needs about {format_bytes(need_bytes)} of memory, more than "
+                            f"the {format_bytes(MEMORY_SHARE * free)} this machine can give it; "
+                            f"{lower}")
+
+
+def check_work(steps: float, limit: float, what: str, lower: str) -> None:
+    """Refuse ``what`` if it takes more than ``limit`` elementary steps."""
+    if steps > limit:
+        raise ResourceError(f"{what} takes {steps:.3g} steps, at most {limit:.3g}; {lower}")
