@@ -83,18 +83,19 @@ def check_output(path: str | Path | None, what: str, *, figure: bool = False,
         return
     if not p.strip():
         raise InputError(f"{what}: empty file name")
+    if _special(p):
+        if not os.access(p, os.W_OK):
+            raise InputError(f"{what}: {p!r} cannot be written (permission denied)")
+    elif _resolve(p).is_dir():
+        raise InputError(f"{what}: {p!r} is a folder, not a file")
     if figure:
-        fmt = Path(p).suffix.lower().lstrip(".")
+        fmt = Path(p).suffix.lower().lstrip(".") or ("png" if _special(p) else "")
         if fmt not in FIGURE_FORMATS:
             raise InputError(f"{what}: unsupported figure format {Path(p).suffix or '(none)'!r}; "
                              f"use one of .{', .'.join(FIGURE_FORMATS[:6])} ...")
     if _special(p):
-        if not os.access(p, os.W_OK):
-            raise InputError(f"{what}: {p!r} cannot be written (permission denied)")
         return                                   # a device or FIFO: written in place
     target = _resolve(p)
-    if target.is_dir():
-        raise InputError(f"{what}: {p!r} is a folder, not a file")
     folder = target.parent
     if not folder.is_dir():
         raise InputError(f"{what}: output folder {str(Path(p).parent)!r} does not exist")
@@ -222,7 +223,10 @@ def output_transaction():
                     tmp.unlink()
         raise
     _pending.reset(token)
-    files = [(t, p) for t, p in pending if t is not None]
+    # devices and standard output first: they are written in place and may still fail
+    # (a full device, a closed pipe); the renames of regular files come last
+    files = sorted(((t, p) for t, p in pending if t is not None),
+                   key=lambda tp: not (tp[1] == STDOUT or _special(tp[1])))
     for i, (tmp, path) in enumerate(files):
         try:
             _commit(tmp, path)
@@ -268,6 +272,8 @@ def read_text_file(path: str | Path, what: str, error=InputError,
     if not p.is_file():
         if p.is_dir():
             raise error(f"{what} {str(p)!r} is a folder, not a file")
+        if p.exists():
+            raise error(f"{what} {str(p)!r} is not a regular file (a device or a pipe)")
         raise error(f"{what} {str(p)!r} does not exist")
     try:
         size = p.stat().st_size

@@ -79,3 +79,31 @@ def as_nobody():
             os.setgid(65534)
             os.setuid(65534)
     return apply
+
+
+class read_only:
+    """Make ``folder`` unwritable for the test's child processes, also when they run as
+    root (for whom permission bits do not count): the immutable attribute (chattr +i) then,
+    else the permission bits.  Restored on exit."""
+
+    def __init__(self, folder: Path):
+        self.folder = Path(folder)
+        self.how = None
+
+    def __enter__(self):
+        if os.geteuid() != 0:
+            os.chmod(self.folder, 0o555)
+            self.how = "chmod"
+            return self
+        r = subprocess.run(["chattr", "+i", str(self.folder)], capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"cannot make {self.folder} read-only as root: {r.stderr.strip()}")
+        self.how = "chattr"
+        return self
+
+    def __exit__(self, *exc):
+        if self.how == "chattr":
+            subprocess.run(["chattr", "-i", str(self.folder)], check=True)
+        elif self.how == "chmod":
+            os.chmod(self.folder, 0o755)
+        return False
