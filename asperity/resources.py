@@ -33,6 +33,13 @@ def available_memory() -> int:
             free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         except (ValueError, OSError, AttributeError):
             free = 8 << 30
+    try:
+        import resource
+        soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+        if soft != resource.RLIM_INFINITY and soft > 0:    # ulimit -v: what is left of it
+            free = min(free, max(soft - _mapped_bytes(), 0))
+    except (ImportError, OSError, ValueError):
+        pass
     for path in ("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"):
         try:
             with open(path, encoding="ascii") as fh:
@@ -42,6 +49,18 @@ def available_memory() -> int:
         except OSError:
             continue
     return int(free)
+
+
+def _mapped_bytes() -> int:
+    """Address space this process maps now (VmSize), 0 where unknown."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmSize:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
 
 
 def format_bytes(n: float) -> str:

@@ -40,7 +40,7 @@ def test_friction_overrides_follow_the_sign_convention():
     assert base.mu_plus == pytest.approx(0.185697, abs=1e-6)
     for f in (turned, part):
         assert (f.mu_plus, f.mu_minus) == pytest.approx((base.mu_minus, base.mu_plus), rel=1e-12)
-    with pytest.raises(InputError, match="textured must be support or part"):
+    with pytest.raises(InputError, match="textured must be one of support, part"):
         assembly_friction(asm, tex, textured="both")
     spec = load_assembly(SURF / "two-node-spec.toml")               # explicit mu+/mu-
     with pytest.raises(InputError, match="applies to a texture or gauge"):

@@ -21,8 +21,9 @@ def add_parser(sub) -> None:
         description="Cumulative microslip check (SPEC.md 5): the texture's friction along the "
                     "assembly's slip axis (mu+ resists sliding towards +x, mu- towards -x), "
                     "the assembly (two-node model or strip, see README) marched through its "
-                    "load cycles until the cycle is stabilised, and the verdict: shakedown or "
-                    "ratchet, with dT_c, the margin dT_range/(2 dT_c), the drift per cycle "
+                    "load cycles until the cycle is stabilised, and the verdict: shakedown (no "
+                    "slip after the first cycles), alternating-slip (slip back and forth every "
+                    "cycle, no drift), ratchet (a drift every cycle) or slides-off, with dT_c, the margin dT_range/(2 dT_c), the drift per cycle "
                     "(negative: towards -x), the drift after N cycles and the cycles until the "
                     "tolerance is reached.  Without a texture the assembly file's [friction] "
                     "table is used.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
@@ -41,12 +42,14 @@ def add_parser(sub) -> None:
                         "friction.slip_axis_deg, else the principal direction t_a)")
     p.add_argument("--textured", choices=["support", "part"], default=None,
                    help="which face carries the texture (default: the file's, else support)")
-    p.add_argument("--max-marched", type=int, default=200, metavar="N",
-                   help="cycles marched at most while looking for the stabilised cycle")
-    p.add_argument("--dynamic", type=int, nargs="?", const=80000, default=None, metavar="STEPS",
+    p.add_argument("--max-marched", default="200", metavar="N",
+                   help="cycles marched at most while looking for the stabilised cycle "
+                        "(2 to 1e6)")
+    p.add_argument("--dynamic", nargs="?", const="80000", default=None, metavar="STEPS",
                    help="also solve the assembly by Moreau time-stepping (small masses, slow "
                         "loading: STEPS steps per load segment, default 80000) over 3 cycles "
-                        "and report its drift per cycle beside the quasi-static one (they "
+                        "and report its drift per cycle beside the quasi-static one (100 to "
+                        "1e7 steps; they "
                         "agree to first order in 1/STEPS: the two-node SPEC case to 1e-3 at "
                         "80000; the 201-node bushing strip to 0.54, 0.23, 0.095 at 8e4, 3.2e5, "
                         "1.28e6 steps)")
@@ -61,21 +64,28 @@ def add_parser(sub) -> None:
                    inputs=["texture", "assembly", "friction_map"])
 
 
+def _whole(flag: str, text, low: int, high: int) -> int:
+    """A whole number typed on the command line ('200', '1e7'), in [low, high]."""
+    from ..errors import check_int, number_from_text
+    return check_int(flag, number_from_text(flag, text), low, high)
+
+
 def _settings(args, asm):
-    """(cycles, tolerance in m, max marched) from the flags, checked with the flags' names."""
-    from ..errors import check_int, check_range
-    cycles = args.cycles if args.cycles is not None else (asm.cycles or 1e6)
-    cycles = check_range("--cycles", cycles, 1.0, 1e15)
+    """(cycles, tolerance in m, max marched, dynamic steps) from the flags, checked with
+    the flags' names before any work."""
+    from ..errors import check_range
+    from ..microslip.limits import check_cycles, check_tolerance
+    cycles = check_cycles("--cycles", args.cycles) if args.cycles is not None else (
+        asm.cycles or 1e6)
     if args.tolerance is not None:
-        tol = check_range("--tolerance", args.tolerance, 0.0, None, low_open=True, unit="mm") * 1e-3
+        tol = check_tolerance("--tolerance", args.tolerance, scale=1e-3, unit="mm")
     else:
         tol = asm.tolerance
-    mm = check_int("--max-marched", args.max_marched, 2, 1_000_000)
+    mm = _whole("--max-marched", args.max_marched, 2, 1_000_000)
     if args.slip_axis is not None:
         check_range("--slip-axis", args.slip_axis, -360.0, 360.0, unit="deg")
-    if args.dynamic is not None:
-        check_int("--dynamic", args.dynamic, 100, 10_000_000)
-    return cycles, tol, mm
+    dyn = None if args.dynamic is None else _whole("--dynamic", args.dynamic, 100, 10_000_000)
+    return cycles, tol, mm, dyn
 
 
 def _texture_given(args) -> bool:
@@ -88,7 +98,7 @@ def run(args) -> dict:
     from ..microslip.assembly import load_assembly
     from ..microslip.risk import assembly_friction, assess_assembly, risk_map
     asm = load_assembly(args.assembly)
-    cycles, tol, mm = _settings(args, asm)
+    cycles, tol, mm, dyn = _settings(args, asm)
     texture = texture_from_args(args)[0] if _texture_given(args) else None
     if args.map is not None:
         x, y = (parse_map_axis(t) for t in args.map)
@@ -101,7 +111,7 @@ def run(args) -> dict:
                                  contact=args.contact, slip_axis_deg=args.slip_axis,
                                  textured=args.textured)
     return assess_assembly(asm, friction, cycles=cycles, tolerance=tol, max_marched=mm,
-                           dynamic_steps=args.dynamic)
+                           dynamic_steps=dyn)
 
 
 def parse_map_axis(text: str):

@@ -1,5 +1,6 @@
-"""Numba kernels of the slider chain (physics in :mod:`asperity.microslip.quasi_static`
-and :mod:`asperity.microslip.dynamic`).
+"""Numba kernels of the slider chain, quasi-static (physics in
+:mod:`asperity.microslip.quasi_static`; the Moreau kernel of :mod:`asperity.microslip.dynamic`
+is in :mod:`asperity.microslip._dynamic_kernels`).
 
 Array-in/array-out loops, no Python objects, no validation (the wrappers validate and
 coerce).  Kernels cannot raise: failures come back as integer status codes (``STATUS_*``),
@@ -30,8 +31,13 @@ STATUS_NO_CONVERGENCE = 2  # the active-set iteration (or the prox fixed point) 
 
 #: converged when max |grad Phi| <= _GTOL x the largest force in the sums
 _GTOL = 1e-11
-#: Hessian regularisation (x k_t) when every slider slides (rigid mode)
+#: Hessian regularisation when every slider slides (rigid mode): x the smaller of the
+#: node's contact stiffness and its elements' stiffness, so that it never stiffens the
+#: chain's deformation modes (a bed much stiffer than the chain would else slow Newton)
 _REG = 1e-6
+#: from this Newton iteration on, an iteration that no longer moves u (within rounding)
+#: ends the increment if the gradient is at the rounding of the force terms
+_STALL_CHECK = 20
 
 
 @njit(cache=True)
@@ -82,7 +88,8 @@ def _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, g):
         g[i] = -F * fw[i]
         phi -= F * fw[i] * u[i]
     for e in range(n - 1):
-        d = u[e + 1] - u[e] - alpha_T * le[e] * dT
+        th = alpha_T * le[e] * dT
+        d = u[e + 1] - u[e] - th
         Ne = kb[e] * d
         phi += 0.5 * Ne * d
         g[e] -= Ne
@@ -111,6 +118,58 @@ def _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, g):
         if abs(g[i]) > gmax:
             gmax = abs(g[i])
     return phi, gmax, scale
+
+
+@njit(cache=True)
+def _rounding_scale(kb, le, kt, alpha_T, dT, s_old, u):
+    """1e-3 x the largest term of an element force kb (u_{e+1} - u_e - alpha_T le dT) or of
+    a contact force kt (u - s): a force that is a small difference of large terms is only
+    known to the rounding of the large ones, so a gradient below _GTOL x this (~50
+    roundings) is as small as it can get (the test of a stalled iteration)."""
+    n = u.size
+    rnd = 0.0
+    for e in range(n - 1):
+        a = kb[e] * max(abs(alpha_T * le[e] * dT), abs(u[e]), abs(u[e + 1]))
+        if a > rnd:
+            rnd = a
+    for i in range(n):
+        a = kt[i] * max(abs(u[i]), abs(s_old[i]))
+        if a > rnd:
+            rnd = a
+    return 1e-3 * rnd
+
+
+@njit(cache=True)
+def _rigid_line_search(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, du, un, gn):
+    """The step t in (0, 1] minimising Phi(u + t du) (convex, C1: bisection on the sign of
+    its derivative).  Used when every slider slides: the regularised Newton step along the
+    rigid mode is then huge and may overshoot far past the state where a slider sticks
+    (a line search that only asks for decrease would then crawl back)."""
+    n = u.size
+    a, b = 0.0, 1.0
+    for i in range(n):
+        un[i] = u[i] + du[i]
+    _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, un, gn)
+    d = 0.0
+    for i in range(n):
+        d += gn[i] * du[i]
+    if d <= 0.0:
+        return 1.0
+    for _ in range(60):
+        t = 0.5 * (a + b)
+        for i in range(n):
+            un[i] = u[i] + t * du[i]
+        _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, un, gn)
+        d = 0.0
+        for i in range(n):
+            d += gn[i] * du[i]
+        if d > 0.0:
+            b = t
+        else:
+            a = t
+        if b - a <= 1e-14 * b:
+            break
+    return b if a == 0.0 else a
 
 
 @njit(cache=True)
@@ -149,13 +208,22 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
             # Hessian of the current piece; with every slider sliding the rigid mode is
             # free: a small regularisation keeps the step finite (the line search and the
             # gradient test decide, so the solution does not depend on it)
-            kd[i] = kt[i] if cls[i] == 0 else (_REG * kt[i] if nst == 0 else 0.0)
+            if cls[i] == 0:
+                kd[i] = kt[i]
+            elif nst == 0:
+                kd[i] = _REG * min(kt[i], kb[i - 1] if i > 0 else kt[i],
+                                   kb[i] if i < n - 1 else kt[i])
+            else:
+                kd[i] = 0.0
         solve_tridiag(kb, kd, g, du, cw, dw)
         slope = 0.0
         for i in range(n):
             slope -= g[i] * du[i]          # g holds -grad
         step = 1.0
         accepted = False
+        if nst == 0:
+            step = _rigid_line_search(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, du, un,
+                                      gn)
         for _ in range(60):
             for i in range(n):
                 un[i] = u[i] + step * du[i]
@@ -168,14 +236,26 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
             step *= 0.5
         if not accepted:
             # no descent left within rounding: a solution if the gradient is small
-            if gmax <= 1e-8 * scale:
+            if gmax <= 1e-8 * scale or gmax <= _GTOL * _rounding_scale(kb, le, kt, alpha_T,
+                                                                      dT, s_old, u):
                 code = STATUS_OK
                 its = it
             break
+        moved = 0.0
+        size = 0.0
+        if it >= _STALL_CHECK:
+            for i in range(n):
+                moved = max(moved, abs(un[i] - u[i]))
+                size = max(size, abs(u[i]))
         for i in range(n):
             u[i] = un[i]
             g[i] = gn[i]
         phi, gmax, scale = phin, gmaxn, max(scalen, cap)
+        if it >= _STALL_CHECK and moved <= 4e-16 * size and gmax <= _GTOL * max(
+                scale, _rounding_scale(kb, le, kt, alpha_T, dT, s_old, u)):
+            code = STATUS_OK                   # stalled at the rounding of u
+            its = it
+            break
         nstn = _classify(kt, cp, cm, s_old, u, clsn)
         same = nstn == nst and step == 1.0 and nst > 0
         if same:
@@ -208,13 +288,49 @@ def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
 
 
 @njit(cache=True)
-def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, status_seq,
-          slip_seq, rec_nodes, rec_u, max_iter):
+def _least_motion(kt, cp, cm, u_old, s_old, u, s, q):
+    """Select among equal solutions.  When every contact force is at its threshold after a
+    converged increment (sliding, or sticking exactly at the threshold), the incremental
+    energy is flat along the rigid translation u + t (its slope, the sum of the slider
+    forces less F, is zero there): a whole interval of t are exact solutions (e.g. mu+ =
+    mu-, both ends of a bar sliding apart).  Take the one that moves the chain least, t
+    minimising sum kt_i (u_i + t - u_old_i)^2 while every slider keeps its direction: the
+    limit of any small viscosity, and no drift for a symmetric contact.  q: the contact
+    forces (in); u, s updated."""
+    n = u.size
+    lo = -np.inf
+    hi = np.inf
+    num = 0.0
+    den = 0.0
+    for i in range(n):
+        v = u[i] - s_old[i]
+        if q[i] >= cp[i] * (1.0 - 1e-9):
+            lo = max(lo, cp[i] / kt[i] - v)
+        elif q[i] <= -cm[i] * (1.0 - 1e-9):
+            hi = min(hi, -cm[i] / kt[i] - v)
+        else:
+            return                                  # a contact sticks: the solution is unique
+        num -= kt[i] * (u[i] - u_old[i])
+        den += kt[i]
+    lo = min(lo, 0.0)
+    hi = max(hi, 0.0)
+    t = min(max(num / den, lo), hi)
+    if t == 0.0:
+        return
+    for i in range(n):
+        u[i] += t
+        s[i] = u[i] - q[i] / kt[i]
+
+
+@njit(cache=True)
+def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, slip_seq, rec_nodes,
+          rec_u, max_iter):
     """March the load points (dT_seq[j], F_seq[j]) from the state (u, s) (updated in place).
+    The state carries everything: a sequence marched in pieces (consecutive slices of the
+    arrays) gives exactly the same result as in one call.
 
     du_seq (m, n): displacement increments of the same points one cycle earlier, the
     starting guess of each increment (exact once the cycle is stabilised); overwritten.
-    status_seq (m, n) int8: the slider status over each increment (out).
     slip_seq (m,): the largest |slip| of a slider over each increment (out).
     rec_u (m, len(rec_nodes)): node displacements recorded at each point.
     Returns (code, index of the failing point or -1, total Newton iterations)."""
@@ -246,9 +362,9 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, status_s
                 s[i] = s_old[i]
                 u[i] = u_old[i]
             return code, j, iters
+        _least_motion(kt, cp, cm, u_old, s_old, u, s, q)
         smax = 0.0
         for i in range(n):
-            status_seq[j, i] = st[i]
             du_seq[j, i] = u[i] - u_old[i]
             d = abs(s[i] - s_old[i])
             if d > smax:
@@ -257,90 +373,3 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, status_s
         for k in range(rec_nodes.size):
             rec_u[j, k] = u[rec_nodes[k]]
     return STATUS_OK, -1, iters
-
-
-@njit(cache=True)
-def moreau_chain(kb, le, kt, cp, cm, fw, alpha_T, t_pts, dT_pts, F_pts, t_end, dt, mu_mass,
-                 ms_mass, damping, r_factor, tol, max_iter, u, v, s, w, xi, rec_every,
-                 rec_nodes, rec_u, rec_t):
-    """Moreau midpoint time-stepping of the chain with masses (SPEC.md section 4).
-
-    DOFs: node displacements u (masses mu_mass) and slider positions s (masses ms_mass);
-    forces at the midpoint q_M: elastic (bars, contact springs), thermal, external F(t) and
-    mass-proportional damping (rate ``damping``, implicit).  Each slider carries a friction
-    impulse -xi with xi in [-cm dt, cp dt], from the proximal equation
-        xi = prox_[-cm dt, cp dt](xi + r w_E),    r = r_factor / G,  G = 1/(ms (1 + damping dt/2))
-    solved by fixed-point iteration (tolerance ``tol`` relative to the impulse bound,
-    ``max_iter`` iterations) for every slider and step; 0 < r_factor < 2.
-    Loads are piecewise linear in time through (t_pts, dT_pts, F_pts).
-    Returns (code, steps, max iterations used, sum of iterations)."""
-    n = u.size
-    nseg = t_pts.size
-    fu = np.empty(n)
-    fs = np.empty(n)
-    um = np.empty(n)
-    sm = np.empty(n)
-    h = 0.5 * dt
-    dfac = 1.0 / (1.0 + damping * h)
-    afac = 1.0 - damping * h
-    t = 0.0
-    k = 0
-    step = 0
-    max_it = 0
-    sum_it = 0
-    nrec = 0
-    while t < t_end - 0.5 * dt:
-        tm = t + h
-        while k < nseg - 2 and tm > t_pts[k + 1]:
-            k += 1
-        f = (tm - t_pts[k]) / (t_pts[k + 1] - t_pts[k])
-        dT = dT_pts[k] + f * (dT_pts[k + 1] - dT_pts[k])
-        F = F_pts[k] + f * (F_pts[k + 1] - F_pts[k])
-        for i in range(n):
-            um[i] = u[i] + h * v[i]
-            sm[i] = s[i] + h * w[i]
-        for i in range(n):
-            qi = kt[i] * (um[i] - sm[i])
-            fu[i] = F * fw[i] - qi
-            fs[i] = qi
-        for e in range(n - 1):
-            Ne = kb[e] * (um[e + 1] - um[e] - alpha_T * le[e] * dT)
-            fu[e] += Ne
-            fu[e + 1] -= Ne
-        for i in range(n):
-            v[i] = (afac * v[i] + dt * fu[i] / mu_mass[i]) * dfac
-            wfree = (afac * w[i] + dt * fs[i] / ms_mass[i]) * dfac
-            G = dfac / ms_mass[i]
-            r = r_factor / G
-            lo = -cm[i] * dt
-            hi = cp[i] * dt
-            bound = max(min(cp[i], cm[i]) * dt, 1e-300)
-            x = xi[i]
-            conv = False
-            it = 0
-            for it in range(1, max_iter + 1):
-                wE = wfree - G * x
-                y = x + r * wE
-                xn = min(max(y, lo), hi)
-                d = abs(xn - x)
-                x = xn
-                if d <= tol * bound:
-                    conv = True
-                    break
-            xi[i] = x
-            sum_it += it
-            if it > max_it:
-                max_it = it
-            if not conv:
-                return STATUS_NO_CONVERGENCE, step, max_it, sum_it
-            w[i] = wfree - G * x
-            u[i] = um[i] + h * v[i]
-            s[i] = sm[i] + h * w[i]
-        t += dt
-        step += 1
-        if rec_every > 0 and step % rec_every == 0 and nrec < rec_t.size:
-            rec_t[nrec] = t
-            for j in range(rec_nodes.size):
-                rec_u[nrec, j] = u[rec_nodes[j]]
-            nrec += 1
-    return STATUS_OK, step, max_it, sum_it

@@ -10,9 +10,11 @@ width, so its pressure is in Pa, its bed stiffness in Pa/m and its force in N/m)
     model = "strip"                     # "strip" or "two-node"
     # strip: h (thickness), E (modulus), p (contact pressure), l (length along the slip
     #        axis), k_t (tangential bed stiffness per unit area), alpha_T (expansion relative
-    #        to the support, 1/K), n (nodes, default 201)
+    #        to the support, 1/K, signed: < 0 if the part expands less), n (nodes,
+    #        default 201)
     # two-node: k (bar stiffness, N/m), l0 (length), alpha_T, k_t (contact stiffness of
     #        one node, N/m), N (normal force on each node)
+    # (ranges: asperity.microslip.limits)
 
     [friction]                          # optional when a texture is given on the command line
     mu_plus = 0.2                       # explicit coefficients, or
@@ -45,14 +47,28 @@ it).
 """
 from __future__ import annotations
 
-import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError, check_int, check_range
+from ..errors import InputError, check_choice, check_range, check_text
 from ..io import read_toml
+from .limits import (
+    MU_FILE,
+    STRIP,
+    TWO_NODE,
+    check_alpha_T,
+    check_cycles,
+    check_dT,
+    check_force,
+    check_mu,
+    check_nodes,
+    check_param,
+    check_substeps,
+    check_tolerance,
+)
 
 MODELS = ("strip", "two-node")
 _TOP = {"name", "description", "assembly", "friction", "loading"}
@@ -125,13 +141,15 @@ class Assembly:
 
 
 def _err(where: str, exc: InputError) -> AssemblyFileError:
-    return AssemblyFileError(f"{where}.{exc}")
+    msg = str(exc)
+    return AssemblyFileError(msg if msg.startswith(f"{where}.") else f"{where}.{msg}")
 
 
 def _table(data: dict, key: str, allowed: set, path) -> dict:
     t = data.get(key, {})
     if not isinstance(t, dict):
-        raise AssemblyFileError(f"{path}: {key} must be a table [{key}]")
+        raise AssemblyFileError(f"{path}: {key} must be a table [{key}], got "
+                                f"{type(t).__name__} {_short(t)}")
     unknown = sorted(set(t) - allowed)
     if unknown:
         raise AssemblyFileError(f"{path}: unknown key {key}.{unknown[0]}; allowed: "
@@ -139,18 +157,28 @@ def _table(data: dict, key: str, allowed: set, path) -> dict:
     return t
 
 
-def _positive(where: str, name: str, value, unit: str) -> float:
+def _short(x) -> str:
+    text = repr(x)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _field(where: str, check, *args):
+    """check(*args) with a failure reported as ``where.message``."""
     try:
-        v = check_range(name, value, 0.0, None, low_open=True, unit=unit)
+        return check(*args)
+    except AssemblyFileError:
+        raise
     except InputError as exc:
         raise _err(where, exc) from None
-    if not math.isfinite(v):
-        raise AssemblyFileError(f"{where}.{name} must be finite, got {v:g}")
-    return v
 
 
 def load_assembly(path) -> Assembly:
-    """Read an assembly TOML file; one-line AssemblyFileError naming the field."""
+    """Read an assembly TOML file; one-line AssemblyFileError naming the field.
+
+    Every number is checked against its physical range (:mod:`asperity.microslip.limits`);
+    ``alpha_T`` is signed (< 0: the part expands less than its support), never 0."""
+    if not isinstance(path, (str, os.PathLike)) or not str(path):
+        raise AssemblyFileError(f"an assembly file must be a path, got {_short(path)}")
     p = Path(path)
     data = read_toml(p, "assembly file", _TOP, AssemblyFileError)
     if "assembly" not in data:
@@ -159,9 +187,9 @@ def load_assembly(path) -> Assembly:
     if not isinstance(a, dict):
         raise AssemblyFileError(f"{p}: assembly must be a table [assembly]")
     model = a.get("model")
-    if model not in MODELS:
+    if not isinstance(model, str) or model not in MODELS:
         raise AssemblyFileError(f"{p}: assembly.model must be one of {', '.join(MODELS)}, "
-                                f"got {model!r}")
+                                f"got {_short(model)}")
     keys = _MODEL_KEYS[model]
     allowed = set(keys) | {"model"} | ({"n"} if model == "strip" else set())
     a = _table(data, "assembly", allowed, p)
@@ -169,29 +197,28 @@ def load_assembly(path) -> Assembly:
     if missing:
         raise AssemblyFileError(f"{p}: missing key assembly.{missing[0]} (model {model!r} "
                                 f"needs {', '.join(keys)})")
+    ranges = STRIP if model == "strip" else TWO_NODE
     try:
-        params = {k: _positive("assembly", k, a[k], u) for k, u in keys.items()}
+        meta = {k: _field("", check_text, k, data.get(k, d), 4096)
+                for k, d in (("name", p.stem), ("description", ""))}
+        params = {k: (_field("assembly", check_alpha_T, k, a[k]) if k == "alpha_T" else
+                      _field("assembly", check_param, k, a[k], ranges[k])) for k in keys}
         if model == "strip":
-            try:
-                params["n"] = check_int("n", a.get("n", 201), 2, 10_000_000)
-            except InputError as exc:
-                raise _err("assembly", exc) from None
+            params["n"] = _field("assembly", check_nodes, "n", a.get("n", 201))
         fr = _table(data, "friction", _FRICTION_KEYS, p)
         lo = _table(data, "loading", _LOADING_KEYS, p)
         loading, force_at, cycles, tolerance = _loading(lo)
-        _check_friction_table(fr)
+        fr = _check_friction_table(fr)
     except AssemblyFileError as exc:
-        raise AssemblyFileError(f"{p}: {exc}") from None
-    return Assembly(str(data.get("name", p.stem)), str(data.get("description", "")), model,
-                    params, dict(fr), loading, force_at, cycles, tolerance, p.parent)
+        msg = str(exc).lstrip(".")
+        raise AssemblyFileError(f"{p}: {msg}") from None
+    return Assembly(meta["name"], meta["description"], model, params, fr, loading, force_at,
+                    cycles, tolerance, p.parent)
 
 
 def _loading(lo: dict):
     from .loading import Loading
-    try:
-        substeps = check_int("substeps", lo.get("substeps", 1), 1, 100_000)
-    except InputError as exc:
-        raise _err("loading", exc) from None
+    substeps = _field("loading", check_substeps, "substeps", lo.get("substeps", 1))
     has_range = "dT_min" in lo or "dT_max" in lo
     if has_range and "history" in lo:
         raise AssemblyFileError("loading: give dT_min/dT_max or history, not both")
@@ -201,60 +228,49 @@ def _loading(lo: dict):
                                 f"force_history, not {forces[0]} and {forces[1]}")
     if "force_max" in lo and "force_min" not in lo:
         raise AssemblyFileError("loading.force_max needs loading.force_min")
-    try:
-        if "history" in lo:
-            h = lo["history"]
-            if not isinstance(h, list) or not all(isinstance(x, (int, float)) and
-                                                  not isinstance(x, bool) for x in h):
-                raise AssemblyFileError("loading.history must be a list of numbers (K)")
-            dT = np.array(h, dtype=float)
-        elif has_range:
-            for k in ("dT_min", "dT_max"):
-                if k not in lo:
-                    raise AssemblyFileError(f"loading.{k} missing (cycles need dT_min and "
-                                            "dT_max)")
-            lo_, hi_ = (check_range(k, lo[k]) for k in ("dT_min", "dT_max"))
-            if not (math.isfinite(lo_) and math.isfinite(hi_)) or hi_ < lo_:
-                raise AssemblyFileError(f"loading needs finite dT_min <= dT_max, got "
-                                        f"dT_min = {lo_:g} K, dT_max = {hi_:g} K")
-            dT = np.array([lo_, hi_, lo_])
-        else:
-            raise AssemblyFileError("loading: missing dT_min/dT_max or history (K)")
-        if "force_history" in lo:
-            fh = lo["force_history"]
-            if not isinstance(fh, list):
-                raise AssemblyFileError("loading.force_history must be a list of numbers")
-            F = np.array(fh, dtype=float)
-        elif "force_min" in lo:
-            f0 = check_range("force_min", lo["force_min"])
-            f1 = check_range("force_max", lo.get("force_max", f0))
-            if dT.size != 3:
-                raise AssemblyFileError("loading.force_min/force_max follow dT_min/dT_max; "
-                                        "with a history give force_history")
-            F = np.array([f0, f1, f0])
-        else:
-            F = np.array([check_range("force", lo.get("force", 0.0))])
-        loading = Loading(dT, F, substeps)
-    except AssemblyFileError:
-        raise
-    except InputError as exc:
-        msg = str(exc)
-        raise AssemblyFileError(msg if msg.startswith("loading") else f"loading.{msg}") from None
-    at = lo.get("force_at", "uniform")
-    if at not in ("uniform", "start", "end"):
-        raise AssemblyFileError(f"loading.force_at must be one of uniform, start, end, got {at!r}")
+    if "history" in lo:
+        if not isinstance(lo["history"], list):
+            raise AssemblyFileError(f"loading.history must be a list of numbers (K), got "
+                                    f"{_short(lo['history'])}")
+        dT = lo["history"]
+    elif has_range:
+        for k in ("dT_min", "dT_max"):
+            if k not in lo:
+                raise AssemblyFileError(f"loading.{k} missing (cycles need dT_min and dT_max)")
+        lo_, hi_ = (_field("loading", check_dT, k, lo[k]) for k in ("dT_min", "dT_max"))
+        if hi_ < lo_:
+            raise AssemblyFileError(f"loading needs dT_min <= dT_max, got dT_min = {lo_:g} K, "
+                                    f"dT_max = {hi_:g} K")
+        dT = [lo_, hi_, lo_]
+    else:
+        raise AssemblyFileError("loading: missing dT_min/dT_max or history (K)")
+    if "force_history" in lo:
+        F = lo["force_history"]
+        if not isinstance(F, list):
+            raise AssemblyFileError(f"loading.force_history must be a list of numbers, got "
+                                    f"{_short(F)}")
+    elif "force_min" in lo:
+        f0 = _field("loading", check_force, "force_min", lo["force_min"])
+        f1 = _field("loading", check_force, "force_max", lo.get("force_max", f0))
+        if len(dT) != 3:
+            raise AssemblyFileError("loading.force_min/force_max follow dT_min/dT_max; "
+                                    "with a history give force_history")
+        F = [f0, f1, f0]
+    else:
+        F = _field("loading", check_force, "force", lo.get("force", 0.0))
+    loading = _field("loading", Loading, dT, F, substeps)
+    at = _field("loading", check_choice, "force_at", lo.get("force_at", "uniform"),
+                ("uniform", "start", "end"))
     cycles = tol = None
-    try:
-        if "cycles" in lo:
-            cycles = check_range("cycles", lo["cycles"], 1.0, 1e15)
-        if "tolerance" in lo:
-            tol = check_range("tolerance", lo["tolerance"], 0.0, None, low_open=True, unit="m")
-    except InputError as exc:
-        raise _err("loading", exc) from None
+    if "cycles" in lo:
+        cycles = _field("loading", check_cycles, "cycles", lo["cycles"])
+    if "tolerance" in lo:
+        tol = _field("loading", check_tolerance, "tolerance", lo["tolerance"])
     return loading, at, cycles, tol
 
 
-def _check_friction_table(fr: dict) -> None:
+def _check_friction_table(fr: dict) -> dict:
+    fr = dict(fr)
     sources = [k for k in ("mu_plus", "gauge", "texture") if k in fr]
     if "mu_minus" in fr and "mu_plus" not in fr:
         sources.append("mu_minus")
@@ -266,26 +282,21 @@ def _check_friction_table(fr: dict) -> None:
             if k not in fr:
                 raise AssemblyFileError(f"friction.{k} missing (explicit friction needs "
                                         "mu_plus and mu_minus)")
-            try:
-                check_range(k, fr[k], 0.0, None)
-            except InputError as exc:
-                raise _err("friction", exc) from None
+            fr[k] = _field("friction", check_mu, k, fr[k], MU_FILE, False)
         extra = [k for k in ("slip_axis_deg", "textured", "contact") if k in fr]
         if extra:
             raise AssemblyFileError(f"friction.{extra[0]} applies to a gauge or texture, not "
                                     "to explicit mu_plus/mu_minus")
     if "slip_axis_deg" in fr:
-        try:
-            v = check_range("slip_axis_deg", fr["slip_axis_deg"], -360.0, 360.0, unit="deg")
-        except InputError as exc:
-            raise _err("friction", exc) from None
-        fr["slip_axis_deg"] = v
-    if fr.get("textured", "support") not in ("support", "part"):
-        raise AssemblyFileError(f"friction.textured must be support or part, got "
-                                f"{fr['textured']!r}")
-    if fr.get("contact", "all-faces") not in ("all-faces", "windward"):
-        raise AssemblyFileError(f"friction.contact must be all-faces or windward, got "
-                                f"{fr['contact']!r}")
+        fr["slip_axis_deg"] = _field("friction", check_range, "slip_axis_deg",
+                                     fr["slip_axis_deg"], -360.0, 360.0)
+    for k, choices in (("textured", ("support", "part")), ("contact", ("all-faces", "windward"))):
+        if k in fr:
+            _field("friction", check_choice, k, fr[k], choices)
     for k in ("gauge", "texture"):
-        if k in fr and not isinstance(fr[k], str):
-            raise AssemblyFileError(f"friction.{k} must be a file name (string)")
+        if k in fr:
+            if not isinstance(fr[k], str) or not fr[k]:
+                raise AssemblyFileError(f"friction.{k} must be a file name (text), got "
+                                        f"{_short(fr[k])}")
+            _field("friction", check_text, k, fr[k], 4096)
+    return fr

@@ -32,7 +32,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import AsperityError, InputError, check_int, check_range
+from ..errors import AsperityError, InputError, check_array, check_instance, check_range, check_text
+from .limits import (
+    ASYMMETRY,
+    STIFFNESS_RATIO,
+    STRIP,
+    TWO_NODE,
+    check_alpha_T,
+    check_mu,
+    check_nodes,
+    check_param,
+)
 
 MODES = ("quasi-static", "dynamic")
 
@@ -53,14 +63,26 @@ class MicroslipTolerances:
     #: differ by at most this, relative to the largest slider threshold
     stabilised: float = 1e-9
     #: a drift per cycle below this, relative to the thermal displacement scale
-    #: alpha_T * length * dT range, counts as no drift
-    no_drift: float = 1e-9
+    #: |alpha_T| * length * dT range, counts as no drift (the rounding of a chain 1e9 times
+    #: stiffer than its contacts reaches ~1e-9)
+    no_drift: float = 1e-8
     #: Newton iterations per load increment
     max_newton: int = 500
     #: Moreau: fixed-point tolerance (relative to the impulse bound), iteration limit, r/G
     prox_tol: float = 1e-12
     prox_max_iter: int = 100
     prox_r_factor: float = 1.0
+
+    def __post_init__(self):
+        from ..errors import check_int
+        checked = {name: check_range(f"tol.{name}", getattr(self, name), 1e-15, 1e-2)
+                   for name in ("stabilised", "no_drift", "prox_tol")}
+        for name in ("max_newton", "prox_max_iter"):
+            checked[name] = check_int(f"tol.{name}", getattr(self, name), 1, 100_000)
+        checked["prox_r_factor"] = check_range("tol.prox_r_factor", self.prox_r_factor, 0.0,
+                                               2.0, low_open=True, high_open=True)
+        for name, value in checked.items():
+            object.__setattr__(self, name, value)
 
 
 TOL = MicroslipTolerances()
@@ -93,6 +115,9 @@ class Chain:
     mu_minus: float
     params: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        _check_chain(self)
+
     @property
     def n(self) -> int:
         return int(self.x.size)
@@ -101,7 +126,7 @@ class Chain:
     def length(self) -> float:
         return float(self.le.sum())
 
-    def with_friction(self, mu_plus: float, mu_minus: float) -> "Chain":
+    def with_friction(self, mu_plus: float, mu_minus: float) -> Chain:
         """The same chain with other coefficients (thresholds scaled from the normal loads)."""
         Nn = self.normal_loads
         from dataclasses import replace
@@ -113,27 +138,56 @@ class Chain:
         return np.asarray(self.params["normal_loads"])
 
 
-def _check_mu(name, x) -> float:
-    """A slider's coefficient: >= 0, infinite for a self-locking direction."""
-    return check_range(name, x, 0.0, None, allow_inf=True)
-
-
-def _positive(name, x, unit="") -> float:
-    v = check_range(name, x, 0.0, None, low_open=True, unit=unit)
-    if not math.isfinite(v):
-        raise InputError(f"{name} must be finite, got {v:g}")
-    return v
+def _check_chain(c: Chain) -> None:
+    """Every array of a chain coerced to contiguous float64 of the right length and checked,
+    so that the kernels only ever see consistent, admissible arrays (one-line InputError)."""
+    check_text("chain.kind", c.kind, 40)
+    x = check_array("chain.x", c.x, shape=(None,))
+    n = check_nodes("chain node count", x.size)
+    arrays = {"x": x}
+    # name, length, sign (">0", ">=0" or "" for any), +inf allowed
+    for name, size, sign, inf in (("kb", n - 1, ">0", False), ("le", n - 1, ">0", False),
+                                  ("kt", n, ">0", False), ("cp", n, ">0", True),
+                                  ("cm", n, ">0", True), ("fw", n, "", False),
+                                  ("weight", n, ">0", False)):
+        a = check_array(f"chain.{name}", getattr(c, name), shape=(size,), finite=False)
+        if np.isnan(a).any() or (not inf and not np.isfinite(a).all()):
+            raise InputError(f"chain.{name} must be finite{' or +inf' if inf else ''}")
+        if (sign == ">0" and (a <= 0).any()) or (sign == ">=0" and (a < 0).any()):
+            raise InputError(f"chain.{name} must be {sign[0]}{sign[1:-1]} 0 everywhere, got "
+                             f"{a.min():g}")
+        arrays[name] = np.ascontiguousarray(a)
+    if abs(arrays["weight"].sum() - 1.0) > 1e-9 or abs(arrays["fw"].sum() - 1.0) > 1e-9:
+        raise InputError("chain.weight and chain.fw must each sum to 1")
+    for name, a in arrays.items():
+        object.__setattr__(c, name, a)
+    object.__setattr__(c, "alpha_T", check_alpha_T("chain.alpha_T", c.alpha_T))
+    object.__setattr__(c, "mu_plus", check_mu("chain.mu_plus", c.mu_plus))
+    object.__setattr__(c, "mu_minus", check_mu("chain.mu_minus", c.mu_minus))
+    check_instance("chain.params", c.params, dict)
+    kb, kt = arrays["kb"], arrays["kt"]
+    for ratio, what, fix in ((kb.max() / kt.min(), "elements are", "fewer nodes"),
+                             (kt.max() / kb.min(), "contacts are", "more nodes")):
+        if ratio > STIFFNESS_RATIO:
+            raise InputError(f"the chain's {what} {ratio:.3g} times stiffer than its "
+                             f"{'contacts' if what[0] == 'e' else 'elements'} (at most "
+                             f"{STIFFNESS_RATIO:g}: beyond what double precision resolves); "
+                             f"a strip: use {fix} (assembly.n) or change E h / k_t, two nodes: "
+                             "k / k_t")
+    mus = [m for m in (c.mu_plus, c.mu_minus) if math.isfinite(m)]
+    if len(mus) == 2 and max(mus) > ASYMMETRY * min(mus):
+        raise InputError(f"mu_plus / mu_minus = {c.mu_plus / c.mu_minus:.3g} is beyond what the "
+                         f"chain solvers resolve (at most {ASYMMETRY:g} either way)")
 
 
 def two_node_chain(k, l0, alpha_T, k_t, N, mu_plus, mu_minus) -> Chain:
-    """Antoni et al.'s two-node model: a bar (stiffness k, length l0, expansion alpha_T)
-    whose two ends rest on the support under the normal force N each."""
-    k = _positive("k", k, "N/m")
-    l0 = _positive("l0", l0, "m")
-    alpha_T = _positive("alpha_T", alpha_T, "1/K")
-    k_t = _positive("k_t", k_t, "N/m")
-    N = _positive("N", N, "N")
-    mp, mm = _check_mu("mu_plus", mu_plus), _check_mu("mu_minus", mu_minus)
+    """Antoni et al.'s two-node model: a bar (stiffness k, length l0, expansion alpha_T
+    relative to the support, signed) whose two ends rest on the support under the normal
+    force N each.  Ranges: :mod:`asperity.microslip.limits`."""
+    k, l0, k_t, N = (check_param(name, v, TWO_NODE[name])
+                     for name, v in (("k", k), ("l0", l0), ("k_t", k_t), ("N", N)))
+    alpha_T = check_alpha_T("alpha_T", alpha_T)
+    mp, mm = check_mu("mu_plus", mu_plus), check_mu("mu_minus", mu_minus)
     Nn = np.array([N, N])
     return Chain("two-node", np.array([0.0, l0]), np.array([k]), np.array([l0]),
                  np.array([k_t, k_t]), mp * Nn, mm * Nn, np.array([0.5, 0.5]),
@@ -145,15 +199,13 @@ def two_node_chain(k, l0, alpha_T, k_t, N, mu_plus, mu_minus) -> Chain:
 def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
     """The continuous strip (per unit width) discretised into ``n`` equally spaced nodes:
     linear elements of stiffness E h / dx; node i carries the bed over its tributary length
-    (dx, dx/2 at the free ends): stiffness k_t dx, normal load p dx (lumped)."""
-    h = _positive("h", h, "m")
-    E = _positive("E", E, "Pa")
-    p = _positive("p", p, "Pa")
-    l = _positive("l", l, "m")
-    k_t = _positive("k_t", k_t, "Pa/m")
-    alpha_T = _positive("alpha_T", alpha_T, "1/K")
-    n = check_int("n", n, 2, 10_000_000)
-    mp, mm = _check_mu("mu_plus", mu_plus), _check_mu("mu_minus", mu_minus)
+    (dx, dx/2 at the free ends): stiffness k_t dx, normal load p dx (lumped).
+    Ranges: :mod:`asperity.microslip.limits` (alpha_T signed, n in [2, 1e6])."""
+    h, E, p, l, k_t = (check_param(name, v, STRIP[name]) for name, v in
+                       (("h", h), ("E", E), ("p", p), ("l", l), ("k_t", k_t)))
+    alpha_T = check_alpha_T("alpha_T", alpha_T)
+    n = check_nodes("n", n)
+    mp, mm = check_mu("mu_plus", mu_plus), check_mu("mu_minus", mu_minus)
     dx = l / (n - 1)
     trib = np.full(n, dx)
     trib[0] = trib[-1] = 0.5 * dx
@@ -165,10 +217,13 @@ def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
 
 
 def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
-    """dT_c of the chain: the temperature change (heating if ``sign`` > 0, else cooling),
-    from the stress-free state without external force, at which the first slider slips
-    (K; inf if none ever does)."""
+    """dT_c of the chain: the size of the temperature change (heating if ``sign`` = +1,
+    cooling if -1), from the stress-free state without external force, at which the first
+    slider slips (K, > 0 whatever the sign of alpha_T; inf if none ever does)."""
     from ._chain_kernels import solve_tridiag
+    check_instance("chain", chain, Chain)
+    if isinstance(sign, bool) or sign not in (1, -1, 1.0, -1.0):
+        raise InputError(f"sign must be 1 (heating) or -1 (cooling), got {sign!r}")
     n = chain.n
     rhs = np.zeros(n)
     e = chain.kb * chain.alpha_T * chain.le * sign
@@ -177,7 +232,7 @@ def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     u = np.empty(n)
     solve_tridiag(chain.kb, chain.kt, rhs, u, np.empty(n), np.empty(n))
     q = chain.kt * u                                     # contact forces per K
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):
         lim = np.where(q > 0, chain.cp / np.where(q > 0, q, 1.0),
                        np.where(q < 0, chain.cm / np.where(q < 0, -q, 1.0), np.inf))
     return float(lim.min())

@@ -11,7 +11,20 @@ import numpy as np
 from ..errors import check_int
 from .chains import TOL, Chain, MicroslipTolerances, SolverError
 from .loading import Loading
-from .quasi_static import MicroslipResult, check_capacity, load_scale
+from .pacing import Pacer
+from .quasi_static import (
+    MicroslipResult,
+    check_capacity,
+    check_inputs,
+    check_margin,
+    load_scale,
+    record_indices,
+)
+
+#: refuse a Moreau run of more node-steps than this (about 12 min at 1.4e8 node-steps/s)
+MAX_NODE_STEPS = 1e11
+#: first piece of a run, node-steps (later pieces aim at 0.1 s)
+PIECE_NODE_STEPS = 2_000_000
 
 
 def dynamic_parameters(chain: Chain, steps_per_segment: int) -> dict:
@@ -40,61 +53,73 @@ def simulate_dynamic(chain: Chain, loading: Loading, cycles: int = 3, *,
     Loading breakpoints are reached at whole time units (one unit per segment, the lead-in
     included).  The drift per cycle is the change of the assembly displacement over the
     last cycle.  ``solver`` reports r, the tolerance, the iteration limit, the largest
-    number of fixed-point iterations used and the status."""
-    from ._chain_kernels import STATUS_OK, moreau_chain
+    number of fixed-point iterations used and the status.  The work (steps x nodes) and
+    memory are checked first; the kernel runs in pieces of about 0.1 s (Ctrl-C honoured,
+    progress reported), with the same result as in one piece."""
+    from ..progress import report
+    from ..resources import check_memory, check_work
+    from ._chain_kernels import STATUS_OK
+    from ._dynamic_kernels import moreau_chain
+    check_inputs(chain, loading, tol)
     cycles = check_int("cycles", cycles, 1, 1_000_000)
     steps_per_segment = check_int("steps_per_segment", steps_per_segment, 10, 100_000_000)
+    record_points = check_int("record_points", record_points, 1, 1_000_000)
+    rec = record_indices(chain, record_nodes)
+    check_margin(chain, loading)
     check_capacity(chain, loading)
     n = chain.n
-    par = dynamic_parameters(chain, steps_per_segment)
     lead = not (loading.dT[0] == 0.0 and loading.F[0] == 0.0)
-    dT_pts = [0.0] + ([loading.dT[0]] if lead else [])
-    F_pts = [0.0] + ([loading.F[0]] if lead else [])
-    start = len(dT_pts) - 1
-    for _ in range(cycles):
-        dT_pts += list(loading.dT[1:])
-        F_pts += list(loading.F[1:])
-    t_pts = np.arange(len(dT_pts), dtype=float)
     seg = loading.dT.size - 1
-    rec = np.array([0, n - 1] if record_nodes is None else record_nodes, dtype=np.int64)
+    start = 1 if lead else 0
+    segments = start + seg * cycles
+    total = segments * steps_per_segment
+    every = max(1, int(seg * steps_per_segment // record_points))
+    nrec = total // every + 1
+    what = (f"the Moreau solution ({total:.3g} time steps x {n} nodes, --dynamic "
+            f"{steps_per_segment} steps per load segment)")
+    lower = "lower the steps per segment (--dynamic STEPS) or the nodes (assembly.n)"
+    check_work(float(total) * n, MAX_NODE_STEPS, what, lower)
+    check_memory(8.0 * (20 * n + 3 * segments + nrec * (rec.size + 1)), what, lower)
+    par = dynamic_parameters(chain, steps_per_segment)
+    dT_pts = np.concatenate([[0.0], [loading.dT[0]] if lead else [], *[loading.dT[1:]] * cycles])
+    F_pts = np.concatenate([[0.0], [loading.F[0]] if lead else [], *[loading.F[1:]] * cycles])
+    t_pts = np.arange(dT_pts.size, dtype=float)
     u, v, s, w, xi = (np.zeros(n) for _ in range(5))
     mass = par["mass"] * chain.weight
-    args = (chain.kb, chain.le, chain.kt, chain.cp, chain.cm, chain.fw, float(chain.alpha_T))
+    args = (chain.kb, chain.le, chain.kt, chain.cp, chain.cm, chain.fw, float(chain.alpha_T),
+            t_pts, dT_pts, F_pts)
+    ru, rt = np.zeros((nrec, rec.size)), np.zeros(nrec)
+    istate = np.zeros(2, dtype=np.int64)
     mean_u, u_end = [], []
-    tr_t, tr_u = [], []
     max_it, sum_it, steps = 0, 0, 0
-    t0 = 0.0
-    every = max(1, int(seg * steps_per_segment // max(1, record_points)))
-    # march to the start of the first cycle, then one cycle at a time
-    bounds = [float(start)] + [float(start + seg * (c + 1)) for c in range(cycles)]
-    for t_end in bounds:
-        span = t_end - t0
-        if span > 0:
-            nrec = int(span * steps_per_segment // every) + 1
-            ru, rt = np.zeros((nrec, rec.size)), np.zeros(nrec)
-            code, st, mi, si = moreau_chain(*args, t_pts - t0, np.array(dT_pts), np.array(F_pts),
-                                            span, par["dt"], mass, mass, par["damping"],
-                                            tol.prox_r_factor, tol.prox_tol, tol.prox_max_iter,
-                                            u, v, s, w, xi, every, rec, ru, rt)
+    pacer = Pacer(max(1, PIECE_NODE_STEPS // n))
+    # march to the start of the first cycle, then one cycle at a time, each in pieces
+    bounds = [start * steps_per_segment] + [(start + seg * (c + 1)) * steps_per_segment
+                                             for c in range(cycles)]
+    for b in bounds:
+        while steps < b:
+            k = pacer.size(b - steps)
+            code, st, mi, si = moreau_chain(*args, steps, steps + k, par["dt"], mass, mass,
+                                            par["damping"], tol.prox_r_factor, tol.prox_tol,
+                                            tol.prox_max_iter, u, v, s, w, xi, every, rec, ru, rt,
+                                            istate)
+            pacer.done(k)
             steps += st
             max_it = max(max_it, mi)
             sum_it += si
             if code != STATUS_OK:
                 raise SolverError(f"Moreau: the proximal fixed point did not converge in "
                                   f"{tol.prox_max_iter} iterations (step {steps})")
-            k = min(nrec, int(span * steps_per_segment) // every)
-            tr_t += list(rt[:k] + t0)
-            tr_u += list(ru[:k])
-        t0 = t_end                       # the kernel restarts at t = 0 on a shifted axis
+            report(steps / total, "Moreau time steps")
         mean_u.append(float(chain.weight @ u))
         u_end.append(u.copy())
     mean_u = np.array(mean_u)
-    d = float(mean_u[-1] - mean_u[-2]) if cycles >= 1 else 0.0
+    d = float(mean_u[-1] - mean_u[-2])
     if abs(d) <= 1e-6 * load_scale(chain, loading):
         d = 0.0
-    tt = np.array(tr_t)
-    trace = {"t": (tt - start) / seg, "dT": np.interp(tt, t_pts, dT_pts), "u": np.array(tr_u),
-             "nodes": rec}
+    k = int(istate[1])
+    trace = {"t": (rt[:k] - start) / seg, "dT": np.interp(rt[:k], t_pts, dT_pts),
+             "u": ru[:k], "nodes": rec}
     solver = {"method": "Moreau midpoint, friction impulses by the proximal fixed point",
               "r": f"{tol.prox_r_factor:g} / G (G = 1 / (m_slider (1 + c dt/2)), "
                    f"the slider's Delassus term)",

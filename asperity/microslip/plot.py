@@ -67,7 +67,8 @@ def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int 
 
 def plot_risk_map(out: dict, path) -> None:
     """Drift per cycle over the grid of ``asperity risk --map`` (signed colour, um/cycle),
-    shakedown cells hatched grey, slide-off cells black."""
+    shakedown cells hatched grey (//), alternating-slip cells cross-hatched (xx), slide-off
+    cells black."""
     from matplotlib.colors import TwoSlopeNorm
 
     from ..io import pyplot, save_figure_atomic
@@ -82,21 +83,24 @@ def plot_risk_map(out: dict, path) -> None:
     im = ax.pcolormesh(_edges(xs), _edges(ys), np.where(verdict == "ratchet", z, np.nan),
                        cmap="coolwarm", norm=TwoSlopeNorm(0.0, -lim, lim), shading="flat")
     fig.colorbar(im, ax=ax, label="drift per cycle (um; < 0: towards -x)")
-    for j, y in enumerate(ys):
-        for i, x in enumerate(xs):
+    style = {"shakedown": {"facecolor": "0.9", "edgecolor": "0.6", "hatch": "//", "lw": 0.3},
+             "alternating-slip": {"facecolor": "0.75", "edgecolor": "0.45", "hatch": "xx",
+                                  "lw": 0.3},
+             "slides-off": {"facecolor": "k"}}
+    ex, ey = _edges(xs), _edges(ys)
+    for j in range(ys.size):
+        for i in range(xs.size):
             v = verdict[j, i]
-            if v == "shakedown":
-                ax.add_patch(plt.Rectangle((_edges(xs)[i], _edges(ys)[j]),
-                                           np.diff(_edges(xs))[i], np.diff(_edges(ys))[j],
-                                           facecolor="0.9", edgecolor="0.6", hatch="//", lw=0.3))
-            elif v != "ratchet":
-                ax.add_patch(plt.Rectangle((_edges(xs)[i], _edges(ys)[j]),
-                                           np.diff(_edges(xs))[i], np.diff(_edges(ys))[j],
-                                           facecolor="k"))
-    ax.plot([], [], marker="s", ls="", color="0.85", label="shakedown (hatched)")
-    if np.any((verdict != "ratchet") & (verdict != "shakedown")):
-        ax.plot([], [], marker="s", ls="", color="k", label="slides off")
-    ax.legend(fontsize=8, loc="upper right")
+            if v != "ratchet":
+                ax.add_patch(plt.Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
+                                           **style.get(v, style["slides-off"])))
+    for v, label in (("shakedown", "shakedown (//)"), ("alternating-slip",
+                                                       "alternating slip, no drift (xx)"),
+                     ("slides-off", "slides off")):
+        if np.any(verdict == v):
+            ax.plot([], [], marker="s", ls="", color=style[v]["facecolor"], label=label)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8, loc="upper right")
     unit = {"alpha": " (deg)", "beta": " (deg)"}
     ax.set_xlabel(m["x"]["parameter"] + unit.get(m["x"]["parameter"], ""))
     ax.set_ylabel(m["y"]["parameter"] + unit.get(m["y"]["parameter"], ""))

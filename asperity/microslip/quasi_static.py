@@ -10,9 +10,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import check_int, check_range
+from ..errors import InputError, check_instance, check_int
 from .chains import TOL, Chain, MicroslipTolerances, SlideOffError, SolverError
+from .limits import check_cycles
 from .loading import Loading
+from .pacing import Pacer
+
+#: refuse a march of more node-updates than this (about 10 min warm, 45 min cold)
+MAX_NODE_UPDATES = 2e10
+#: first piece of a march, node-updates (later pieces aim at 0.1 s)
+PIECE_NODE_UPDATES = 200_000
 
 
 @dataclass
@@ -81,8 +88,8 @@ class MicroslipResult:
 
 
 def load_scale(chain: Chain, loading: Loading) -> float:
-    """Thermal displacement scale alpha_T * length * dT range (or the elastic slip scale)."""
-    s = chain.alpha_T * chain.length * max(loading.dT_range, float(np.abs(loading.dT).max()))
+    """Thermal displacement scale |alpha_T| * length * dT range (or the elastic slip scale)."""
+    s = abs(chain.alpha_T) * chain.length * max(loading.dT_range, float(np.abs(loading.dT).max()))
     fin = np.isfinite(chain.cp) & np.isfinite(chain.cm)
     el = float(np.max(np.maximum(np.where(fin, chain.cp, 0), np.where(fin, chain.cm, 0))
                       / chain.kt))
@@ -102,6 +109,74 @@ def check_capacity(chain: Chain, loading: Loading) -> None:
                             f"{lo:g} {unit}, the sliders hold at most mu- sum N = {minus:g} {unit}")
 
 
+def check_inputs(chain, loading, tol=TOL) -> None:
+    """chain, loading and tolerances of the right types (one-line InputError)."""
+    check_instance("chain", chain, Chain, "slider chain (two_node_chain, strip_chain)")
+    check_instance("loading", loading, Loading)
+    check_instance("tol", tol, MicroslipTolerances)
+
+
+def check_margin(chain: Chain, loading: Loading) -> None:
+    """Refuse a temperature range so far beyond the elastic limit that the friction forces
+    drown in the rounding of the thermal ones (margin above :data:`limits.MARGIN`)."""
+    from .chains import elastic_limit
+    from .limits import MARGIN
+    dT_c = elastic_limit(chain)
+    margin = loading.dT_range / (2.0 * dT_c) if math.isfinite(dT_c) else 0.0
+    if margin > MARGIN:
+        raise InputError(f"the margin dT range / (2 dT_c) = {margin:.3g} is beyond what the "
+                         f"chain solvers resolve (at most {MARGIN:g}: the friction holds less "
+                         "than 1e-4 of the free thermal force); lower the temperature range "
+                         "or raise the normal load or friction")
+
+
+def record_indices(chain: Chain, record_nodes) -> np.ndarray:
+    """The node indices to record, checked: whole numbers in [0, n - 1] (default: the two
+    ends), so that no kernel ever sees an index outside the chain."""
+    n = chain.n
+    if record_nodes is None:
+        return np.array([0, n - 1], dtype=np.int64)
+    if isinstance(record_nodes, (str, bytes, dict, bool)):
+        raise InputError(f"record_nodes must be a list of node indices, got {record_nodes!r}")
+    if isinstance(record_nodes, (list, tuple)) and any(isinstance(x, bool)
+                                                       for x in record_nodes):
+        raise InputError("record_nodes must be node indices, got a boolean")
+    try:
+        a = np.asarray(record_nodes)
+    except (ValueError, TypeError):
+        raise InputError("record_nodes must be a flat list of node indices") from None
+    if a.ndim != 1 or a.size > n or a.dtype.kind not in "iuf" and a.size:
+        raise InputError(f"record_nodes must be a flat list of at most {n} node indices, got "
+                         f"shape {a.shape}, {a.dtype.name} values")
+    if a.size and (not np.all(np.isfinite(a)) or np.any(a != np.round(a))
+                   or a.min() < 0 or a.max() > n - 1):
+        bad = a[~(np.isfinite(a) & (a == np.round(a)) & (a >= 0) & (a <= n - 1))][0].item()
+        raise InputError(f"record_nodes must be whole numbers in [0, {n - 1}] (the chain has "
+                         f"{n} nodes), got {bad:g}")
+    return np.ascontiguousarray(a, dtype=np.int64)
+
+
+def march_cost(chain: Chain, loading: Loading, cycles: int, n_record: int) -> tuple:
+    """(bytes, node-updates) of marching ``cycles`` cycles, recording ``n_record`` nodes."""
+    n, m = chain.n, loading.points_per_cycle
+    points = cycles * m + loading.substeps
+    mem = (24 * n * 8 + m * n * 8 + cycles * (n * 8 + 300)
+           + 2 * points * (n_record * 8 + 24))
+    return mem, cycles * (m * n + 2000) + loading.substeps * n
+
+
+def check_march(chain: Chain, loading: Loading, cycles: int, n_record: int) -> None:
+    """Refuse, before any work, a march that cannot fit in memory or time."""
+    from ..resources import check_memory, check_work
+    mem, work = march_cost(chain, loading, cycles, n_record)
+    what = (f"the quasi-static march ({cycles} cycles x {loading.points_per_cycle} load points "
+            f"x {chain.n} nodes)")
+    lower = ("lower the cycles marched (--max-marched), loading.substeps or the nodes "
+             "(assembly.n)")
+    check_memory(mem, what, lower)
+    check_work(work, MAX_NODE_UPDATES, what, lower)
+
+
 def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=None,
              until_stable: bool = True, min_cycles: int = 2, warm_start: bool = True,
              tol: MicroslipTolerances = TOL) -> MicroslipResult:
@@ -112,46 +187,66 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     displacement is kept at every load point (default: the two ends).  ``warm_start``: start
     each increment's Newton iteration from the same increment of the previous cycle (exact
     once the cycle is stabilised); False starts from the previous state (for timing).
+    The memory and work are estimated first (ResourceError if they cannot fit); the kernel
+    runs in pieces of about 0.1 s, so Ctrl-C is honoured and progress reported.
     """
+    from ..progress import report
     from ._chain_kernels import STATUS_OK, STATUS_SLIDE_OFF, march
+    check_inputs(chain, loading, tol)
     cycles = check_int("cycles", cycles, 1, 100_000_000)
+    min_cycles = check_int("min_cycles", min_cycles, 1, 100_000_000)
+    for name, flag in (("until_stable", until_stable), ("warm_start", warm_start)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise InputError(f"{name} must be True or False, got {flag!r}")
+    rec = record_indices(chain, record_nodes)
+    check_margin(chain, loading)
     check_capacity(chain, loading)
+    check_march(chain, loading, cycles, rec.size)
     n = chain.n
-    rec = np.array([0, n - 1] if record_nodes is None else record_nodes, dtype=np.int64)
     u = np.zeros(n)
     s = np.zeros(n)
     max_iter = tol.max_newton
-    args = (np.ascontiguousarray(chain.kb), np.ascontiguousarray(chain.le), chain.kt,
-            chain.cp, chain.cm, chain.fw, float(chain.alpha_T))
+    args = (chain.kb, chain.le, chain.kt, chain.cp, chain.cm, chain.fw, float(chain.alpha_T))
     fin = np.concatenate([chain.cp[np.isfinite(chain.cp)], chain.cm[np.isfinite(chain.cm)]])
     cap = float(fin.max()) if fin.size and fin.max() > 0 else 1.0
+    pacer = Pacer(max(1, PIECE_NODE_UPDATES // n))
 
-    def run(dT, F, du, status):
-        ru = np.empty((dT.size, rec.size))
-        slip = np.zeros(dT.size)
-        slips.append(slip)
-        code, j, it = march(*args, dT, F, u, s, du, status, slip, rec, ru, max_iter)
-        if code == STATUS_SLIDE_OFF:
-            raise SlideOffError(f"the assembly slides off at load point dT = {dT[j]:g} K, "
-                                f"F = {F[j]:g}: no slider can stay stuck")
-        if code != STATUS_OK:
-            raise SolverError(f"the Newton iteration of the increment to dT = {dT[j]:g} K did "
-                              f"not converge in {max_iter} iterations (try loading.substeps > 1)")
-        return ru, it
+    def run(dT, F, du, c0):
+        """March the points (dT, F) in pieces; c0: cycles done before (for progress)."""
+        m = dT.size
+        ru = np.empty((m, rec.size))
+        slip = np.zeros(m)
+        it_sum = 0
+        j0 = 0
+        while j0 < m:
+            j1 = j0 + pacer.size(m - j0)
+            code, j, it = march(*args, dT[j0:j1], F[j0:j1], u, s, du[j0:j1], slip[j0:j1], rec,
+                                ru[j0:j1], max_iter)
+            pacer.done(j1 - j0)
+            it_sum += it
+            if code == STATUS_SLIDE_OFF:
+                raise SlideOffError(f"the assembly slides off at load point dT = "
+                                    f"{dT[j0 + j]:g} K, F = {F[j0 + j]:g}: no slider can stay "
+                                    "stuck")
+            if code != STATUS_OK:
+                raise SolverError(f"the Newton iteration of the increment to dT = "
+                                  f"{dT[j0 + j]:g} K did not converge in {max_iter} iterations "
+                                  "(try loading.substeps > 1)")
+            j0 = j1
+            report(min(1.0, (c0 + j0 / m) / cycles), "quasi-static cycles")
+        return ru, slip, it_sum
 
-    tr_t, tr_dT, tr_u = [0.0], [0.0], [np.zeros(rec.size)]
-    slips = []
+    tr_t, tr_dT, tr_u = [np.zeros(1)], [np.zeros(1)], [np.zeros((1, rec.size))]
     scale = load_scale(chain, loading)
     iters = 0
     dT0, F0 = loading.lead_in()
     if dT0.size:
-        ru, it = run(dT0, F0, np.zeros((dT0.size, n)), np.zeros((dT0.size, n), np.int8))
+        ru, _, it = run(dT0, F0, np.zeros((dT0.size, n)), 0)
         iters += it
-        tr_dT += list(dT0); tr_u += list(ru)
-        tr_t += list(np.linspace(-1.0, 0.0, dT0.size + 1)[1:])
-        tr_t[0] = -1.0
+        tr_dT.append(dT0)
+        tr_u.append(ru)
+        tr_t = [np.linspace(-1.0, 0.0, dT0.size + 1)]
     dTc, Fc = loading.cycle_points()
-    status = np.zeros((dTc.size, n), np.int8)
     du = np.zeros((dTc.size, n))          # increments of the previous cycle: the guesses
     mean_u = [float(chain.weight @ u)]
     u_end = [u.copy()]
@@ -162,14 +257,15 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     for c in range(1, cycles + 1):
         if not warm_start:
             du[:] = 0.0
-        ru, it = run(dTc, Fc, du, status)
+        ru, slips, it = run(dTc, Fc, du, c - 1)
         iters += it
-        tr_t += list(c - 1 + np.arange(1, dTc.size + 1) / dTc.size)
-        tr_dT += list(dTc); tr_u += list(ru)
+        tr_t.append(c - 1 + np.arange(1, dTc.size + 1) / dTc.size)
+        tr_dT.append(dTc)
+        tr_u.append(ru)
         mean_u.append(float(chain.weight @ u))
         u_end.append(u.copy())
         q_end = chain.kt * (u - s)
-        slip = bool(slips[-1].max() > tol.no_drift * scale)
+        slip = bool(slips.max() > tol.no_drift * scale)
         if np.max(np.abs(q_end - q_prev)) <= tol.stabilised * cap:
             stab = c if stab is None else stab
             if until_stable and c >= min_cycles:
@@ -182,7 +278,8 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     d = float(mean_u[k] - mean_u[k - 1])
     if abs(d) <= tol.no_drift * scale:
         d = 0.0
-    trace = {"t": np.array(tr_t), "dT": np.array(tr_dT), "u": np.array(tr_u), "nodes": rec}
+    trace = {"t": np.concatenate(tr_t), "dT": np.concatenate(tr_dT),
+             "u": np.concatenate(tr_u), "nodes": rec}
     return MicroslipResult(chain, loading, "quasi-static", k, mean_u, np.array(u_end), q_end, d,
                            stab, slip, trace,
                            {"method": "semismooth Newton on the incremental energy, one "
@@ -195,6 +292,7 @@ def long_life(chain: Chain, loading: Loading, cycles: float, *, max_marched: int
               record_nodes=None, tol: MicroslipTolerances = TOL) -> MicroslipResult:
     """Simulate until the cycle is stabilised (at most ``max_marched`` cycles, and never
     more than ``cycles``); :meth:`MicroslipResult.drift_after` then extrapolates exactly."""
-    c = check_range("cycles", cycles, 1.0, 1e15)
+    c = check_cycles("cycles", cycles)
+    max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
     return simulate(chain, loading, int(min(max_marched, math.ceil(c))), record_nodes=record_nodes,
                     until_stable=True, tol=tol)

@@ -9,15 +9,37 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..errors import InputError, check_int, check_range
+from ..errors import InputError, check_array, check_choice, check_instance, check_int, check_text
 from .assembly import Assembly
 from .friction import Friction, friction_from_texture, resolve_friction
+from .limits import check_cycles, check_tolerance
 
 #: wedge parameters a risk map may vary -> field of the wedge texture
 MAP_PARAMS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
               "mu_beta": "mu_beta"}
 #: cycles of the Moreau cross-check
 DYNAMIC_CYCLES = 3
+CONTACTS = ("all-faces", "windward")
+FACES = ("support", "part")
+#: values per axis of a risk map
+MAP_VALUES = (2, 200)
+
+
+def _check_texture(texture):
+    if texture is not None and not (callable(getattr(texture, "faces", None))
+                                    and callable(getattr(texture, "to_dict", None))):
+        raise InputError(f"texture must be a wedge texture or a surface (load_texture, "
+                         f"load_surface), got {type(texture).__name__}")
+    return texture
+
+
+def _axis_and_face(slip_axis_deg, textured):
+    from ..errors import check_range
+    if slip_axis_deg is not None:
+        slip_axis_deg = check_range("slip_axis_deg", slip_axis_deg, -360.0, 360.0, unit="deg")
+    if textured is not None:
+        check_choice("textured", textured, FACES)
+    return slip_axis_deg, textured
 
 
 def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
@@ -30,11 +52,12 @@ def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
     given here; without it the table's source is used (explicit coefficients, a gauge or a
     texture file).  ``slip_axis_deg`` and ``textured`` override the table's.
     """
+    check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
+    _check_texture(texture)
+    check_text("texture_name", texture_name, 4096)
+    check_choice("contact", contact, CONTACTS)
+    slip_axis_deg, textured = _axis_and_face(slip_axis_deg, textured)
     fr = asm.friction_table
-    if slip_axis_deg is not None:
-        slip_axis_deg = check_range("slip_axis_deg", slip_axis_deg, -360.0, 360.0, unit="deg")
-    if textured is not None and textured not in ("support", "part"):
-        raise InputError(f"textured must be support or part, got {textured!r}")
     axis = slip_axis_deg if slip_axis_deg is not None else fr.get("slip_axis_deg")
     face = textured or fr.get("textured", "support")
     if texture is not None:
@@ -57,9 +80,10 @@ def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
 
 
 def _life(asm: Assembly, cycles, tolerance) -> tuple[float, float | None]:
-    cycles = check_range("cycles", asm.cycles or 1e6 if cycles is None else cycles, 1.0, 1e15)
+    check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
+    cycles = check_cycles("cycles", asm.cycles or 1e6 if cycles is None else cycles)
     if tolerance is not None:
-        tolerance = check_range("tolerance", tolerance, 0.0, None, low_open=True, unit="m")
+        tolerance = check_tolerance("tolerance", tolerance)
     else:
         tolerance = asm.tolerance
     return cycles, tolerance
@@ -82,7 +106,10 @@ def assess_assembly(asm: Assembly, friction: Friction, *, cycles: float | None =
     from .. import __version__
     from .verdict import assess
     cycles, tolerance = _life(asm, cycles, tolerance)
+    check_instance("friction", friction, Friction, "Friction (from assembly_friction)")
     max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
+    if dynamic_steps is not None:
+        dynamic_steps = check_int("dynamic_steps", dynamic_steps, 100, 10_000_000)
     chain = asm.chain(friction.mu_plus, friction.mu_minus)
     out = {"asperity_version": __version__, "assembly": asm.to_dict(),
            "loading": loading_dict(asm), "friction": friction.to_dict()}
@@ -131,17 +158,20 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
     import numpy as np
 
     from .. import __version__
+    from ..progress import report
     from .chains import SlideOffError
     from .quasi_static import long_life
-    (px, xs), (py, ys) = x, y
-    for p in (px, py):
-        if p not in MAP_PARAMS:
-            raise InputError(f"map parameter must be one of {', '.join(MAP_PARAMS)}, got {p!r}")
+    from .verdict import verdict_of
+    check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
+    (px, xs), (py, ys) = (_map_axis(name, a) for name, a in (("x", x), ("y", y)))
     if px == py:
         raise InputError(f"a risk map needs two different parameters, got {px} twice")
-    xs, ys = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)
     cycles, _ = _life(asm, cycles, None)
     max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
+    _check_texture(texture)
+    if contact is not None:
+        check_choice("contact", contact, CONTACTS)
+    slip_axis_deg, textured = _axis_and_face(slip_axis_deg, textured)
     fr = asm.friction_table
     if texture is None:
         if "texture" not in fr:
@@ -172,7 +202,9 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
             except SlideOffError:
                 verdict[j, i] = "slides-off"
                 continue
-            verdict[j, i] = "ratchet" if r.ratchet else "shakedown"
+            finally:
+                report((j * xs.size + i + 1) / (xs.size * ys.size), "risk map")
+            verdict[j, i] = verdict_of(r)
             drift[j, i] = r.drift_per_cycle
 
     def grid(a):
@@ -189,3 +221,16 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
             "cycles": cycles,
             "drift_after_cycles_m": grid(drift * cycles),
             "sign_convention": SIGN_CONVENTION}
+
+
+def _map_axis(which: str, axis) -> tuple:
+    """(parameter, values) of one risk-map axis, checked."""
+    if not isinstance(axis, (tuple, list)) or len(axis) != 2:
+        raise InputError(f"risk map axis {which} must be (parameter, values), got "
+                         f"{type(axis).__name__}")
+    name, values = axis
+    check_choice("map parameter", name, tuple(MAP_PARAMS))
+    v = check_array(f"risk map {name} values", values, shape=(None,), min_size=MAP_VALUES[0])
+    if v.size > MAP_VALUES[1]:
+        raise InputError(f"risk map {name} values: at most {MAP_VALUES[1]}, got {v.size}")
+    return name, v

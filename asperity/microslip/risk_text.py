@@ -56,8 +56,12 @@ def format_text(out: dict) -> str:
         if v == "ratchet":
             lines.append(f"verdict: RATCHET -- {_len(d)} per cycle (towards "
                          f"{out['drift_direction']}), {stab}")
+        elif v == "alternating-slip":
+            lines.append(f"verdict: ALTERNATING SLIP -- sliders slip back and forth every "
+                         f"cycle (fretting), no net drift, {stab}")
         else:
-            lines.append(f"verdict: SHAKEDOWN -- no drift per cycle ({out['regime']}, {stab})")
+            lines.append(f"verdict: SHAKEDOWN -- no slip after the first cycles, no drift, "
+                         f"{stab}")
         how = (f"extrapolated from {out['cycles_marched']} marched cycles"
                if out.get("extrapolated") else "marched")
         lines.append(f"  displacement after {out['cycles']:g} cycles: "
@@ -68,7 +72,7 @@ def format_text(out: dict) -> str:
                          ("never reached" if c is None else f"reached after {c:,} cycles"))
         if out.get("warning"):
             lines.append(f"  WARNING: {out['warning']}")
-        if a["model"] == "strip" and v == "shakedown" and out["margin"] > 1:
+        if a["model"] == "strip" and v == "alternating-slip" and out["margin"] > 1:
             lines.append("  (for a strip, margin > 1 is necessary but not sufficient: its ends "
                          "slip back and forth while its middle sticks)")
     dyn = out.get("dynamic")
@@ -88,13 +92,14 @@ def format_map(out: dict) -> str:
     px, py = m["x"]["parameter"], m["y"]["parameter"]
     head = f"{py} \\ {px}"
     lines = [f"risk map: {out['assembly']['name']}, drift per cycle (um; S = shakedown, "
-             f"X = slides off), {out['contact']}, texture on the {out['textured']}",
+             f"A = alternating slip, X = slides off), {out['contact']}, texture on the "
+             f"{out['textured']}",
              f"{head:>14s} " + " ".join(f"{x:>9.4g}" for x in m["x"]["values"])]
     for y, vs, ds in zip(m["y"]["values"], m["verdict"], m["drift_per_cycle_m"]):
         cells = []
         for v, d in zip(vs, ds):
-            cells.append(f"{'S':>9s}" if v == "shakedown" else f"{'X':>9s}" if v != "ratchet"
-                         else f"{d * 1e6:>+9.3g}")
+            mark = {"shakedown": "S", "alternating-slip": "A", "slides-off": "X"}.get(v)
+            cells.append(f"{mark:>9s}" if mark else f"{d * 1e6:>+9.3g}")
         lines.append(f"{y:>14.4g} " + " ".join(cells))
     lines.append(f"sign convention: {out['sign_convention']}")
     return "\n".join(lines)

@@ -1,6 +1,13 @@
-"""The verdict of a slider chain under its load cycles: shakedown, ratchet or slides-off,
-with dT_c, the margin, the drift per cycle, the drift after N cycles and the cycles until a
-tolerance is reached (the JSON keys of ``asperity risk``).
+"""The verdict of a slider chain under its load cycles, with dT_c, the margin, the drift per
+cycle, the drift after N cycles and the cycles until a tolerance is reached (the JSON keys
+of ``asperity risk``).  The verdicts (:data:`VERDICTS`):
+
+* ``shakedown``: after the first cycles no slider slips any more; the assembly stays put
+  (elastic shakedown);
+* ``alternating-slip``: sliders slip back and forth in every cycle but the assembly does
+  not drift (fretting at the ends of a strip: wear, no walk);
+* ``ratchet``: the stabilised cycle drifts; the assembly walks a fixed distance per cycle;
+* ``slides-off``: the tangential load exceeds what the sliders hold (no cyclic state).
 """
 from __future__ import annotations
 
@@ -8,10 +15,14 @@ import math
 
 import numpy as np
 
-from ..errors import check_range
+from ..errors import check_int, check_range
 from .chains import TOL, Chain, MicroslipTolerances, SlideOffError, elastic_limit
+from .limits import check_cycles, check_tolerance
 from .loading import Loading
-from .quasi_static import long_life
+from .quasi_static import check_inputs, long_life
+
+#: the verdict values, in order of severity
+VERDICTS = ("shakedown", "alternating-slip", "ratchet", "slides-off")
 
 SIGN_CONVENTION = ("x is the assembly's slip axis; displacements and drift are positive "
                    "towards +x; mu+ resists sliding of the assembly towards +x over the "
@@ -23,20 +34,33 @@ def _jnum(x) -> float | None:
     return float(x) if x is not None and math.isfinite(x) else None
 
 
+def verdict_of(result) -> str:
+    """The verdict word of a marched result (:data:`VERDICTS`, not slides-off)."""
+    if result.ratchet:
+        return "ratchet"
+    return "alternating-slip" if result.slip_in_cycle else "shakedown"
+
+
 def assess(chain: Chain, loading: Loading, cycles: float = 1e6, tolerance: float | None = None,
            *, dT_c_closed_form: float | None = None, max_marched: int = 200,
            tol: MicroslipTolerances = TOL) -> dict:
     """The ratchet verdict of an assembly over ``cycles`` load cycles (JSON-ready dict).
 
-    verdict "ratchet" if the stabilised cycle drifts, "shakedown" if not, "slides-off" if
-    the tangential load exceeds what the sliders hold (a physical outcome, with the reason).
+    verdict (:data:`VERDICTS`): "ratchet" if the stabilised cycle drifts, else
+    "alternating-slip" if sliders still slip in it, else "shakedown"; "slides-off" if the
+    tangential load exceeds what the sliders hold (a physical outcome, with the reason).
     dT_c: the elastic limit of the model (heating from the stress-free state, no external
     force); margin = dT range / (2 dT_c) (for the two-node model ratcheting iff margin > 1;
     for the strip margin > 1 is necessary, not sufficient: its ends can slip back and forth
     while its middle sticks)."""
-    cycles = check_range("cycles", cycles, 1.0, 1e15)
+    check_inputs(chain, loading, tol)
+    cycles = check_cycles("cycles", cycles)
     if tolerance is not None:
-        tolerance = check_range("tolerance", tolerance, 0.0, None, low_open=True, unit="m")
+        tolerance = check_tolerance("tolerance", tolerance)
+    if dT_c_closed_form is not None:
+        dT_c_closed_form = check_range("dT_c_closed_form", dT_c_closed_form, 0.0, None,
+                                       low_open=True, unit="K", allow_inf=True)
+    max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
     dT_c = elastic_limit(chain)
     rng = loading.dT_range
     out = {"sign_convention": SIGN_CONVENTION,
@@ -56,7 +80,7 @@ def assess(chain: Chain, loading: Loading, cycles: float = 1e6, tolerance: float
         return out
     d = r.drift_per_cycle
     out.update({
-        "verdict": "ratchet" if r.ratchet else "shakedown",
+        "verdict": verdict_of(r),
         "regime": r.regime,
         "drift_per_cycle_m": d,
         "drift_direction": "-x" if d < 0 else "+x" if d > 0 else "none",

@@ -179,5 +179,6 @@ def _risk_map_lines(folder: Path) -> list[str]:
             f"`asperity risk surfaces/wedge-asymmetric.toml surfaces/bushing-strip-mild.toml "
             f"--map alpha=5:40:8 beta=5:40:8`: {int((v == 'ratchet').sum())} of {v.size} wedge "
             f"shapes ratchet under dT 0 -> 40 K (mu_alpha = 0.1, mu_beta = 0.2; colour: "
-            f"drift per cycle, positive towards +x; hatched: shakedown).", "",
+            f"drift per cycle, positive towards +x; hatched: shakedown (//) and alternating "
+            f"slip (xx)).", "",
             "![risk map](microslip_risk_map.png)", ""]
