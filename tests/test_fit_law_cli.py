@@ -104,7 +104,7 @@ def test_fit_plot_and_ellipse_gauge_drive_law(tmp_path, capsys):
     (["fit", "--alpha", "95", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.1"],
      "--alpha must be in (0, 90)"),
     (["law", "missing.json", "--psi", "3"], "does not exist"),
-    (["law", "GAUGE", "--psi", "nan"], "--psi must be a finite angle"),
+    (["law", "GAUGE", "--psi", "nan"], "--psi must be in [-3600, 3600] deg, got NaN"),
     (["law", "GAUGE", "--csv", "t.csv", "--csv-directions", "2"], "directions must be"),
     (["law", "GAUGE", "--csv", "/no/such/folder/t.csv"], "does not exist"),
 ])

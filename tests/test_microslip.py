@@ -253,7 +253,7 @@ def test_mechanical_load_biases_the_drift():
 
 @pytest.mark.parametrize("call,field", [
     (lambda: strip_chain(H, E, P, LS, KTS, AT, 1, 0.2, 0.1), "n must be"),
-    (lambda: strip_chain(H, -1.0, P, LS, KTS, AT, 5, 0.2, 0.1), "E must be in (0, inf)"),
+    (lambda: strip_chain(H, -1.0, P, LS, KTS, AT, 5, 0.2, 0.1), "E must be in [10000, 1e+13] Pa"),
     (lambda: two_node_chain(K, L0, AT, KT, N, -0.1, 0.1), "mu_plus must be in [0, inf)"),
     (lambda: Loading(np.array([0.0, 10.0]), np.zeros(2)), "must end where it starts"),
     (lambda: Loading.cycles_between(10, 0), "dT_min <= dT_max"),

@@ -38,8 +38,12 @@ def add_parser(sub) -> None:
 
 def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json."""
+    from ..errors import check_int, check_range
     from ..laws.gauge_file import read_gauge
     from ..laws.summary import force_at, summary
+    if args.psi is not None:
+        check_range("--psi", args.psi, -3600.0, 3600.0, unit="deg")
+    check_int("--csv-directions", args.csv_directions, 4, 1_000_000)
     gl = read_gauge(args.gauge)
     obj = force_at(gl, args.psi) if args.psi is not None else summary(gl)
     if args.csv:

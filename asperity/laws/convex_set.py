@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, check_array
 from .geometry import TOL, TWO_PI, psi_array, tan_integral, unit
-from .sets import StarSet
+from .sets import RADIUS_MAX, RADIUS_MIN, StarSet
 
 
 @dataclass(frozen=True)
@@ -45,9 +45,9 @@ class ConvexSet:
     SUBDIVISIONS = 4
 
     def __post_init__(self):
-        psi = np.array(self.psi, dtype=float)
-        h = np.array(self.h, dtype=float)
-        dh = np.array(self.dh, dtype=float)
+        psi = np.array(check_array("psi", self.psi), dtype=float)
+        h = np.array(check_array("h", self.h), dtype=float)
+        dh = np.array(check_array("dh", self.dh), dtype=float)
         n = psi.size
         if psi.ndim != 1 or n < 3 or h.shape != psi.shape or dh.shape != psi.shape:
             raise InputError(f"psi, h and dh must have the same shape (n,), n >= 3, got "
@@ -57,6 +57,12 @@ class ConvexSet:
                 raise InputError(f"{name} must be finite (index {int(np.argmin(np.isfinite(a)))})")
         if np.any(h <= 0):
             raise InputError(f"h must be > 0, got {h.min():g} at index {int(np.argmin(h))}")
+        if np.any((h < RADIUS_MIN) | (h > RADIUS_MAX)) or np.any(np.abs(dh) > RADIUS_MAX):
+            raise InputError(f"h and |dh| must lie in [{RADIUS_MIN:g}, {RADIUS_MAX:g}], got h in "
+                             f"[{h.min():g}, {h.max():g}], max |dh| {np.abs(dh).max():g}")
+        if np.any(np.abs(psi) > 4 * TWO_PI):
+            raise InputError(f"psi must be angles within +-{4 * TWO_PI:.4g} rad, got "
+                             f"{np.abs(psi).max():g}")
         step = np.diff(psi)
         if np.any(step < 0) or not psi[-1] < psi[0] + TWO_PI:
             raise InputError("psi must be non-decreasing over less than a full turn")

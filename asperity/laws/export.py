@@ -31,6 +31,8 @@ def _to_local(p: np.ndarray, theta: float) -> np.ndarray:
 
 def polar_table(gl: GaugeLaw, n: int = 360) -> str:
     """CSV text, header ``psi_deg,p_a,p_b``, n directions from t_a (psi_deg = 360 k / n)."""
+    from ..errors import check_instance
+    check_instance("gauge law", gl, GaugeLaw)
     from ..errors import check_int
     n = check_int("directions", n, 4, 1_000_000)
     theta = math.radians(gl.principal_direction_deg)
@@ -72,6 +74,8 @@ class OrthotropicApproximation:
 
 
 def orthotropic_approximation(gl: GaugeLaw) -> OrthotropicApproximation:
+    from ..errors import check_instance
+    check_instance("gauge law", gl, GaugeLaw)
     theta = math.radians(gl.principal_direction_deg)
     data: ReservoirData = gl.data
     e = fit_truncated_ellipse(data, theta, symmetric=True)

@@ -16,7 +16,16 @@ import numpy as np
 from ..errors import InputError
 from ..friction.reservoir import Reservoir
 from .convex_set import ConvexSet
-from .geometry import LAW_KINDS, TOL, TWO_PI, angle_between, polar_angle, tan_integral, unit
+from .geometry import (
+    LAW_KINDS,
+    TOL,
+    TWO_PI,
+    angle_between,
+    check_mu_law,
+    polar_angle,
+    tan_integral,
+    unit,
+)
 from .sets import StarSet, TruncatedEllipse
 from .walker_leine import LawForce, WalkerLeineLaw, associated
 
@@ -51,6 +60,8 @@ def prepare_reservoir(res: Reservoir, evaluate=None) -> ReservoirData:
     without it the neighbouring directions' points are taken.  Raises InputError for
     self-locking directions (unbounded friction: no finite gauge) or p.s <= 0 (no convex D).
     """
+    from ..errors import check_instance
+    check_instance("reservoir", res, Reservoir)
     psi = np.asarray(res.psi, dtype=float)
     if psi.ndim != 1 or psi.size < 8:
         raise InputError(f"a fit needs at least 8 directions, got {psi.size}")
@@ -152,6 +163,11 @@ def fit_truncated_ellipse(data: ReservoirData, theta: float = 0.0, start=None,
     start : (mu_a+, mu_a-, mu_b+, mu_b-); default the radii of the data nearest the axes.
     symmetric : fit the orthotropic ellipse mu_a+ = mu_a-, mu_b+ = mu_b- (2 parameters).
     """
+    from ..errors import check_instance, check_range
+    check_instance("data", data, ReservoirData)
+    theta = check_range("theta", theta, -2 * TWO_PI, 2 * TWO_PI, unit="rad")
+    if start is not None:
+        start = [check_mu_law(f"start[{i}]", v) for i, v in enumerate(start)]
     from scipy.optimize import least_squares
     phi = polar_angle(data.p)
     r = np.hypot(data.p[:, 0], data.p[:, 1])
@@ -208,6 +224,8 @@ def fit_star(data: ReservoirData):
     matters up to scale while sliding; an associated law gets D = C).
     Raises InputError if the data are not star-shaped (polar angle of p not increasing).
     """
+    from ..errors import check_instance
+    check_instance("data", data, ReservoirData)
     psi, p = data.psi, data.p
     phi = psi + np.arctan(data.g)                       # polar angle of p, increasing with psi
     step = np.diff(np.append(phi, phi[0] + TWO_PI))
@@ -269,6 +287,9 @@ def fit_star(data: ReservoirData):
 def compare_with_reservoir(law: WalkerLeineLaw, ref: Reservoir) -> tuple[float, float]:
     """(max |(|p_law| - |p|)| / |p|, max angle in deg between p_law and p) over the
     directions of ``ref`` that neither self-lock nor are set-valued."""
+    from ..errors import check_instance
+    check_instance("law", law, WalkerLeineLaw)
+    check_instance("ref", ref, Reservoir)
     ok = ~(ref.locked | ref.set_valued)
     if not ok.any():
         return 0.0, 0.0
@@ -309,6 +330,9 @@ def fit_derivation(d, kind: str = "star", holdout: bool = True) -> GaugeLaw:
     ``holdout`` the law is compared with the texture at the directions midway between the
     fitted ones (not used in the fit).
     """
+    from ..errors import check_instance
+    from ..friction.derive import Derivation
+    check_instance("derivation", d, Derivation)
     from ..friction.faces import compute_reservoir
     if kind not in LAW_KINDS:
         raise InputError(f"law must be one of {', '.join(LAW_KINDS)}, got {kind!r}")

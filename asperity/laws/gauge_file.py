@@ -20,6 +20,7 @@ from .. import __version__
 from ..errors import InputError
 from .convex_set import ConvexSet
 from .fitting import FitReport, GaugeLaw, ReservoirData
+from .gauge_checks import check_consistency, check_ranges
 from .gauge_schema import FORMAT, VERSION, parse_constant, validate
 from .sets import StarSet, TruncatedEllipse
 from .walker_leine import WalkerLeineLaw, associated
@@ -35,6 +36,8 @@ class GaugeFileError(InputError):
 
 def to_dict(gl: GaugeLaw) -> dict:
     """The JSON object of a gauge file."""
+    from ..errors import check_instance
+    check_instance("gauge law", gl, GaugeLaw)
     law = gl.law
     if gl.kind == "truncated-ellipse":
         e = law.C
@@ -82,6 +85,8 @@ def dumps(obj) -> str:
 
 def write_gauge(path, gl: GaugeLaw) -> dict:
     """Write the gauge file of ``gl`` atomically; returns its JSON object."""
+    from ..errors import check_instance
+    check_instance("path", path, (str, Path), "file name")
     from ..io import write_text_atomic
     obj = to_dict(gl)
     try:
@@ -95,27 +100,23 @@ def write_gauge(path, gl: GaugeLaw) -> dict:
 
 def read_gauge(path) -> GaugeLaw:
     """Read and check a gauge file; raises GaugeFileError with one line naming the field."""
+    from ..errors import check_instance
+    from ..io import read_json
+    check_instance("gauge file", path, (str, Path), "file name")
     p = Path(path)
-    if not p.is_file():
-        raise GaugeFileError(f"gauge file {str(p)!r} does not exist")
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise GaugeFileError(f"{p}: cannot be read ({exc})") from None
-    try:
-        obj = json.loads(text, parse_constant=parse_constant)
-    except json.JSONDecodeError as exc:
-        raise GaugeFileError(f"{p}: not valid JSON ({exc.msg} at line {exc.lineno}, "
-                             f"column {exc.colno})") from None
+    obj = read_json(p, "gauge file", GaugeFileError, parse_constant=parse_constant)
     try:
         return from_dict(obj)
     except InputError as exc:
         raise GaugeFileError(f"{p}: {exc}") from None
+    except RecursionError:
+        raise GaugeFileError(f"{p}: not a usable gauge file (nested too deeply)") from None
 
 
 def from_dict(obj) -> GaugeLaw:
     """Rebuild the law of a gauge-file object (checked first)."""
     validate(obj)
+    check_ranges(obj)
     kind = obj["law"]
     prm = obj["parameters"]
     if kind == "truncated-ellipse":
@@ -147,5 +148,7 @@ def from_dict(obj) -> GaugeLaw:
     fit = obj["fit"]
     known = set(FitReport.__dataclass_fields__)
     rep = FitReport(**{k: v for k, v in fit.items() if k in known})
-    return GaugeLaw(kind, law, data, rep, obj["source"],
-                    float(obj["frame"]["principal_direction_deg"]))
+    gl = GaugeLaw(kind, law, data, rep, obj["source"],
+                  float(obj["frame"]["principal_direction_deg"]))
+    check_consistency(gl)
+    return gl

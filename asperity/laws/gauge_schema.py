@@ -57,6 +57,9 @@ def validate(obj) -> None:
 def _check_finite(x, path: str) -> None:
     if isinstance(x, _NonFinite) or (isinstance(x, float) and not math.isfinite(x)):
         raise InputError(f"field {_field(path)} must be a finite number, got {_show(x)}")
+    if isinstance(x, int) and not isinstance(x, bool) and abs(x) > 2 ** 1000:
+        raise InputError(f"field {_field(path)} must be a finite number, got an integer of "
+                         f"{len(str(abs(x)))} digits")
     if isinstance(x, dict):
         for k, v in x.items():
             _check_finite(v, f"{path}.{k}" if path else k)

@@ -36,6 +36,18 @@ class GaugeTolerances:
     support_consistency: float = 1e-9
     #: p.s below -dissipation counts as negative dissipation
     dissipation: float = 1e-12
+    #: a gauge file's recorded fit report must match the one recomputed from its own law
+    #: and data to this (relative, and absolute for values near 0): they are computed by
+    #: the same code, so only a hand-edited file differs
+    fit_report: float = 1e-9
+    #: |mean ln(h_D / h_hull(C))| of a fitted star law (D is scaled to C's hull) above this
+    #: means C and D were not fitted together
+    d_scale: float = 1e-6
+
+
+#: friction coefficients and force magnitudes per unit normal load that a law may hold
+#: (a smaller or larger value is no physical friction, and overflows the computations)
+MU_MIN, MU_MAX = 1e-6, 100.0
 
 
 TOL = GaugeTolerances()
@@ -57,11 +69,35 @@ def cross(a, b) -> np.ndarray:
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def psi_array(psi) -> np.ndarray:
-    psi = np.atleast_1d(np.asarray(psi, dtype=float))
-    if not np.all(np.isfinite(psi)):
-        raise InputError("psi must be finite")
-    return psi
+#: largest |angle| (rad) taken as a direction (beyond, cos and sin lose all precision)
+MAX_ANGLE = 1e4
+
+
+def psi_array(psi, name: str = "psi") -> np.ndarray:
+    """(m,) finite sliding directions (rad), else InputError."""
+    from ..errors import check_array
+    a = np.atleast_1d(check_array(name, psi))
+    if np.any(np.abs(a) > MAX_ANGLE):
+        raise InputError(f"{name} must be angles in radians within +-{MAX_ANGLE:g}, got "
+                         f"{a[np.abs(a) > MAX_ANGLE][0]:g}")
+    return a
+
+
+def points_array(name: str, x) -> np.ndarray:
+    """(m, 2) finite vectors, else InputError."""
+    from ..errors import check_array
+    a = check_array(name, x)
+    if a.ndim == 1 and a.size == 2:
+        a = a.reshape(1, 2)
+    if a.ndim != 2 or a.shape[1] != 2:
+        raise InputError(f"{name} must have shape (m, 2), got {a.shape}")
+    return a
+
+
+def check_mu_law(name: str, value) -> float:
+    """A friction coefficient or force magnitude of a law: in [MU_MIN, MU_MAX]."""
+    from ..errors import check_range
+    return check_range(name, value, MU_MIN, MU_MAX)
 
 
 def angle_between(a, b) -> np.ndarray:

@@ -20,8 +20,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError
-from .geometry import TOL, TWO_PI, cross, polar_angle, psi_array, unit
+from ..errors import InputError, check_array, check_range
+from .geometry import TOL, TWO_PI, check_mu_law, cross, points_array, polar_angle, psi_array, unit
+
+#: distances from the origin a polygon or support function may have (numeric sanity; the
+#: physical range of friction coefficients, MU_MIN..MU_MAX, is checked where data enter)
+RADIUS_MIN, RADIUS_MAX = 1e-9, 1e6
 
 
 @dataclass(frozen=True)
@@ -32,14 +36,13 @@ class Disc:
     kind = "disc"
 
     def __post_init__(self):
-        if not (math.isfinite(self.mu) and self.mu > 0):
-            raise InputError(f"mu must be in (0, inf), got {self.mu!r}")
+        object.__setattr__(self, "mu", check_mu_law("mu", self.mu))
 
     def radial(self, phi) -> np.ndarray:
-        return np.full(np.shape(np.atleast_1d(phi)), float(self.mu))
+        return np.full(psi_array(phi, "phi").shape, float(self.mu))
 
     def gauge(self, x) -> np.ndarray:
-        x = np.atleast_2d(np.asarray(x, dtype=float))
+        x = points_array("x", x)
         return np.hypot(x[:, 0], x[:, 1]) / self.mu
 
     def support(self, psi) -> np.ndarray:
@@ -69,11 +72,9 @@ class TruncatedEllipse:
 
     def __post_init__(self):
         for name in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise InputError(f"{name} must be in (0, inf), got {v!r}")
-        if not math.isfinite(self.theta):
-            raise InputError(f"theta must be finite, got {self.theta!r}")
+            object.__setattr__(self, name, check_mu_law(name, getattr(self, name)))
+        object.__setattr__(self, "theta", check_range("theta", self.theta, -2 * TWO_PI,
+                                                      2 * TWO_PI, unit="rad"))
 
     @property
     def axes(self) -> dict:
@@ -82,7 +83,7 @@ class TruncatedEllipse:
 
     def _local(self, x) -> np.ndarray:
         c, s = math.cos(self.theta), math.sin(self.theta)
-        x = np.atleast_2d(np.asarray(x, dtype=float))
+        x = points_array("x", x)
         return np.column_stack([c * x[:, 0] + s * x[:, 1], -s * x[:, 0] + c * x[:, 1]])
 
     def _global(self, x) -> np.ndarray:
@@ -100,7 +101,7 @@ class TruncatedEllipse:
         return np.hypot(xl[:, 0] / A, xl[:, 1] / B)
 
     def radial(self, phi) -> np.ndarray:
-        return 1.0 / self.gauge(unit(phi))
+        return 1.0 / self.gauge(unit(psi_array(phi, "phi")))
 
     def support(self, psi) -> np.ndarray:
         sl = self._local(unit(psi_array(psi)))
@@ -116,8 +117,12 @@ class TruncatedEllipse:
         return y, y, y
 
     def criterion(self, tau, sigma_n) -> np.ndarray:
-        """Antoni et al. eq. 18: g = k(tau) - sigma_n (<= 0: stick), tau (m, 2) stresses."""
-        return self.gauge(tau) - np.asarray(sigma_n, dtype=float)
+        """Antoni et al. eq. 18: g = k(tau) - sigma_n (<= 0: stick), tau (m, 2) stresses,
+        sigma_n >= 0 the normal (contact) stress, in the same unit."""
+        sn = check_array("sigma_n", sigma_n)
+        if np.any(sn < 0):
+            raise InputError(f"sigma_n must be >= 0 (a contact pressure), got {sn.min():g}")
+        return self.gauge(points_array("tau", tau)) - sn
 
 
 @dataclass(frozen=True)
@@ -134,14 +139,17 @@ class StarSet:
     angles: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        pts = np.array(self.points, dtype=float)
-        if pts.ndim != 2 or pts.shape[1] != 2 or pts.shape[0] < 3:
+        pts = np.array(check_array("points", self.points, shape=(None, 2)), dtype=float)
+        if pts.shape[0] < 3:
             raise InputError(f"points must have shape (n, 2) with n >= 3, got {pts.shape}")
-        if not np.all(np.isfinite(pts)):
-            raise InputError("points must be finite")
         r = np.hypot(pts[:, 0], pts[:, 1])
         if np.any(r <= 0):
             raise InputError(f"points must not contain the origin (point {int(np.argmin(r))})")
+        far = (r < RADIUS_MIN) | (r > RADIUS_MAX)
+        if np.any(far):
+            k = int(np.flatnonzero(far)[0])
+            raise InputError(f"points must lie at distances in [{RADIUS_MIN:g}, {RADIUS_MAX:g}] "
+                             f"from the origin, got {r[k]:g} (point {k})")
         phi = polar_angle(pts)
         step = np.mod(np.diff(np.append(phi, phi[0])), TWO_PI)
         if abs(step.sum() - TWO_PI) > 1e-9 or np.any(step <= 0) or np.any(step >= math.pi):
@@ -162,7 +170,7 @@ class StarSet:
         return self.points.shape[0]
 
     def _edge(self, phi):
-        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        phi = psi_array(phi, "phi")
         a0 = self.angles[0]
         pm = a0 + np.mod(phi - a0, TWO_PI)
         k = np.clip(np.searchsorted(self.angles, pm, side="right") - 1, 0, self.n - 1)
@@ -178,7 +186,7 @@ class StarSet:
         return cross(v0, d) / cross(u, d)
 
     def gauge(self, x) -> np.ndarray:
-        x = np.atleast_2d(np.asarray(x, dtype=float))
+        x = points_array("x", x)
         r = np.hypot(x[:, 0], x[:, 1])
         out = np.zeros(r.shape)
         nz = r > 0

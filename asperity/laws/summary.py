@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import math
 
-from ..errors import InputError
-
 
 def summary(gl) -> dict:
     """JSON summary of a fitted law (no bulky arrays)."""
+    from ..errors import check_instance
+    from .fitting import GaugeLaw
+    check_instance("gauge law", gl, GaugeLaw)
     out = {"law": gl.kind, "source": gl.source,
            "principal_direction_deg": gl.principal_direction_deg, "fit": gl.fit.to_dict()}
     if gl.kind == "truncated-ellipse":
@@ -21,6 +22,9 @@ def summary(gl) -> dict:
 
 def format_fit(gl) -> str:
     """Fit quality for the terminal."""
+    from ..errors import check_instance
+    from .fitting import GaugeLaw
+    check_instance("gauge law", gl, GaugeLaw)
     r = gl.fit
     tex = gl.source.get("texture", {})
     lines = [f"law: {gl.kind}   contact: {gl.source.get('contact')}   texture: "
@@ -57,9 +61,10 @@ def force_at(gl, psi_deg: float) -> dict:
     printed by ``asperity law --psi DEG --json``."""
     import numpy as np
 
-    x = float(psi_deg)
-    if not math.isfinite(x):   # NaN and +-inf
-        raise InputError(f"--psi must be a finite angle in deg, got {x:g}")
+    from ..errors import check_instance, check_range
+    from .fitting import GaugeLaw
+    check_instance("gauge law", gl, GaugeLaw)
+    x = check_range("psi_deg", psi_deg, -3600.0, 3600.0, unit="deg")
     f = gl.force(np.array([math.radians(x)]))
     out = {"psi_deg": x, "p": [float(f.p[0, 0]), float(f.p[0, 1])],
            "tangential": float(f.tangential[0]), "lateral": float(f.lateral[0]),

@@ -68,6 +68,15 @@ class WalkerLeineLaw:
     C: object
     D: object
 
+    def __post_init__(self):
+        from ..errors import check_instance
+        from .convex_set import ConvexSet
+        from .sets import Disc, StarSet, TruncatedEllipse
+        check_instance("C", self.C, (Disc, TruncatedEllipse, StarSet, ConvexSet),
+                       "Disc, TruncatedEllipse, StarSet or ConvexSet")
+        check_instance("D", self.D, (Disc, TruncatedEllipse, ConvexSet, StarSet),
+                       "Disc, TruncatedEllipse or ConvexSet (a convex set)")
+
     def force(self, psi) -> LawForce:
         """The sliding force for the directions ``psi`` (rad)."""
         psi = psi_array(psi)
@@ -100,10 +109,12 @@ class WalkerLeineLaw:
 
 def coulomb(mu: float) -> WalkerLeineLaw:
     """Isotropic Coulomb friction: C = D = disc of radius mu."""
-    d = Disc(float(mu))
+    d = Disc(mu)
     return WalkerLeineLaw(d, d)
 
 
 def associated(ellipse: TruncatedEllipse) -> WalkerLeineLaw:
     """The associated law of a truncated ellipse (force normal rule): C = D = ellipse."""
+    from ..errors import check_instance
+    check_instance("ellipse", ellipse, TruncatedEllipse)
     return WalkerLeineLaw(ellipse, ellipse)
