@@ -117,17 +117,17 @@ def test_non_convergence_exits_3_with_the_step(capsys):
 
 @pytest.mark.parametrize("argv,msg", [
     (["--u0", 1, "--angle", 0], "--mu1 is required"),
-    (["--mu1", -0.1, "--u0", 1, "--angle", 0], "--mu1 must be in (0, 100]"),
-    (["--mu1", 0.3, "--mu2", 0, "--u0", 1, "--angle", 0], "--mu2 must be in (0, 100]"),
+    (["--mu1", -0.1, "--u0", 1, "--angle", 0], "--mu1 must be in [1e-06, 100]"),
+    (["--mu1", 0.3, "--mu2", 0, "--u0", 1, "--angle", 0], "--mu2 must be in [1e-06, 100]"),
     (["--law", "ellipse", "--mu1", 0.3, "--u0", 1, "--angle", 0], "--law ellipse needs --mu2"),
     (["--law", "coulomb", "--mu1", 0.3, "--mu2", 0.2, "--u0", 1, "--angle", 0],
      "--law coulomb is isotropic"),
     (["--mu1", 0.3, "--u0", -1, "--angle", 0], "--u0 must be in [0, 10000]"),
     (["--mu1", 0.3, "--u0", 1, "--angle", 400], "--angle must be in [-360, 360]"),
-    (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--dt", 0], "--dt must be in (0, 1]"),
+    (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--dt", 0], "--dt must be in [1e-09, 1] s"),
     (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--mass", "nan"], "--mass must be in"),
-    (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--g", 0], "--g must be in (0, 10000]"),
-    (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--t-end", 1e9, "--dt", 1e-3], "at most 5e8"),
+    (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--g", 0], "--g must be in [1e-06, 10000] m/s^2"),
+    (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--t-end", 1e9, "--dt", 1e-3], "at most 5e+08"),
     (["--mu1", 0.3, "--u0", 1, "--angle", 0, "--max-iterations", 0], "--max-iterations"),
     (["missing.json", "--u0", 1, "--angle", 0], "does not exist"),
 ])

@@ -58,6 +58,7 @@ def add_parser(sub) -> None:
 
 def build_law(args):
     """The PlanarLaw selected by the arguments (validated)."""
+    from ..dynamics.moreau import LIMITS
     from ..errors import InputError, check_range
     from ..laws import planar as L
     if args.gauge:
@@ -77,10 +78,9 @@ def build_law(args):
         return L.from_gauge(gl, None if kind in (None, "ellipse", "star") else kind)
     if args.mu1 is None:
         raise InputError("--mu1 is required without a gauge file (friction coefficient along "
-                         "t_a, in (0, 100])")
-    mu1 = check_range("--mu1", args.mu1, 0.0, 100.0, low_open=True)
-    mu2 = None if args.mu2 is None else check_range("--mu2", args.mu2, 0.0, 100.0,
-                                                   low_open=True)
+                         "t_a, in [1e-6, 100])")
+    mu1 = check_range("--mu1", args.mu1, *LIMITS["mu"])
+    mu2 = None if args.mu2 is None else check_range("--mu2", args.mu2, *LIMITS["mu"])
     law = args.law or ("coulomb" if mu2 is None or mu2 == mu1 else "ellipse")
     if law == "coulomb":
         if mu2 is not None and mu2 != mu1:
@@ -88,7 +88,7 @@ def build_law(args):
                              f"it, got --mu1 {mu1:g} --mu2 {mu2:g}")
         return L.coulomb_law(mu1)
     if mu2 is None:
-        raise InputError(f"--law {law} needs --mu2 (friction coefficient along t_b, in (0, 100])")
+        raise InputError(f"--law {law} needs --mu2 (friction coefficient along t_b, in [1e-6, 100])")
     if law == "ellipse":
         return L.ellipse_law(mu1, mu2)
     if law == "collinear":
@@ -98,15 +98,15 @@ def build_law(args):
 
 def run(args):
     """Python API of the command: (law, Result, the JSON object printed with --json)."""
-    from ..dynamics.moreau import Settings, point_mass, simulate
+    from ..dynamics.moreau import LIMITS, MAX_STEPS, Settings, point_mass, simulate
     from ..dynamics.summary import path_csv, slide_summary
     from ..errors import InputError, check_int, check_range
     u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
     angle = check_range("--angle", args.angle, -360.0, 360.0, unit="deg")
-    mass = check_range("--mass", args.mass, 0.0, 1e9, low_open=True, unit="kg")
-    g = check_range("--g", args.g, 0.0, 1e4, low_open=True, unit="m/s^2")
-    dt = check_range("--dt", args.dt, 0.0, 1.0, low_open=True, unit="s")
-    tol = check_range("--tol", args.tol, 0.0, 1e-3, low_open=True)
+    mass = check_range("--mass", args.mass, *LIMITS["mass"], unit="kg")
+    g = check_range("--g", args.g, *LIMITS["g"], unit="m/s^2")
+    dt = check_range("--dt", args.dt, *LIMITS["dt"], unit="s")
+    tol = check_range("--tol", args.tol, 1e-15, 1e-3)
     maxit = check_int("--max-iterations", args.max_iterations, 1, 1_000_000)
     law = build_law(args)
     halt = args.t_end is None
@@ -115,8 +115,9 @@ def run(args):
     else:
         t_end = check_range("--t-end", args.t_end, 0.0, 1e9, unit="s")
     n = int(round(t_end / dt))
-    if n > 500_000_000:
-        raise InputError(f"--t-end / --dt gives {n:.3g} steps, at most 5e8: raise --dt")
+    if n > MAX_STEPS:
+        raise InputError(f"--t-end / --dt gives {n:.3g} steps, at most {MAX_STEPS:.0e}: raise "
+                         "--dt or lower --t-end")
     rec = max(1, n // MAX_ROWS) if (args.plot or args.csv) else max(1, n)
     a = math.radians(angle)
     res = simulate(point_mass(law, mass), [u0 * math.cos(a), u0 * math.sin(a)], dt=dt,

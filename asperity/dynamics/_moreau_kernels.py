@@ -28,7 +28,8 @@ INFO_FAIL_RESIDUAL = 5     # its residual
 INFO_MAX_RESIDUAL = 6      # largest final residual over all steps
 INFO_RECORDS = 7           # rows written to the record arrays
 INFO_ITER_TOTAL = 8        # fixed-point iterations summed over the steps
-INFO_SIZE = 9
+INFO_HALTED = 9            # 1: stopped before n_steps (at rest with halt_at_rest, or non-finite)
+INFO_SIZE = 10
 FORCE_NONE = 0
 FORCE_SQUARE = 1
 FORCE_SINE = 2
@@ -69,12 +70,16 @@ def _end_velocity(ue, uf, minv, P, ow, nc, ndof):
 
 
 @njit(cache=True)
-def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
-              fpar, ftab, t0, dt, n_steps, r, tol, max_iter, full_rank, halt_at_rest,
-              record_every, rec_t, rec_q, rec_u, info):
-    """Moreau midpoint time-stepping of a body on a plane (SPEC.md section 4).
+def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
+              fpar, ftab, t0, dt, n_steps, step0, n_chunk, r, tol, max_iter, full_rank,
+              halt_at_rest, record_every, rec_t, rec_q, rec_u, info):
+    """Moreau midpoint time-stepping of a body on a plane (SPEC.md section 4), steps
+    ``step0`` to ``step0 + n_chunk`` of ``n_steps``: the state (q, u, the impulses P that
+    start each step's iteration, info, the records) is carried in the arguments, so that a
+    run split into pieces gives the same result as one piece, bit for bit.
 
-    q0, u0 : (ndof,) ndof = 2 (point mass x, y) or 3 (rigid body x, y, theta)
+    q, u   : (ndof,) state, updated in place; ndof = 2 (point mass x, y) or 3 (rigid body)
+    P      : (nc, 2) contact impulses of the last step (zeros before the first), in place
     minv   : (ndof,) inverse mass matrix diagonal
     offsets: (nc, 2) contact points in the body frame (rotated by theta at q_M)
     lam_n  : (nc,) normal impulse per step of each contact (share * m g dt)
@@ -89,15 +94,12 @@ def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
     halt_at_rest : stop integrating once at rest under no external force (nothing can move)
     Records every ``record_every`` steps (and the initial state) into rec_*; info as INFO_*.
     """
-    ndof = q0.shape[0]
+    ndof = q.shape[0]
     nc = offsets.shape[0]
-    q = q0.copy()
-    u = u0.copy()
     f = np.zeros(ndof)
     qm = np.zeros(ndof)
     uf = np.zeros(ndof)
     ue = np.zeros(ndof)
-    P = np.zeros((nc, 2))
     Pn = np.zeros((nc, 2))
     ow = np.zeros((nc, 2))
     stick = np.zeros(nc, np.bool_)
@@ -106,27 +108,30 @@ def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
         for j in range(ndof):
             if fpar[2 + j] != 0.0:
                 unforced = False
-    for j in range(INFO_SIZE):
-        info[j] = 0.0
-    info[INFO_STOP_STEP] = -1.0
-    info[INFO_FAIL_STEP] = -1.0
-    moving0 = False
-    for j in range(ndof):
-        if u[j] != 0.0:
-            moving0 = True
-    if not moving0:
-        info[INFO_STOP_STEP] = 0.0
-    nrec = 0
-    rec_t[0] = t0
-    for j in range(ndof):
-        rec_q[0, j] = q[j]
-        rec_u[0, j] = u[j]
-    nrec = 1
-    max_it = 0
-    it_total = 0
-    status = STATUS_OK
-    step = 0
-    for step in range(n_steps):
+    if step0 == 0:
+        for j in range(INFO_SIZE):
+            info[j] = 0.0
+        info[INFO_STOP_STEP] = -1.0
+        info[INFO_FAIL_STEP] = -1.0
+        moving0 = False
+        for j in range(ndof):
+            if u[j] != 0.0:
+                moving0 = True
+        if not moving0:
+            info[INFO_STOP_STEP] = 0.0
+        rec_t[0] = t0
+        for j in range(ndof):
+            rec_q[0, j] = q[j]
+            rec_u[0, j] = u[j]
+        info[INFO_RECORDS] = 1
+    nrec = int(info[INFO_RECORDS])
+    max_it = int(info[INFO_MAX_ITER])
+    it_total = int(info[INFO_ITER_TOTAL])
+    status = int(info[INFO_STATUS])
+    stop_at = min(n_steps, step0 + n_chunk)
+    halted = False
+    step = step0
+    for step in range(step0, stop_at):
         tm = t0 + (step + 0.5) * dt
         _force(fpar, ftab, step, tm, ndof, f)
         for j in range(ndof):
@@ -198,6 +203,7 @@ def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
             status = STATUS_NON_FINITE
             if info[INFO_FAIL_STEP] < 0:
                 info[INFO_FAIL_STEP] = step
+            halted = True
             break
         was_moving = False
         for j in range(ndof):
@@ -219,12 +225,14 @@ def integrate(q0, u0, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
                 rec_u[nrec, j] = u[j]
             nrec += 1
         if halt_at_rest and unforced and not moving:
+            halted = True
             break
-    info[INFO_STEPS] = step + 1 if n_steps > 0 else 0
-    if status == STATUS_NON_FINITE:
-        info[INFO_STEPS] = step
+    if stop_at > step0:
+        info[INFO_STEPS] = step + 1
+        if status == STATUS_NON_FINITE:
+            info[INFO_STEPS] = step
+    info[INFO_HALTED] = 1.0 if halted else 0.0
     info[INFO_MAX_ITER] = max_it
     info[INFO_STATUS] = status
     info[INFO_RECORDS] = nrec
     info[INFO_ITER_TOTAL] = it_total
-    return q, u

@@ -39,10 +39,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_int, check_range
+from ..errors import InputError, check_array, check_choice, check_instance, check_int, check_range
 from ..laws.planar import PlanarLaw
+from .. import progress
+from ..progress import chunks
+from ..resources import check_memory, check_work
 
 STATUS_NAMES = {0: "ok", 1: "not-converged", 2: "non-finite"}
+#: physically meaningful ranges (SI units) of the solver's inputs
+LIMITS = {"dt": (1e-9, 1.0), "t_end": (0.0, 1e9), "g": (1e-6, 1e4), "mass": (1e-9, 1e9),
+          "inertia": (1e-15, 1e12), "u0": (0.0, 1e4), "mu": (1e-6, 100.0)}
+#: most steps a simulation may take (~3 min for the ellipse law, ~15 min for a star law)
+MAX_STEPS = 5e8
+#: steps per kernel call for one contact (about 0.1 s with the slowest, star-shaped, law)
+STEPS_PER_PIECE = 50_000
 WAVEFORMS = {"none": 0, "square": 1, "sine": 2}
 
 
@@ -61,7 +71,7 @@ class Settings:
 
     def __post_init__(self):
         check_range("relax", self.relax, 0.0, 2.0, low_open=True, high_open=True)
-        check_range("tol", self.tol, 0.0, 1.0, low_open=True)
+        check_range("tol", self.tol, 1e-15, 1e-3)
         check_int("max_iterations", self.max_iterations, 1, 1_000_000)
 
 
@@ -83,20 +93,23 @@ class Body:
     share: np.ndarray | None = None
 
     def __post_init__(self):
-        check_range("mass", self.mass, 0.0, None, low_open=True, unit="kg")
-        c = np.array(self.contacts, dtype=float)
-        if c.ndim != 2 or c.shape[1] != 2 or c.shape[0] < 1:
-            raise InputError(f"contacts must have shape (n, 2), got {c.shape}")
-        if not np.all(np.isfinite(c)):
-            raise InputError("contacts must be finite")
+        check_range("mass", self.mass, *LIMITS["mass"], unit="kg")
+        c = np.array(check_array("contacts", self.contacts, shape=(None, 2), min_size=2),
+                     dtype=float)
+        if np.any(np.abs(c) > 1e3) or c.shape[0] > 10_000:
+            raise InputError(f"contacts must be at most 10000 points within 1 km of the centre, "
+                             f"got {c.shape[0]} up to {np.abs(c).max():g} m")
         n = c.shape[0]
         laws = self.laws
         if isinstance(laws, PlanarLaw):
             laws = (laws,) * n
         laws = tuple(laws)
+        if isinstance(laws, (str, bytes)) or not hasattr(laws, "__len__"):
+            raise InputError(f"laws must be one PlanarLaw or {n} of them, got {laws!r}")
         if len(laws) != n or not all(isinstance(x, PlanarLaw) for x in laws):
             raise InputError(f"laws must be one PlanarLaw or {n} of them, got {len(laws)}")
-        sh = np.full(n, 1.0 / n) if self.share is None else np.array(self.share, dtype=float)
+        sh = np.full(n, 1.0 / n) if self.share is None else \
+            np.array(check_array("share", self.share), dtype=float)
         if sh.shape != (n,) or not np.all(np.isfinite(sh)) or np.any(sh <= 0) \
                 or abs(sh.sum() - 1.0) > 1e-12:
             raise InputError(f"share must be {n} positive numbers summing to 1, got {sh}")
@@ -104,7 +117,7 @@ class Body:
             if n != 1 or np.any(c != 0):
                 raise InputError("a point mass (inertia None) has one contact at (0, 0)")
         else:
-            check_range("inertia", self.inertia, 0.0, None, low_open=True, unit="kg m^2")
+            check_range("inertia", self.inertia, *LIMITS["inertia"], unit="kg m^2")
         c.setflags(write=False)
         sh.setflags(write=False)
         object.__setattr__(self, "contacts", c)
@@ -164,15 +177,14 @@ class Force:
     waveform: str = "none"
 
     def __post_init__(self):
-        if self.waveform not in WAVEFORMS:
-            raise InputError(f"waveform must be one of {', '.join(WAVEFORMS)}, got "
-                             f"{self.waveform!r}")
-        check_range("period", self.period, 0.0, None, low_open=True, unit="s")
+        check_choice("waveform", self.waveform, tuple(WAVEFORMS))
+        check_range("period", self.period, 1e-9, 1e9, unit="s")
         for name in ("constant", "amplitude"):
             v = np.zeros(3)
-            a = np.asarray(getattr(self, name), dtype=float).ravel()
-            if a.size > 3 or not np.all(np.isfinite(a)):
-                raise InputError(f"{name} must be up to 3 finite numbers (fx, fy, torque)")
+            a = check_array(name, getattr(self, name)).ravel()
+            if a.size > 3 or np.any(np.abs(a) > 1e12):
+                raise InputError(f"{name} must be up to 3 numbers (fx, fy, torque) within "
+                                 f"+-1e12, got {a}")
             v[:a.size] = a
             object.__setattr__(self, name, tuple(float(x) for x in v))
 
@@ -253,20 +265,26 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
     halt_at_rest: stop as soon as the body is at rest with no external force (then nothing
         can change); the result's ``steps`` counts the steps done
     """
+    check_instance("body", body, Body)
+    check_instance("settings", settings, Settings)
+    if force is not None:
+        check_instance("force", force, Force)
     ndof = body.ndof
-    u0 = np.asarray(u0, dtype=float).ravel()
-    if u0.shape != (ndof,) or not np.all(np.isfinite(u0)):
-        raise InputError(f"u0 must be {ndof} finite numbers, got {u0}")
-    q0 = np.zeros(ndof) if q0 is None else np.asarray(q0, dtype=float).ravel()
-    if q0.shape != (ndof,) or not np.all(np.isfinite(q0)):
-        raise InputError(f"q0 must be {ndof} finite numbers, got {q0}")
-    dt = check_range("dt", dt, 0.0, None, low_open=True, unit="s")
-    t_end = check_range("t_end", t_end, 0.0, None, unit="s")
-    g = check_range("g", g, 0.0, None, low_open=True, unit="m/s^2")
+    u0 = check_array("u0", u0, shape=(ndof,))
+    if np.any(np.abs(u0) > LIMITS["u0"][1]):
+        raise InputError(f"u0 must be velocities within +-{LIMITS['u0'][1]:g} m/s, got {u0}")
+    q0 = np.zeros(ndof) if q0 is None else check_array("q0", q0, shape=(ndof,))
+    if np.any(np.abs(q0) > 1e9):
+        raise InputError(f"q0 must be positions within +-1e9 m, got {q0}")
+    dt = check_range("dt", dt, *LIMITS["dt"], unit="s")
+    t_end = check_range("t_end", t_end, 0.0, LIMITS["t_end"][1], unit="s")
+    g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
     n_steps = int(round(t_end / dt))
-    if n_steps > 2_000_000_000:
-        raise InputError(f"t_end / dt must be at most 2e9 steps, got {n_steps:.3g}")
+    check_work(n_steps, MAX_STEPS, "this simulation (t_end / dt)", "raise dt or lower t_end")
     record_every = check_int("record_every", record_every, 1, None)
+    check_memory((n_steps // record_every + 2) * (1 + 2 * ndof) * 8.0,
+                 f"recording {n_steps // record_every + 2:.3g} states",
+                 "raise record_every (the CLI records at most 20000 rows)")
     from . import _moreau_kernels as K
     nc = body.contacts.shape[0]
     sets = [law.kernel_sets for law in body.laws]
@@ -301,10 +319,21 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
     rec_q = np.zeros((n_rec, ndof))
     rec_u = np.zeros((n_rec, ndof))
     info = np.zeros(K.INFO_SIZE)
-    qf, uf = K.integrate(q0, u0, body.minv, np.ascontiguousarray(body.contacts), lam_n, assoc,
-                         kinds, pars, tabs, offs, ns, fpar, ftab, 0.0, dt, n_steps, r,
-                         settings.tol, settings.max_iterations, body.full_rank(),
-                         bool(halt_at_rest), record_every, rec_t, rec_q, rec_u, info)
+    qf, uf = q0.copy(), u0.copy()
+    P = np.zeros((nc, 2))
+    contacts = np.ascontiguousarray(body.contacts)
+    full_rank = body.full_rank()
+    # pieces of STEPS_PER_PIECE steps (~0.1 s for the slowest law): Ctrl-C between them
+    pieces = chunks(n_steps, max(1, STEPS_PER_PIECE // nc), "Moreau steps") if n_steps else \
+        [(0, 0)]
+    for start, stop in pieces:
+        K.integrate(qf, uf, P, body.minv, contacts, lam_n, assoc, kinds, pars, tabs, offs, ns,
+                    fpar, ftab, 0.0, dt, n_steps, start, stop - start, r, settings.tol,
+                    settings.max_iterations, full_rank, bool(halt_at_rest), record_every,
+                    rec_t, rec_q, rec_u, info)
+        if info[K.INFO_HALTED]:
+            progress.report(1.0, "Moreau steps")      # at rest (or failed) early: the work is done
+            break
     k = int(info[K.INFO_RECORDS])
     steps = int(info[K.INFO_STEPS])
     stop = int(info[K.INFO_STOP_STEP])
@@ -327,10 +356,11 @@ def slide(law: PlanarLaw, u0: float, angle_deg: float, *, mass: float = 1.0, g: 
     """A point mass launched from the origin at speed u0 (m/s) in direction angle_deg (from
     t_a towards t_b), sliding until it sticks.  t_end None: until rest (horizon
     1.5 u0 / (g min_psi p.s) + 10 dt, enough for any admissible law)."""
-    u0 = check_range("u0", u0, 0.0, None, unit="m/s")
+    check_instance("law", law, PlanarLaw)
+    u0 = check_range("u0", u0, *LIMITS["u0"], unit="m/s")
     ang = math.radians(check_range("angle", angle_deg, -360.0, 360.0, unit="deg"))
-    g = check_range("g", g, 0.0, None, low_open=True, unit="m/s^2")
-    dt = check_range("dt", dt, 0.0, None, low_open=True, unit="s")
+    g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
+    dt = check_range("dt", dt, *LIMITS["dt"], unit="s")
     halt = t_end is None
     if t_end is None:
         t_end = 1.5 * u0 / (g * law.min_tangential()) + 10 * dt
@@ -342,8 +372,8 @@ def slide(law: PlanarLaw, u0: float, angle_deg: float, *, mass: float = 1.0, g: 
 def deflection_deg(u0_angle_deg: float, rest) -> float:
     """Signed angle (deg, in (-180, 180]) from the initial velocity to the line from the start
     (origin) to the rest point; positive counter-clockwise (towards t_b from t_a)."""
-    a = math.radians(u0_angle_deg)
-    x, y = float(rest[0]), float(rest[1])
+    a = math.radians(check_range("u0_angle_deg", u0_angle_deg, -3600.0, 3600.0, unit="deg"))
+    x, y = (float(v) for v in check_array("rest", rest, shape=(2,)))
     if x == 0.0 and y == 0.0:
         return 0.0
     c, s = math.cos(a), math.sin(a)

@@ -11,18 +11,25 @@ import math
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, check_instance, check_range
 from ..laws.planar import PlanarLaw
-from .moreau import Result
+from .moreau import LIMITS, Result
+
+
+def _common(u0, mu, g):
+    return (check_range("u0", u0, *LIMITS["u0"], unit="m/s"),
+            check_range("mu", mu, *LIMITS["mu"]), check_range("g", g, *LIMITS["g"], unit="m/s^2"))
 
 
 def coulomb_stop_time(u0: float, mu: float, g: float = 9.81) -> float:
     """Stop time u0 / (mu g) of a point mass with isotropic (or on-axis) Coulomb friction."""
+    u0, mu, g = _common(u0, mu, g)
     return u0 / (mu * g)
 
 
 def coulomb_stop_distance(u0: float, mu: float, g: float = 9.81) -> float:
     """Stop distance u0^2 / (2 mu g)."""
+    u0, mu, g = _common(u0, mu, g)
     return u0 * u0 / (2.0 * mu * g)
 
 
@@ -44,6 +51,12 @@ def ratchet_drift_square(F0: float, mass: float, period: float, mu_plus: float,
     during the +F0 half and stopping in the -F0 half.  F0 below both thresholds: 0.  The
     formula is refused when F0 exceeds both (slip both ways: no closed form here).
     """
+    F0 = check_range("F0", F0, 0.0, 1e12, unit="N")
+    mass = check_range("mass", mass, *LIMITS["mass"], unit="kg")
+    period = check_range("period", period, 1e-9, 1e9, unit="s")
+    mu_plus = check_range("mu_plus", mu_plus, *LIMITS["mu"])
+    mu_minus = check_range("mu_minus", mu_minus, *LIMITS["mu"])
+    g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
     tau = 0.5 * period
     lo, hi = mu_minus * mass * g, mu_plus * mass * g
     if F0 <= lo and F0 <= hi:
@@ -73,6 +86,10 @@ def reference_path(law: PlanarLaw, u0: float, angle_deg: float, g: float = 9.81,
 
     Returns (t_stop, rest (2,), dense(t) -> (2,) position for 0 <= t, constant after t_stop).
     """
+    check_instance("law", law, PlanarLaw)
+    u0 = check_range("u0", u0, LIMITS["mu"][0], LIMITS["u0"][1], unit="m/s")
+    angle_deg = check_range("angle_deg", angle_deg, -360.0, 360.0, unit="deg")
+    g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
     from scipy.integrate import solve_ivp
     a0 = math.radians(angle_deg)
     edges = np.asarray(getattr(law.law.D, "edges", np.empty(0)), dtype=float)
@@ -152,5 +169,8 @@ def reference_path(law: PlanarLaw, u0: float, angle_deg: float, g: float = 9.81,
 
 def path_error(res: Result, dense) -> float:
     """max over the recorded states of |q(t_n) - q_ref(t_n)| (m)."""
+    check_instance("res", res, Result)
+    if not callable(dense):
+        raise InputError(f"dense must be the function returned by reference_path, got {dense!r}")
     ref = dense(res.t)
     return float(np.max(np.hypot(*(res.q[:, :2] - ref).T)))

@@ -33,9 +33,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError, check_range
+from ..errors import InputError, as_number, check_range
 from .convex_set import ConvexSet
-from .geometry import polar_angle, unit
+from .geometry import points_array, polar_angle, psi_array, unit
 from .sets import Disc, StarSet, TruncatedEllipse
 from .walker_leine import WalkerLeineLaw, associated
 
@@ -107,6 +107,9 @@ class PlanarLaw:
     _kernel: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
+        from ..errors import check_instance, check_text
+        check_text("name", self.name, 64)
+        check_instance("law", self.law, WalkerLeineLaw)
         C, D = self.law.C, self.law.D
         assoc = C is D or (type(C) is type(D) and C == D and not isinstance(C, ConvexSet))
         if not assoc:
@@ -163,7 +166,8 @@ class PlanarLaw:
 # ----------------------------------------------------------------------------- built-in laws
 
 def _mu(name, v) -> float:
-    return check_range(name, v, 0.0, 100.0, low_open=True)
+    from .geometry import check_mu_law
+    return check_mu_law(name, v)
 
 
 def coulomb_law(mu: float) -> PlanarLaw:
@@ -185,7 +189,7 @@ def truncated_ellipse_law(mu_a_plus, mu_a_minus, mu_b_plus, mu_b_minus,
     """Associated truncated ellipse (Antoni et al. eq. 18), asymmetric in general."""
     e = TruncatedEllipse(_mu("mu_a_plus", mu_a_plus), _mu("mu_a_minus", mu_a_minus),
                          _mu("mu_b_plus", mu_b_plus), _mu("mu_b_minus", mu_b_minus),
-                         theta=float(theta))
+                         theta=as_number("theta", theta))
     return PlanarLaw("truncated-ellipse", associated(e),
                      f"associated truncated ellipse, mu_a+ = {mu_a_plus:g}, mu_a- = "
                      f"{mu_a_minus:g}, mu_b+ = {mu_b_plus:g}, mu_b- = {mu_b_minus:g}")
@@ -204,6 +208,8 @@ def collinear_law(C=None, mu1: float | None = None, mu2: float | None = None) ->
         C = TruncatedEllipse(mu1, mu1, mu2, mu2)
         what = f"ellipse mu1 = {mu1:g}, mu2 = {mu2:g}"
     else:
+        from ..errors import check_instance
+        check_instance("C", C, (Disc, TruncatedEllipse, StarSet, ConvexSet))
         what = type(C).__name__
     return PlanarLaw("collinear", WalkerLeineLaw(C, Disc(1.0)),
                      f"collinear: force along the sliding direction, |p| from the radial "
@@ -284,26 +290,43 @@ def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
 
 # ----------------------------------------------------------------------------- proximal maps
 
+def _check_law(law) -> None:
+    from ..errors import check_instance
+    check_instance("law", law, PlanarLaw)
+
+
+def _normal(normal) -> float:
+    return check_range("normal", normal, 1e-12, 1e12)
+
+
 def prox_interval(x, mu_minus: float, mu_plus: float, normal=1.0) -> np.ndarray:
     """Projection of x onto the asymmetric interval [-mu_minus N, mu_plus N] (1D Coulomb).
 
     The implicit 1D law of a tangential impulse Lambda (force on the body, +x positive) with
     slip rate gamma: ``-Lambda = prox_interval(-Lambda + r gamma, mu_minus, mu_plus, N)``:
     sliding towards +x resists with mu_plus N, towards -x with mu_minus N."""
-    n = np.asarray(normal, dtype=float)
-    return np.clip(np.asarray(x, dtype=float), -mu_minus * n, mu_plus * n)
+    from ..errors import check_array
+    n = check_array("normal", normal)
+    if np.any(n < 0):
+        raise InputError(f"normal must be >= 0, got {n.min():g}")
+    lo, hi = _mu("mu_minus", mu_minus), _mu("mu_plus", mu_plus)
+    return np.clip(check_array("x", x), -lo * n, hi * n)
 
 
 def prox_set(law: PlanarLaw, x, normal: float = 1.0, which: str = "D"):
     """((m, 2) projections, (m,) inside flags) of the points x onto ``normal`` times the
     convex set D of the law (or C when it is convex and ``which`` = "C").  For an
     associated law (C = D) this is the whole prox of the law.  D is the solver's scaled D."""
+    from ..errors import check_choice
+    _check_law(law)
+    check_choice("which", which, ("C", "D"))
+    normal = _normal(normal)
     from ._set_kernels import project_many
     assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
     kind, par, tab = (dk, dp, dt) if which == "D" else (ck, cp, ct)
     if kind == SET_STAR:
         raise InputError("C of this law is a star-shaped polygon: no projection onto it")
-    x = np.atleast_2d(np.asarray(x, dtype=float)) / float(normal)
+    x = points_array("x", x) / normal
     y, ins = project_many(kind, par, tab, np.ascontiguousarray(x))
     return y * float(normal), ins
 
@@ -311,15 +334,21 @@ def prox_set(law: PlanarLaw, x, normal: float = 1.0, which: str = "D"):
 def law_point(law: PlanarLaw, x, normal: float = 1.0):
     """The Walker-Leine map at prox arguments x: y = prox_D(x), then the force P on the ray
     of y with alpha(P) P = y.  Returns ((m, 2) P, (m,) inside = sticking)."""
+    _check_law(law)
+    normal = _normal(normal)
     from ._law_kernels import law_point_many
     assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
-    x = np.atleast_2d(np.asarray(x, dtype=float)) / float(normal)
+    x = points_array("x", x) / normal
     P, ins = law_point_many(assoc, ck, cp, ct, dk, dp, dt, np.ascontiguousarray(x))
     return P * float(normal), ins
 
 
 def kernel_radial(law: PlanarLaw, phi, which: str = "C") -> np.ndarray:
     """Radial function of C (or of the solver's D) as the kernels compute it."""
+    from ..errors import check_choice
+    _check_law(law)
+    check_choice("which", which, ("C", "D"))
+    phi = psi_array(phi, "phi")
     from ._set_kernels import radial_many
     assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
     kind, par, tab = (ck, cp, ct) if which == "C" else (dk, dp, dt)
