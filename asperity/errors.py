@@ -54,6 +54,8 @@ def _show(value) -> str:
 def as_number(name: str, value) -> float:
     """``value`` as a float if it is a real number (not text, not a boolean), else
     InputError naming ``name``."""
+    if type(value) is float:                      # the common case, without the ABC check
+        return value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise InputError(f"{name} must be a number, got {_show(value)} ({_kind(value)})")
     try:

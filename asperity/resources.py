@@ -16,9 +16,25 @@ from .errors import ResourceError
 MEMORY_SHARE = 0.8
 
 
+#: seconds an answer of :func:`available_memory` is reused (it reads three files)
+MEMORY_CACHE_SECONDS = 0.5
+_cache: list = [-1.0, 0]
+
+
 def available_memory() -> int:
     """Bytes of memory free for this process: MemAvailable of /proc/meminfo, bounded by a
-    cgroup limit when one is set; the physical memory where /proc is missing."""
+    cgroup limit when one is set; the physical memory where /proc is missing.  Reused for
+    :data:`MEMORY_CACHE_SECONDS` (studies check it for every small case)."""
+    import time
+    now = time.monotonic()
+    if now - _cache[0] < MEMORY_CACHE_SECONDS:
+        return _cache[1]
+    free = _read_available_memory()
+    _cache[0], _cache[1] = now, free
+    return free
+
+
+def _read_available_memory() -> int:
     free = None
     try:
         with open("/proc/meminfo", encoding="ascii") as fh:

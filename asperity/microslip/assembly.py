@@ -180,7 +180,19 @@ def load_assembly(path) -> Assembly:
     if not isinstance(path, (str, os.PathLike)) or not str(path):
         raise AssemblyFileError(f"an assembly file must be a path, got {_short(path)}")
     p = Path(path)
-    data = read_toml(p, "assembly file", _TOP, AssemblyFileError)
+    return assembly_from_dict(read_toml(p, "assembly file", _TOP, AssemblyFileError), p)
+
+
+def assembly_from_dict(data: dict, path) -> Assembly:
+    """An assembly from the tables of an assembly file (as :func:`load_assembly` reads
+    them); ``path`` names it in messages, and its folder resolves the files it names."""
+    p = Path(path)
+    if not isinstance(data, dict):
+        raise AssemblyFileError(f"{p}: an assembly must be a table, got {_short(data)}")
+    unknown = sorted(set(data) - _TOP)
+    if unknown:
+        raise AssemblyFileError(f"{p}: unknown key {unknown[0]!r}; allowed top-level keys: "
+                                f"{', '.join(sorted(_TOP))}")
     if "assembly" not in data:
         raise AssemblyFileError(f"{p}: missing table [assembly]")
     a = data["assembly"]
