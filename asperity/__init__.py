@@ -50,7 +50,7 @@ _LAZY = {
     "load_assembly": "asperity.microslip.assembly",
     "assembly_friction": "asperity.microslip.risk",
     "assess_assembly": "asperity.microslip.risk",
-    "risk_map": "asperity.microslip.risk",
+    "risk_map": "asperity.study.maps",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }

@@ -25,6 +25,7 @@ COMMANDS = {
     "bench": "bench",
     "slide": "slide",
     "risk": "risk",
+    "study": "study",
 }
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
@@ -77,8 +78,8 @@ def main(argv: list[str] | None = None) -> int:
     except AsperityError as exc:
         _say(f"{name}: error: {_one_line(exc)}")
         return 1
-    except KeyboardInterrupt:
-        _say(f"{name}: interrupted (no output written)")
+    except KeyboardInterrupt as exc:
+        _say(f"{name}: interrupted ({_one_line(exc) or 'no output written'})")
         return EXIT_INTERRUPTED
     except BrokenPipeError:
         _quiet_stdout()

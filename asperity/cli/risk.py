@@ -56,6 +56,13 @@ def add_parser(sub) -> None:
     p.add_argument("--map", nargs=2, metavar="P=LO:HI:N", default=None,
                    help="risk map over two wedge parameters, e.g. alpha=5:40:8 beta=5:40:8 "
                         "(the others from the texture or wedge flags)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", metavar="N", default=None,
+                       help="--map: run the grid on a local Dask cluster of N worker "
+                            "processes (default: in this process)")
+    where.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                       help="--map: run the grid on an existing Dask cluster (scheduler "
+                            "address tcp://HOST:PORT or scheduler file)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png",
                    help="node displacement against cycles (and the strip's profiles), or the "
@@ -96,7 +103,7 @@ def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json (and, under the
     private key "_chain", the slider chain for plots)."""
     from ..microslip.assembly import load_assembly
-    from ..microslip.risk import assembly_friction, assess_assembly, risk_map
+    from ..microslip.risk import assembly_friction, assess_assembly
     asm = load_assembly(args.assembly)
     cycles, tol, mm, dyn = _settings(args, asm)
     texture = texture_from_args(args)[0] if _texture_given(args) else None
@@ -104,9 +111,12 @@ def run(args) -> dict:
         x, y = (parse_map_axis(t) for t in args.map)
         if x[0] == y[0]:
             raise InputError(f"--map needs two different parameters, got {x[0]} twice")
+        from ..study.maps import risk_map
+        workers = None if args.workers is None else _whole("--workers", args.workers, 0, 4096)
         return risk_map(asm, x, y, texture, contact=args.contact if texture else None,
                         slip_axis_deg=args.slip_axis, textured=args.textured, cycles=cycles,
-                        max_marched=mm)
+                        max_marched=mm, workers=0 if workers is None and not args.scheduler
+                        else workers, scheduler=args.scheduler)
     friction = assembly_friction(asm, texture, texture_name=args.texture or "wedge flags",
                                  contact=args.contact, slip_axis_deg=args.slip_axis,
                                  textured=args.textured)

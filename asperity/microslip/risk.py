@@ -1,6 +1,7 @@
 """The risk analysis of an assembly as a library API (``asperity risk`` and the report
-call it): friction along the slip axis -> quasi-static ratchet analysis -> verdict, the
-Moreau cross-check, and the risk map over two wedge parameters.
+call it): friction along the slip axis -> quasi-static ratchet analysis -> verdict, and
+the Moreau cross-check.  The risk map over two wedge parameters is a grid study:
+:func:`asperity.study.maps.risk_map`.
 
 The results are the JSON objects that ``asperity risk --json`` prints (keys documented in
 README); :mod:`asperity.microslip.risk_text` turns them into the terminal text.
@@ -9,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..errors import InputError, check_array, check_choice, check_instance, check_int, check_text
+from ..errors import InputError, check_choice, check_instance, check_int, check_text
 from .assembly import Assembly
 from .friction import Friction, friction_from_texture, resolve_friction
 from .limits import check_cycles, check_tolerance
@@ -21,8 +22,6 @@ MAP_PARAMS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
 DYNAMIC_CYCLES = 3
 CONTACTS = ("all-faces", "windward")
 FACES = ("support", "part")
-#: values per axis of a risk map
-MAP_VALUES = (2, 200)
 
 
 def _check_texture(texture):
@@ -142,95 +141,3 @@ def loading_dict(asm: Assembly) -> dict:
     return {"history_K": [float(x) for x in L.dT], "force_history": [float(x) for x in L.F],
             "force_unit": "N/m" if asm.model == "strip" else "N", "force_at": asm.force_at,
             "substeps": L.substeps}
-
-
-def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], texture=None, *,
-             contact: str | None = None, slip_axis_deg: float | None = None,
-             textured: str | None = None, cycles: float | None = None,
-             max_marched: int = 200) -> dict:
-    """Verdict and drift per cycle over a grid of two wedge parameters.
-
-    x, y    : (parameter, values), parameter one of :data:`MAP_PARAMS`
-    texture : the wedge texture whose other parameters stay fixed (default: the texture
-              of the assembly file's ``[friction]`` table, with its contact regime)
-    The other arguments as :func:`assembly_friction` and :func:`assess_assembly`.
-    """
-    import numpy as np
-
-    from .. import __version__
-    from ..progress import report
-    from .chains import SlideOffError
-    from .quasi_static import long_life
-    from .verdict import verdict_of
-    check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
-    (px, xs), (py, ys) = (_map_axis(name, a) for name, a in (("x", x), ("y", y)))
-    if px == py:
-        raise InputError(f"a risk map needs two different parameters, got {px} twice")
-    cycles, _ = _life(asm, cycles, None)
-    max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
-    _check_texture(texture)
-    if contact is not None:
-        check_choice("contact", contact, CONTACTS)
-    slip_axis_deg, textured = _axis_and_face(slip_axis_deg, textured)
-    fr = asm.friction_table
-    if texture is None:
-        if "texture" not in fr:
-            raise InputError("a risk map needs a wedge texture: a texture file, the wedge flags, or "
-                             "a texture in the assembly's [friction] table")
-        from ..friction.sources import load_texture_or_surface
-        texture = load_texture_or_surface(asm.folder / fr["texture"])
-        contact = contact or fr.get("contact", "all-faces")
-    contact = contact or "all-faces"
-    if getattr(texture, "kind", "") not in ("wedge", "gaussian-wedge"):
-        raise InputError("a risk map varies wedge parameters: give a wedge texture, not a surface")
-    axis = slip_axis_deg if slip_axis_deg is not None else fr.get("slip_axis_deg")
-    face = textured or fr.get("textured", "support")
-    shape = (ys.size, xs.size)
-    verdict = np.empty(shape, dtype=object)
-    drift, mup, mum = (np.full(shape, np.nan) for _ in range(3))
-    for j, yv in enumerate(ys):
-        for i, xv in enumerate(xs):
-            try:
-                tex = replace(texture, **{MAP_PARAMS[px]: float(xv), MAP_PARAMS[py]: float(yv)})
-            except InputError as exc:
-                raise InputError(f"risk map: {exc}") from None
-            f = friction_from_texture(tex, contact, axis, face)
-            mup[j, i], mum[j, i] = f.mu_plus, f.mu_minus
-            try:
-                r = long_life(asm.chain(f.mu_plus, f.mu_minus), asm.loading, cycles,
-                              max_marched=max_marched)
-            except SlideOffError:
-                verdict[j, i] = "slides-off"
-                continue
-            finally:
-                report((j * xs.size + i + 1) / (xs.size * ys.size), "risk map")
-            verdict[j, i] = verdict_of(r)
-            drift[j, i] = r.drift_per_cycle
-
-    def grid(a):
-        return [[(float(v) if np.isfinite(v) else None) for v in row] for row in a]
-    from .verdict import SIGN_CONVENTION
-    return {"asperity_version": __version__, "assembly": asm.to_dict(),
-            "loading": loading_dict(asm), "contact": contact, "textured": face,
-            "slip_axis_deg": 0.0 if axis is None else float(axis),
-            "base_texture": texture.to_dict(),
-            "map": {"x": {"parameter": px, "values": xs.tolist()},
-                    "y": {"parameter": py, "values": ys.tolist()},
-                    "verdict": verdict.tolist(), "drift_per_cycle_m": grid(drift),
-                    "mu_plus": grid(mup), "mu_minus": grid(mum)},
-            "cycles": cycles,
-            "drift_after_cycles_m": grid(drift * cycles),
-            "sign_convention": SIGN_CONVENTION}
-
-
-def _map_axis(which: str, axis) -> tuple:
-    """(parameter, values) of one risk-map axis, checked."""
-    if not isinstance(axis, (tuple, list)) or len(axis) != 2:
-        raise InputError(f"risk map axis {which} must be (parameter, values), got "
-                         f"{type(axis).__name__}")
-    name, values = axis
-    check_choice("map parameter", name, tuple(MAP_PARAMS))
-    v = check_array(f"risk map {name} values", values, shape=(None,), min_size=MAP_VALUES[0])
-    if v.size > MAP_VALUES[1]:
-        raise InputError(f"risk map {name} values: at most {MAP_VALUES[1]}, got {v.size}")
-    return name, v

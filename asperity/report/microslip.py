@@ -164,7 +164,7 @@ def section(folder: Path) -> list[str]:
 
 def _risk_map_lines(folder: Path) -> list[str]:
     from ..microslip.assembly import load_assembly
-    from ..microslip.risk import risk_map
+    from ..study.maps import risk_map
     from ..texture.wedges import load_texture
     root = Path(__file__).resolve().parents[2] / "surfaces"
     asm = root / "bushing-strip-mild.toml"

@@ -1,0 +1,181 @@
+"""One case of a study, and a batch of them: what runs on a worker.
+
+A case is the study's base texture and assembly with the case's parameter values put in
+their tables (or one file of a scan library), pushed through the public API exactly as a
+single command would: :func:`asperity.derive`, :func:`asperity.fit_derivation`,
+:func:`asperity.assembly_friction` and :func:`asperity.assess_assembly`.  So a case's
+outputs are those of the single-case API for the same inputs, bit for bit.
+
+A case that fails (a self-locking sample, a value outside a physical range, an unreadable
+scan, a solver that does not converge) is returned with its status and one-line message;
+the batch goes on.  Statuses: ``ok``, ``failed`` (the input or outcome the message names),
+``error`` (an unexpected exception: its type and message; please report it).
+"""
+from __future__ import annotations
+
+import copy
+import math
+import time
+from pathlib import Path
+
+from ..errors import AsperityError, InputError
+
+#: output columns of each stage: (name, SQLite type)
+OUTPUTS = {
+    "derive": [("mu_a_plus", "REAL"), ("mu_a_minus", "REAL"), ("mu_b_plus", "REAL"),
+               ("mu_b_minus", "REAL"), ("asymmetry", "REAL"),
+               ("principal_direction_deg", "REAL"), ("anisotropy", "REAL"),
+               ("self_locking", "INTEGER"), ("self_locking_load_share", "REAL"),
+               ("admissible", "INTEGER")],
+    "fit": [("fit_law", "TEXT"), ("fit_max_radial_error", "REAL"),
+            ("fit_max_angle_error_deg", "REAL"), ("fit_holdout_magnitude_error", "REAL"),
+            ("fit_holdout_angle_deg", "REAL")],
+    "risk": [("mu_plus", "REAL"), ("mu_minus", "REAL"), ("verdict", "TEXT"),
+             ("dT_c_K", "REAL"), ("margin", "REAL"), ("drift_per_cycle_m", "REAL"),
+             ("drift_after_cycles_m", "REAL"), ("cycles_to_tolerance", "REAL"),
+             ("stabilised_at_cycle", "INTEGER"), ("extrapolated", "INTEGER")],
+}
+STATUSES = ("ok", "failed", "error")
+
+
+def output_columns(stages) -> list[tuple[str, str]]:
+    """The output columns of the stages a study runs (fit implies derive)."""
+    run = set(stages) | ({"derive"} if "fit" in stages else set())
+    return [c for s in ("derive", "fit", "risk") if s in run for c in OUTPUTS[s]]
+
+
+def _put(table: dict, key: str, value) -> None:
+    table[key] = value
+
+
+def build_inputs(spec: dict, values: dict, file: str | None):
+    """(texture or surface or None, Assembly or None) of one case.
+
+    values: {"texture.alpha_deg": 31.2, "loading.dT_max": 120.0, ...}; file: the scan of a
+    files study (read here, on the worker)."""
+    from ..microslip.assembly import assembly_from_dict
+    texture = None
+    if file is not None:
+        texture = _load_file(file, spec.get("surface", {}))
+    elif isinstance(spec.get("texture"), dict):
+        from ..texture.wedges import texture_from_dict
+        table = dict(spec["texture"])
+        for k, v in values.items():
+            if k.startswith("texture."):
+                _put(table, k.split(".", 1)[1], float(v))
+        texture = texture_from_dict(table)
+    elif isinstance(spec.get("texture"), str):
+        from ..friction.sources import load_texture_or_surface
+        texture = load_texture_or_surface(spec["texture"])
+    asm = spec.get("assembly_object")       # risk maps: a parsed assembly, not varied
+    if spec.get("assembly") is not None:
+        data = copy.deepcopy(spec["assembly"])
+        for k, v in values.items():
+            table, key = k.split(".", 1)
+            if table in ("assembly", "friction", "loading"):
+                t = data.setdefault(table, {})
+                if not isinstance(t, dict):
+                    raise InputError(f"{table} of the assembly file is not a table")
+                _put(t, key, float(v))
+        asm = assembly_from_dict(data, spec["assembly_path"])
+    return texture, asm
+
+
+def _load_file(path: str, opts: dict):
+    from ..friction.sources import is_texture_file
+    if is_texture_file(path):
+        from ..texture.wedges import load_texture
+        return load_texture(path)
+    from ..surface.facets import load_surface
+    px = opts.get("pixel_size")
+    return load_surface(path, unit=opts.get("unit"),
+                        pixel_size=tuple(px) if isinstance(px, list) else px,
+                        height_scale=opts.get("height_scale", 1.0),
+                        detrend=opts.get("detrend", "slope"), mu=opts.get("mu"))
+
+
+def _finite(x):
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def evaluate(spec: dict, values: dict, file: str | None = None) -> dict:
+    """The outputs of one case (keys of :func:`output_columns`); raises on failure."""
+    texture, asm = build_inputs(spec, values, file)
+    stages = spec["stages"]
+    out: dict = {}
+    contact = spec.get("contact") or "all-faces"
+    if "derive" in stages or "fit" in stages:
+        from ..friction.derive import derive
+        d = derive(texture, contact=contact, n_directions=spec.get("directions", 72))
+        ax = d.axes
+        a_p, a_m = _finite(ax["mu_a_plus"]), _finite(ax["mu_a_minus"])
+        out.update({k: _finite(v) for k, v in ax.items()})
+        out["asymmetry"] = (a_p - a_m) / (0.5 * (a_p + a_m)) if a_p and a_m else None
+        out["principal_direction_deg"] = float(d.principal_direction_deg)
+        out["anisotropy"] = _finite(d.anisotropy)
+        out["self_locking"] = int(bool(d.self_locking))
+        out["self_locking_load_share"] = _finite(d.locking_share)
+        out["admissible"] = int(bool(d.admissibility.admissible))
+        if "fit" in stages:
+            from ..laws.fitting import fit_derivation
+            rep = fit_derivation(d, kind=spec.get("law", "star")).fit
+            out["fit_law"] = spec.get("law", "star")
+            out["fit_max_radial_error"] = _finite(rep.max_radial_error)
+            out["fit_max_angle_error_deg"] = _finite(rep.max_angle_error_deg)
+            out["fit_holdout_magnitude_error"] = _finite(rep.holdout_max_magnitude_error)
+            out["fit_holdout_angle_deg"] = _finite(rep.holdout_max_angle_deg)
+    if "risk" in stages:
+        from ..microslip.risk import assembly_friction, assess_assembly
+        where = {"slip_axis_deg": spec.get("slip_axis_deg"), "textured": spec.get("textured")}
+        f = assembly_friction(asm, texture, texture_name=file or spec.get("texture_name", ""),
+                              contact=contact, **where) if texture is not None else \
+            assembly_friction(asm, **where)
+        r = assess_assembly(asm, f, cycles=spec.get("cycles"), tolerance=spec.get("tolerance"),
+                            max_marched=spec.get("max_marched", 200))
+        for k in ("mu_plus", "mu_minus", "dT_c_K", "margin", "drift_per_cycle_m",
+                  "drift_after_cycles_m", "cycles_to_tolerance"):
+            out[k] = _finite(r.get(k))
+        out["verdict"] = r["verdict"]
+        out["stabilised_at_cycle"] = r.get("stabilised_at_cycle")
+        out["extrapolated"] = None if r.get("extrapolated") is None else int(r["extrapolated"])
+    return out
+
+
+def run_case(spec: dict, values: dict, file: str | None = None) -> tuple[str, str, float, dict]:
+    """(status, message, seconds, outputs) of one case; never raises (but on Ctrl-C)."""
+    t0 = time.perf_counter()
+    try:
+        out = evaluate(spec, values, file)
+        status, msg = "ok", ""
+    except AsperityError as exc:
+        out, status, msg = {}, "failed", _one_line(str(exc))
+    except (KeyboardInterrupt, SystemExit):
+        raise
+    except MemoryError:
+        out, status, msg = {}, "failed", "out of memory for this case"
+    except Exception as exc:        # noqa: BLE001 - a case must not stop the study
+        out, status, msg = {}, "error", _one_line(f"{type(exc).__name__}: {exc}")
+    return status, msg, time.perf_counter() - t0, out
+
+
+def _one_line(text: str) -> str:
+    line = " ".join(str(text).split())
+    return line if len(line) <= 500 else line[:497] + "..."
+
+
+def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple]:
+    """Run cases ``ids`` (parameter values ``rows``, or ``files``) and return one tuple per
+    case: (case_id, status, message, seconds, outputs).  The task a worker runs."""
+    import warnings
+    res = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")            # a worker's warnings reach nobody
+        for i, cid in enumerate(ids):
+            values = {n: float(v) for n, v in zip(names, rows[i])} if names else {}
+            f = None if files is None else str(Path(files[i]))
+            status, msg, sec, out = run_case(spec, values, f)
+            res.append((int(cid), status, msg, sec, out))
+    return res

@@ -1,0 +1,248 @@
+"""The study engine: the cases of a study in batches on a Dask cluster, into the store.
+
+* Where: ``workers=0`` runs in this process (no cluster: small sweeps, debugging);
+  otherwise an embedded ``dask.distributed.LocalCluster`` (``workers`` processes, default
+  one per core, on 127.0.0.1, stopped at the end), or an existing cluster given by its
+  scheduler address (``tcp://HOST:PORT``) or scheduler file, e.g. from ``dask scheduler``
+  / ``dask worker``, dask-jobqueue on SLURM or a Kubernetes deployment.  The same study
+  gives the same results everywhere.
+* Batches: cases are grouped into tasks of about :data:`TARGET_SECONDS` each (the size
+  adapts to the measured cost per case), so that microsecond cases are not dominated by
+  the scheduler; at most a few batches per worker are in flight, so memory stays bounded
+  for any number of cases.  Scans are read by the worker from their path.
+* Faults: a batch whose worker dies is rerun by Dask on another worker (and the worker
+  replaced by its nanny); a batch that kills its workers repeatedly is split until the
+  case that does it is found, which is stored as failed with the reason.
+* Stores: the client writes each finished batch in one transaction; Ctrl-C or a kill
+  loses at most the batches in flight, and the same command resumes.
+"""
+from __future__ import annotations
+
+import logging
+import os
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import AsperityError, InputError, check_int
+from .cases import run_batch
+
+#: seconds of work per task the batch size aims at
+TARGET_SECONDS = 1.0
+#: cases in the first batches, before the cost per case is known
+FIRST_BATCH = {"files": 1, "default": 16}
+#: largest batch
+MAX_BATCH = 20_000
+#: batches in flight per worker
+IN_FLIGHT_PER_WORKER = 3
+#: environment variable naming a scheduler address (or scheduler file) for every study
+SCHEDULER_ENV = "ASPERITY_SCHEDULER"
+
+
+class EngineError(AsperityError):
+    """The cluster cannot be reached or cannot run asperity's tasks."""
+
+
+class StudyInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a study; the message says what the store holds."""
+
+
+@dataclass
+class RunReport:
+    cases: int
+    ran: int                   # cases run by this call
+    stored: int                # cases in the store after it
+    seconds: float
+    where: str                 # "in-process", "LocalCluster (2 workers)", "tcp://..."
+    workers: int
+
+
+class Batcher:
+    """Hands out the case ids still to run, in batches sized from the measured cost."""
+
+    def __init__(self, todo: np.ndarray, fixed: int | None, first: int, workers: int):
+        self.todo = todo
+        self.pos = 0
+        self.fixed = fixed
+        self.size = fixed or first
+        self.workers = max(1, workers)
+        self.per_case = None
+
+    def left(self) -> int:
+        return self.todo.size - self.pos
+
+    def next(self, size: int | None = None) -> np.ndarray | None:
+        if self.pos >= self.todo.size:
+            return None
+        n = size or self.size
+        if not self.fixed:            # keep every worker busy until the end
+            n = min(n, max(1, self.left() // (2 * self.workers)))
+        ids = self.todo[self.pos:self.pos + n]
+        self.pos += ids.size
+        return ids
+
+    def learn(self, n_cases: int, seconds: float) -> None:
+        """A batch of ``n_cases`` took ``seconds`` of case time: resize."""
+        if self.fixed or n_cases == 0:
+            return
+        c = max(seconds / n_cases, 1e-7)
+        self.per_case = c if self.per_case is None else 0.7 * self.per_case + 0.3 * c
+        self.size = int(min(MAX_BATCH, max(1, TARGET_SECONDS / self.per_case)))
+
+
+def resolve_scheduler(scheduler: str | None) -> str | None:
+    """The scheduler to use: the argument, else $ASPERITY_SCHEDULER, else None (embedded)."""
+    s = scheduler if scheduler is not None else os.environ.get(SCHEDULER_ENV) or None
+    if s is not None and (not isinstance(s, str) or not s.strip()):
+        raise InputError("--scheduler must be an address such as tcp://10.0.0.5:8786 or a "
+                         "scheduler file")
+    return s.strip() if s else None
+
+
+def run_study(study, store, *, scheduler: str | None = None, workers: int | None = None,
+              batch_size: int | None = None) -> RunReport:
+    """Run every case of ``study`` missing from ``store``."""
+    from .. import progress
+    t0 = time.perf_counter()
+    n = study.n_cases
+    done = store.done_ids()
+    todo = np.setdiff1d(np.arange(n, dtype=np.int64), done, assume_unique=True)
+    matrix = study.matrix()
+    names = study.parameter_names
+    files = study.files if study.kind == "files" else None
+
+    def inputs_of(cid):
+        return (files[cid],) if files is not None else tuple(float(v) for v in matrix[cid])
+
+    scheduler = resolve_scheduler(scheduler)
+    if workers is not None:
+        workers = check_int("--workers", workers, 0, 4096)
+    if batch_size is None:
+        batch_size = study.batch_size
+    first = FIRST_BATCH["files" if files is not None else "default"]
+    stored = done.size
+    progress.report(stored / n if n else 1.0, "study")
+    if todo.size == 0:
+        return RunReport(n, 0, stored, time.perf_counter() - t0, "nothing to run", 0)
+
+    def finished(results):
+        nonlocal stored
+        store.write(results, inputs_of)
+        stored += len(results)
+        progress.report(stored / n, "study")
+
+    def task_args(ids):
+        rows = matrix[ids] if names else None
+        fl = [files[i] for i in ids] if files is not None else None
+        return (study.spec, names, ids.tolist(), rows, fl)
+
+    try:
+        if scheduler is None and workers == 0:
+            batcher = Batcher(todo, batch_size, first, 1)
+            where, nw = "in-process", 1
+            while (ids := batcher.next()) is not None:
+                res = run_batch(*task_args(ids))
+                batcher.learn(len(res), sum(r[3] for r in res))
+                finished(res)
+        else:
+            where, nw = _run_dask(todo, task_args, finished, scheduler, workers, batch_size,
+                                  first)
+    except KeyboardInterrupt:
+        raise StudyInterrupted(f"{stored} of {n} cases stored in {store.folder}; run the same "
+                               f"command again to resume") from None
+    return RunReport(n, stored - done.size, stored, time.perf_counter() - t0, where, nw)
+
+
+def _connect(scheduler, workers):
+    """(client, cluster or None, description, number of workers)."""
+    import distributed
+    logging.getLogger("distributed").setLevel(logging.ERROR)
+    if scheduler is None:
+        nw = workers or os.cpu_count() or 1
+        try:
+            cluster = distributed.LocalCluster(
+                n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                dashboard_address=None, silence_logs=logging.ERROR)
+        except OSError as exc:
+            raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
+        return distributed.Client(cluster), cluster, f"LocalCluster ({nw} workers)", nw
+    try:
+        if os.path.isfile(scheduler):
+            client = distributed.Client(scheduler_file=scheduler, timeout="10s")
+        else:
+            client = distributed.Client(scheduler, timeout="10s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise EngineError(f"cannot reach the Dask scheduler at {scheduler!r} "
+                          f"({' '.join(str(exc).split())[:200]})") from None
+    try:
+        client.wait_for_workers(1, timeout=60)
+    except (TimeoutError, OSError):
+        client.close()
+        raise EngineError(f"the Dask scheduler at {scheduler!r} has no workers (waited 60 s); "
+                          f"start some with: dask worker {scheduler}") from None
+    nw = len(client.scheduler_info(n_workers=-1)["workers"])
+    return client, None, scheduler, nw
+
+
+def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first):
+    from distributed import as_completed
+    from distributed.client import FutureCancelledError
+    try:
+        from distributed.scheduler import KilledWorker
+    except ImportError:                               # pragma: no cover
+        from distributed import KilledWorker
+    client, cluster, where, nw = _connect(scheduler, workers)
+    batcher = Batcher(todo, batch_size, first, nw)
+    ac = as_completed()
+    meta = {}
+
+    def submit(ids):
+        fut = client.submit(run_batch, *task_args(ids), pure=False)
+        meta[fut.key] = (ids, time.perf_counter())
+        ac.add(fut)
+
+    try:
+        for _ in range(IN_FLIGHT_PER_WORKER * nw):
+            ids = batcher.next()
+            if ids is None:
+                break
+            submit(ids)
+        while not ac.is_empty():
+            fut = next(ac)
+            ids, _ = meta.pop(fut.key)
+            try:
+                res = fut.result()
+            except KilledWorker:
+                if ids.size > 1:                      # find the case that kills workers
+                    half = ids.size // 2
+                    submit(ids[:half])
+                    submit(ids[half:])
+                    continue
+                res = [(int(ids[0]), "failed", "the worker running this case died several "
+                        "times (out of memory or a crash)", 0.0, {})]
+            except FutureCancelledError:
+                raise EngineError("the cluster cancelled the study's tasks") from None
+            except (ImportError, AttributeError) as exc:
+                raise EngineError(f"the workers cannot run asperity ({type(exc).__name__}: "
+                                  f"{exc}); install the same asperity on every worker") from None
+            batcher.learn(len(res), sum(r[3] for r in res))
+            finished(res)
+            fut.release()
+            nxt = batcher.next()
+            if nxt is not None:
+                submit(nxt)
+    finally:
+        for f in list(ac.futures) if hasattr(ac, "futures") else []:
+            f.cancel()
+        _close(client, cluster)
+    return where, nw
+
+
+def _close(client, cluster) -> None:
+    import contextlib
+    with contextlib.suppress(Exception):
+        client.close(timeout=5)
+    if cluster is not None:
+        with contextlib.suppress(Exception):
+            cluster.close(timeout=5)

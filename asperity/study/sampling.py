@@ -1,0 +1,216 @@
+"""The cases of a study: parameter distributions and the sample matrices built from them.
+
+Every sample matrix is a pure function of the study (kind, sample count, seed and the
+parameters in the order of the file), built on the client before any work: the same study
+gives the same cases bit for bit whatever the number of workers or the batch size, and a
+resumed study rebuilds exactly the cases it had.
+
+Distributions (the ``[parameters]`` table of a study file)::
+
+    { distribution = "uniform", low = L, high = H }
+    { distribution = "normal", mean = M, sd = S }
+    { distribution = "truncated-normal", mean = M, sd = S, low = L, high = H }
+    { distribution = "lognormal", median = M, sigma = S }     # ln X ~ normal(ln M, S)
+    { values = [v1, v2, ...] }  or  { low = L, high = H, n = N }   # kind = "grid" only
+
+Sample matrices: ``grid`` the Cartesian product of the values (first parameter varying
+slowest); ``monte-carlo`` independent draws (NumPy PCG64 stream of the seed, inverse
+transform); ``latin-hypercube`` scipy.stats.qmc.LatinHypercube (seeded, one stratum per
+sample in every parameter); ``sobol`` Saltelli's scheme through SALib (N (D + 2) cases for
+first-order and total indices, scrambled Sobol' sequence of the seed).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError, check_int, check_range
+
+KINDS = ("grid", "monte-carlo", "latin-hypercube", "sobol", "files")
+DISTRIBUTIONS = ("uniform", "normal", "truncated-normal", "lognormal")
+#: most cases a study may have (the store and the sample matrix stay well under 1 GB)
+MAX_CASES = 10_000_000
+#: most values per grid axis
+MAX_GRID_AXIS = 100_000
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One varied input: ``name`` is TABLE.KEY of the texture or assembly file it replaces;
+    ``distribution`` one of :data:`DISTRIBUTIONS` or "grid" with ``values``."""
+
+    name: str
+    distribution: str
+    args: tuple = ()               # (low, high) | (mean, sd) | (mean, sd, low, high) | (median, sigma)
+    values: tuple = ()             # grid values
+
+    def ppf(self, u: np.ndarray) -> np.ndarray:
+        """The parameter values at probabilities ``u`` in (0, 1) (inverse transform)."""
+        from scipy import stats
+        d, a = self.distribution, self.args
+        if d == "uniform":
+            return a[0] + (a[1] - a[0]) * u
+        if d == "normal":
+            return stats.norm.ppf(u, loc=a[0], scale=a[1])
+        if d == "truncated-normal":
+            lo, hi = (a[2] - a[0]) / a[1], (a[3] - a[0]) / a[1]
+            return stats.truncnorm.ppf(u, lo, hi, loc=a[0], scale=a[1])
+        if d == "lognormal":
+            return a[0] * np.exp(a[1] * stats.norm.ppf(u))
+        raise InputError(f"parameter {self.name}: grid values are not sampled")
+
+    @property
+    def centre(self) -> float:
+        """A representative value (median or first grid value), used to check the study."""
+        if self.distribution == "grid":
+            return float(self.values[0])
+        return float(self.ppf(np.array([0.5]))[0])
+
+    def describe(self) -> str:
+        a = self.args
+        if self.distribution == "grid":
+            v = self.values
+            return f"grid of {len(v)} values {v[0]:g} .. {v[-1]:g}"
+        if self.distribution == "uniform":
+            return f"uniform [{a[0]:g}, {a[1]:g}]"
+        if self.distribution == "normal":
+            return f"normal, mean {a[0]:g}, sd {a[1]:g}"
+        if self.distribution == "truncated-normal":
+            return f"truncated normal, mean {a[0]:g}, sd {a[1]:g}, in [{a[2]:g}, {a[3]:g}]"
+        return f"lognormal, median {a[0]:g}, sigma(ln) {a[1]:g}"
+
+
+_KEYS = {"uniform": ("low", "high"), "normal": ("mean", "sd"),
+         "truncated-normal": ("mean", "sd", "low", "high"), "lognormal": ("median", "sigma")}
+
+
+def parse_parameter(name: str, table, kind: str) -> Parameter:
+    """A parameter of the ``[parameters]`` table; one-line InputError naming the field."""
+    where = f"parameters.{name}"
+    if not isinstance(table, dict):
+        raise InputError(f"{where} must be a table such as {{ distribution = \"uniform\", "
+                         f"low = 1.0, high = 2.0 }}, got {type(table).__name__}")
+    if kind == "grid":
+        return _grid_parameter(name, table, where)
+    if "values" in table or "n" in table:
+        raise InputError(f"{where}: values / n make a grid axis; kind = \"{kind}\" samples "
+                         f"from a distribution ({', '.join(DISTRIBUTIONS)})")
+    dist = table.get("distribution")
+    if not isinstance(dist, str) or dist not in _KEYS:
+        raise InputError(f"{where}.distribution must be one of {', '.join(DISTRIBUTIONS)}, "
+                         f"got {dist!r}")
+    keys = _KEYS[dist]
+    unknown = sorted(set(table) - set(keys) - {"distribution"})
+    if unknown:
+        raise InputError(f"{where}: unknown key {unknown[0]} for a {dist} distribution; "
+                         f"allowed: {', '.join(keys)}")
+    missing = [k for k in keys if k not in table]
+    if missing:
+        raise InputError(f"{where}.{missing[0]} missing (a {dist} distribution needs "
+                         f"{', '.join(keys)})")
+    a = tuple(check_range(f"{where}.{k}", table[k], -1e300, 1e300) for k in keys)
+    if dist in ("uniform",) and not a[1] > a[0]:
+        raise InputError(f"{where} needs low < high, got low = {a[0]:g}, high = {a[1]:g}")
+    if dist in ("normal", "truncated-normal") and not a[1] > 0:
+        raise InputError(f"{where}.sd must be > 0, got {a[1]:g}")
+    if dist == "truncated-normal" and not a[3] > a[2]:
+        raise InputError(f"{where} needs low < high, got low = {a[2]:g}, high = {a[3]:g}")
+    if dist == "lognormal":
+        check_range(f"{where}.median", a[0], 0.0, 1e300, low_open=True)
+        check_range(f"{where}.sigma", a[1], 0.0, 10.0, low_open=True)
+    return Parameter(name, dist, a)
+
+
+def _grid_parameter(name: str, table: dict, where: str) -> Parameter:
+    if "distribution" in table:
+        raise InputError(f"{where}: kind = \"grid\" takes values = [...] or low, high, n, "
+                         f"not a distribution")
+    if "values" in table:
+        unknown = sorted(set(table) - {"values"})
+        if unknown:
+            raise InputError(f"{where}: unknown key {unknown[0]} beside values")
+        v = table["values"]
+        if not isinstance(v, list) or not v:
+            raise InputError(f"{where}.values must be a non-empty list of numbers")
+        if len(v) > MAX_GRID_AXIS:
+            raise InputError(f"{where}.values: at most {MAX_GRID_AXIS} values, got {len(v)}")
+        values = tuple(check_range(f"{where}.values[{i}]", x, -1e300, 1e300)
+                       for i, x in enumerate(v))
+    else:
+        unknown = sorted(set(table) - {"low", "high", "n"})
+        if unknown:
+            raise InputError(f"{where}: unknown key {unknown[0]}; a grid axis takes values "
+                             f"= [...] or low, high, n")
+        missing = [k for k in ("low", "high", "n") if k not in table]
+        if missing:
+            raise InputError(f"{where}.{missing[0]} missing (a grid axis takes values = "
+                             f"[...] or low, high, n)")
+        lo, hi = (check_range(f"{where}.{k}", table[k], -1e300, 1e300) for k in ("low", "high"))
+        n = check_int(f"{where}.n", table["n"], 1, MAX_GRID_AXIS)
+        if n > 1 and not hi > lo:
+            raise InputError(f"{where} needs low < high, got low = {lo:g}, high = {hi:g}")
+        values = tuple(float(x) for x in np.linspace(lo, hi, n))
+    return Parameter(name, "grid", (), values)
+
+
+def case_count(kind: str, params: list[Parameter], samples: int | None) -> int:
+    """Number of cases of a study (files: given by the caller as ``samples``)."""
+    if kind == "grid":
+        return math.prod(len(p.values) for p in params)
+    if kind == "sobol":
+        return samples * (len(params) + 2)
+    return samples
+
+
+def sample_matrix(kind: str, params: list[Parameter], samples: int | None,
+                  seed: int) -> np.ndarray:
+    """(cases, parameters) float64 matrix of parameter values, row i = case i."""
+    d = len(params)
+    n = case_count(kind, params, samples)
+    if n > MAX_CASES:
+        raise InputError(f"the study has {n:.3g} cases, at most {MAX_CASES:.0e}: lower "
+                         f"study.samples or the grid sizes")
+    if kind == "grid":
+        axes = [np.asarray(p.values, dtype=float) for p in params]
+        mesh = np.meshgrid(*axes, indexing="ij")
+        return np.stack([m.ravel() for m in mesh], axis=1) if d else np.zeros((1, 0))
+    if kind == "monte-carlo":
+        u = np.random.default_rng(seed).random((n, d))
+    elif kind == "latin-hypercube":
+        from scipy.stats import qmc
+        u = qmc.LatinHypercube(d=d, rng=np.random.default_rng(seed)).random(n)
+    elif kind == "sobol":
+        u = saltelli_unit(d, samples, seed)
+    else:
+        raise InputError(f"study.kind {kind!r} has no sample matrix")
+    u = np.clip(u, 1e-12, 1.0 - 1e-12)       # inverse transforms are finite inside (0, 1)
+    return np.stack([p.ppf(u[:, j]) for j, p in enumerate(params)], axis=1)
+
+
+def sobol_problem(d: int) -> dict:
+    """SALib problem on the unit cube (the study maps it through the distributions)."""
+    return {"num_vars": d, "names": [f"x{j}" for j in range(d)], "bounds": [[0.0, 1.0]] * d}
+
+
+def saltelli_unit(d: int, base: int, seed: int) -> np.ndarray:
+    """Saltelli's sample on the unit cube: (base (d + 2), d), first-order and total
+    indices (no second order), from a scrambled Sobol' sequence seeded by ``seed``."""
+    import warnings
+
+    from SALib.sample import sobol as saltelli
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return saltelli.sample(sobol_problem(d), base, calc_second_order=False, scramble=True,
+                               seed=seed)
+
+
+def check_sobol_base(samples: int) -> int:
+    """The base sample N of a Sobol study: a power of two (Sobol' sequences balance only
+    there; SALib's estimators assume it)."""
+    if samples & (samples - 1):
+        lo = 1 << (samples.bit_length() - 1)
+        raise InputError(f"study.samples must be a power of 2 for kind = \"sobol\" (the base "
+                         f"sample N of Saltelli's scheme), got {samples}; use {lo} or {2 * lo}")
+    return samples

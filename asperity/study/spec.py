@@ -1,0 +1,356 @@
+"""Study files: what to compute over which cases (the TOML format is documented in README).
+
+::
+
+    name = "bushing-tolerance"          # optional
+    description = "..."                 # optional
+
+    [study]
+    kind = "monte-carlo"                # grid | monte-carlo | latin-hypercube | sobol | files
+    samples = 10000                     # monte-carlo, latin-hypercube; sobol: base sample N
+    seed = 1
+    stages = ["risk"]                   # any of derive, fit, risk
+    texture = "wedge-asymmetric.toml"   # or a [texture] table; optional when the assembly
+    assembly = "bushing-strip.toml"     #   names one (paths relative to the study file)
+    # files = ["scans/*.x3p"]           # kind = "files": one case per file
+    # unit, pixel_size, height_scale, detrend, mu: how to read the files (as derive's flags)
+    # contact = "all-faces"             # contact regime (default: the assembly's, else all-faces)
+    # directions = 72                   # sliding directions of derive / fit
+    # law = "star"                      # fit: star or ellipse
+    # cycles, tolerance                 # risk: life and drift tolerance (default: the assembly's)
+    # output = "drift_per_cycle_m"      # sobol: the output whose variance is split
+    # batch_size = 500                  # cases per task (default: chosen from the case cost)
+
+    [parameters]                        # TABLE.KEY of the texture or assembly file it replaces
+    "texture.alpha_deg" = { distribution = "normal", mean = 30.0, sd = 1.5 }
+    "loading.dT_max"    = { distribution = "uniform", low = 90.0, high = 140.0 }
+
+:func:`load_study` checks everything it can before any work: the keys, the
+distributions, the files named, and one case built from the parameters' medians (a
+parameter the texture or assembly does not have, or a median outside its range, is
+refused in one line naming the field).
+"""
+from __future__ import annotations
+
+import copy
+import glob
+import hashlib
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import InputError, check_choice, check_int, check_range, check_text
+from .sampling import KINDS, Parameter, case_count, check_sobol_base, parse_parameter
+
+STAGES = ("derive", "fit", "risk")
+TABLES = ("texture", "assembly", "friction", "loading")
+_TOP = {"name", "description", "study", "texture", "parameters"}
+_STUDY = {"kind", "samples", "seed", "stages", "texture", "assembly", "files", "unit",
+          "pixel_size", "height_scale", "detrend", "mu", "contact", "directions", "law",
+          "cycles", "tolerance", "output", "batch_size"}
+#: most files of a scan library
+MAX_FILES = 1_000_000
+
+
+class StudyFileError(InputError):
+    """A study file cannot be read or does not follow the format."""
+
+
+@dataclass(frozen=True)
+class Study:
+    """A parsed study: the cases (parameters and their sampling, or files) and the work
+    each case does (``spec``: plain data sent to the workers)."""
+
+    name: str
+    description: str
+    kind: str
+    samples: int | None
+    seed: int
+    parameters: tuple[Parameter, ...]
+    files: tuple[str, ...]
+    spec: dict                         # the work of one case (see asperity.study.cases)
+    batch_size: int | None
+    source: str                        # the study file
+    text: str = field(default="", repr=False)   # its contents, kept in the store
+
+    @property
+    def n_cases(self) -> int:
+        if self.kind == "files":
+            return len(self.files)
+        return case_count(self.kind, list(self.parameters), self.samples)
+
+    @property
+    def parameter_names(self) -> list[str]:
+        return [p.name for p in self.parameters]
+
+    def fingerprint(self) -> str:
+        """A hash of everything that decides the cases and their results (not the batch
+        size or the file's comments): a changed study cannot resume a store."""
+        data = {"kind": self.kind, "samples": self.samples, "seed": self.seed,
+                "parameters": [(p.name, p.distribution, p.args, p.values)
+                               for p in self.parameters],
+                "files": [(f, _size(f)) for f in self.files], "spec": self.spec}
+        text = json.dumps(data, sort_keys=True, default=str)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def matrix(self):
+        """(cases, parameters) values of every case (files: (files, 0))."""
+        import numpy as np
+
+        from .sampling import sample_matrix
+        if self.kind == "files":
+            return np.zeros((len(self.files), 0))
+        return sample_matrix(self.kind, list(self.parameters), self.samples, self.seed)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "kind": self.kind, "samples": self.samples,
+                "seed": self.seed, "cases": self.n_cases, "stages": self.spec["stages"],
+                "parameters": {p.name: p.describe() for p in self.parameters},
+                "files": len(self.files) if self.kind == "files" else None,
+                "source": self.source}
+
+
+def _size(path: str) -> int:
+    try:
+        return os.stat(path).st_size
+    except OSError:
+        return -1
+
+
+def load_study(path) -> Study:
+    """Read and check a study file; one-line StudyFileError naming the field."""
+    from ..io import read_text_file
+    if not isinstance(path, (str, os.PathLike)) or not str(path):
+        raise StudyFileError(f"a study file must be a path, got {path!r}")
+    p = Path(path)
+    text = read_text_file(p, "study file", StudyFileError)
+    import tomllib
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise StudyFileError(f"{p}: not valid TOML ({str(exc).splitlines()[0]})") from None
+    except RecursionError:
+        raise StudyFileError(f"{p}: not a usable TOML file (nested too deeply)") from None
+    try:
+        return study_from_dict(data, p, text)
+    except StudyFileError:
+        raise
+    except InputError as exc:
+        raise StudyFileError(f"{p}: {exc}") from None
+
+
+def study_from_dict(data: dict, path, text: str = "") -> Study:
+    """A study from the tables of a study file; ``path`` resolves the files it names."""
+    p = Path(path)
+    folder = p.parent
+    unknown = sorted(set(data) - _TOP)
+    if unknown:
+        raise InputError(f"unknown key {unknown[0]!r}; allowed top-level keys: "
+                         f"{', '.join(sorted(_TOP))}")
+    st = data.get("study")
+    if not isinstance(st, dict):
+        raise InputError("missing table [study] (kind, samples, seed, stages, ...)")
+    unknown = sorted(set(st) - _STUDY)
+    if unknown:
+        raise InputError(f"unknown key study.{unknown[0]}; allowed: {', '.join(sorted(_STUDY))}")
+    kind = check_choice("study.kind", st.get("kind"), KINDS)
+    name = check_text("name", data.get("name", p.stem), 200)
+    description = check_text("description", data.get("description", ""), 4096)
+    samples = _samples(kind, st)
+    seed = check_int("study.seed", st.get("seed", 0), 0, 2**63 - 1)
+    batch = None if "batch_size" not in st else check_int("study.batch_size", st["batch_size"],
+                                                          1, 1_000_000)
+    params = _parameters(data.get("parameters", {}), kind)
+    files = _files(st, folder) if kind == "files" else ()
+    if kind != "files" and "files" in st:
+        raise InputError("study.files belongs to kind = \"files\" (a scan library)")
+    spec = _spec(st, data, folder, kind, params)
+    study = Study(name, description, kind, samples, seed, tuple(params), files, spec, batch,
+                  str(p), text)
+    if kind != "files" and study.n_cases < 1:
+        raise InputError("the study has no cases")
+    _check_one_case(study)
+    return study
+
+
+def _samples(kind: str, st: dict) -> int | None:
+    if kind in ("grid", "files"):
+        if "samples" in st:
+            raise InputError(f"study.samples does not apply to kind = \"{kind}\" (its cases "
+                             f"are {'the grid' if kind == 'grid' else 'the files'})")
+        return None
+    if "samples" not in st:
+        raise InputError(f"study.samples missing (kind = \"{kind}\" needs a sample count)")
+    n = check_int("study.samples", st["samples"], 1, 10_000_000)
+    return check_sobol_base(n) if kind == "sobol" else n
+
+
+def _parameters(table, kind: str) -> list[Parameter]:
+    if not isinstance(table, dict):
+        raise InputError("parameters must be a table [parameters]")
+    out = []
+    for name, t in table.items():
+        if not isinstance(name, str) or "." not in name or name.split(".", 1)[0] not in TABLES:
+            raise InputError(f"parameters: {name!r} must be TABLE.KEY with TABLE one of "
+                             f"{', '.join(TABLES)} (e.g. \"texture.alpha_deg\")")
+        out.append(parse_parameter(name, t, kind))
+    if kind == "files" and out:
+        raise InputError("kind = \"files\" takes no [parameters] (its cases are the files)")
+    if kind not in ("files",) and not out:
+        raise InputError(f"kind = \"{kind}\" needs at least one entry in [parameters]")
+    if kind == "sobol" and len(out) < 2:
+        raise InputError("kind = \"sobol\" needs at least two parameters to split a variance")
+    return out
+
+
+def _files(st: dict, folder: Path) -> tuple[str, ...]:
+    pats = st.get("files")
+    if isinstance(pats, str):
+        pats = [pats]
+    if not isinstance(pats, list) or not pats:
+        raise InputError("study.files must be a list of file names or patterns, e.g. "
+                         "[\"scans/*.x3p\"] (relative to the study file)")
+    seen, out = set(), []
+    for i, pat in enumerate(pats):
+        check_text(f"study.files[{i}]", pat, 4096)
+        full = pat if os.path.isabs(pat) else str(folder / pat)
+        hits = sorted(glob.glob(full, recursive=True)) if glob.has_magic(full) else \
+            ([full] if os.path.exists(full) else [])
+        hits = [h for h in hits if os.path.isfile(h)]
+        if not hits:
+            raise InputError(f"study.files[{i}] {pat!r} matches no file (relative to "
+                             f"{folder or '.'})")
+        for h in hits:
+            if h not in seen:
+                seen.add(h)
+                out.append(h)
+    if len(out) > MAX_FILES:
+        raise InputError(f"study.files: at most {MAX_FILES} files, got {len(out)}")
+    return tuple(out)
+
+
+def _spec(st: dict, data: dict, folder: Path, kind: str, params) -> dict:
+    """The work of one case, as plain data (the workers rebuild texture and assembly)."""
+    from ..microslip.risk import CONTACTS
+    stages = st.get("stages", ["risk"] if "assembly" in st else ["derive"])
+    if isinstance(stages, str):
+        stages = [stages]
+    if not isinstance(stages, list) or not stages:
+        raise InputError(f"study.stages must be a list of {', '.join(STAGES)}")
+    for i, s in enumerate(stages):
+        check_choice(f"study.stages[{i}]", s, STAGES)
+    stages = [s for s in STAGES if s in stages]
+    spec = {"stages": stages, "texture": None, "texture_name": "", "assembly": None,
+            "assembly_path": "", "contact": None, "directions": 72, "law": "star",
+            "cycles": None, "tolerance": None, "output": None, "surface": {}}
+    asm_data, asm_path = None, None
+    if "assembly" in st:
+        asm_path = _path(st, "assembly", folder)
+        asm_data = _read_toml(asm_path, "assembly file")
+        spec["assembly"], spec["assembly_path"] = asm_data, str(asm_path)
+    elif "risk" in stages:
+        raise InputError("study.assembly missing: the risk stage needs an assembly file")
+    spec["texture"], spec["texture_name"], contact = _texture(st, data, folder, asm_data,
+                                                                 asm_path, kind)
+    if kind != "files" and spec["texture"] is None and ("derive" in stages or "fit" in stages):
+        raise InputError("derive and fit need a texture: study.texture, a [texture] table or "
+                         "an assembly whose [friction] table names one")
+    if "contact" in st:
+        contact = check_choice("study.contact", st["contact"], CONTACTS)
+    spec["contact"] = contact
+    if "directions" in st:
+        spec["directions"] = check_int("study.directions", st["directions"], 8, 3600)
+    if "law" in st:
+        spec["law"] = check_choice("study.law", st["law"], ("star", "ellipse"))
+    for k in ("cycles", "tolerance"):
+        if k in st:
+            spec[k] = check_range(f"study.{k}", st[k], 1.0 if k == "cycles" else 1e-12,
+                                  1e15 if k == "cycles" else 1.0)
+    spec["output"] = _output(st, stages)
+    spec["surface"] = _surface_options(st, kind)
+    used = {p.name.split(".", 1)[0] for p in params}
+    if "texture" in used and not isinstance(spec["texture"], dict):
+        raise InputError("texture.* parameters need a wedge texture (a texture TOML or a "
+                         "[texture] table)")
+    if used & {"assembly", "friction", "loading"} and asm_data is None:
+        raise InputError("assembly, friction and loading parameters need study.assembly")
+    return spec
+
+
+def _path(st: dict, key: str, folder: Path) -> Path:
+    v = check_text(f"study.{key}", st[key], 4096)
+    if not v:
+        raise InputError(f"study.{key} must be a file name")
+    return Path(v) if os.path.isabs(v) else folder / v
+
+
+def _read_toml(path: Path, what: str) -> dict:
+    from ..io import read_toml
+    return read_toml(path, what, {"name", "description", "assembly", "friction", "loading",
+                                  "texture", "springs"}, InputError)
+
+
+def _texture(st, data, folder, asm_data, asm_path, kind):
+    """(texture table or surface file name or None, its name, contact of the assembly)."""
+    contact = "all-faces"
+    fr = (asm_data or {}).get("friction", {})
+    if isinstance(fr, dict) and isinstance(fr.get("contact"), str):
+        contact = fr["contact"]
+    if kind == "files":
+        if "texture" in st or "texture" in data:
+            raise InputError("kind = \"files\" takes its textures from study.files, not "
+                             "study.texture")
+        return None, "", contact
+    if "texture" in st and "texture" in data:
+        raise InputError("give study.texture or a [texture] table, not both")
+    if "texture" in data:
+        if not isinstance(data["texture"], dict):
+            raise InputError("texture must be a table [texture]")
+        return copy.deepcopy(data["texture"]), "[texture] of the study file", contact
+    if "texture" in st:
+        tp = _path(st, "texture", folder)
+    elif isinstance(fr, dict) and isinstance(fr.get("texture"), str):
+        tp = Path(fr["texture"]) if os.path.isabs(fr["texture"]) else \
+            asm_path.parent / fr["texture"]
+    else:
+        return None, "", contact
+    if str(tp).lower().endswith(".toml"):
+        t = _read_toml(tp, "texture file")
+        if "texture" not in t or not isinstance(t["texture"], dict):
+            raise InputError(f"{tp}: missing table [texture]")
+        return t["texture"], str(tp), contact
+    return str(tp), str(tp), contact      # a surface file: read on the workers
+
+
+def _output(st: dict, stages: list) -> str:
+    from .cases import output_columns
+    cols = [c for c, kind in output_columns(stages) if kind == "REAL"]
+    default = "drift_per_cycle_m" if "risk" in stages else "anisotropy"
+    return check_choice("study.output", st.get("output", default), cols)
+
+
+def _surface_options(st: dict, kind: str) -> dict:
+    keys = ("unit", "pixel_size", "height_scale", "detrend", "mu")
+    given = {k: st[k] for k in keys if k in st}
+    if given and kind != "files":
+        raise InputError(f"study.{next(iter(given))} reads scan files: it belongs to kind = "
+                         f"\"files\"")
+    return given
+
+
+def _check_one_case(study: Study) -> None:
+    """Build (not compute) the case at the parameters' medians: a parameter the texture or
+    assembly does not have, or a value outside its range, is refused now."""
+    from .cases import build_inputs
+    values = {p.name: p.centre for p in study.parameters}
+    if study.kind == "files":
+        return
+    try:
+        build_inputs(study.spec, values, None)
+    except InputError as exc:
+        raise InputError(f"parameters at their medians ({_show(values)}): {exc}") from None
+
+
+def _show(values: dict) -> str:
+    return ", ".join(f"{k} = {v:.6g}" for k, v in values.items())

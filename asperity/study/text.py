@@ -1,0 +1,148 @@
+"""A study's summary as terminal text and as ``summary.md`` (what a person reads)."""
+from __future__ import annotations
+
+import math
+
+
+def _um(x) -> str:
+    return "n/a" if x is None else f"{x * 1e6:+.4g} um"
+
+
+def _um_abs(x) -> str:
+    return "n/a" if x is None else f"{x * 1e6:.4g} um"
+
+
+def _mm(x) -> str:
+    return "n/a" if x is None else f"{x * 1e3:.4g} mm"
+
+
+def _cycles(x) -> str:
+    return "never" if x is None else f"{x:.4g}"
+
+
+def _pct(n: int, total: int) -> str:
+    return f"{100.0 * n / total:.1f} %" if total else "-"
+
+
+def lines(s: dict) -> list[str]:
+    """The summary as lines of text (the same for the terminal and summary.md)."""
+    out = [f"study {s['name']} ({s['kind']}, {s['cases']} cases, seed {s['seed']}, stages "
+           f"{', '.join(s['stages'])}): {s['completed']} completed, {s['failed']} failed, "
+           f"{s['missing']} not run yet"]
+    if s["missing"]:
+        out.append("  (interrupted: run the same command again to resume)")
+    for f in s.get("failures", [])[:3]:
+        out.append(f"  failed x{f['cases']} (first: case {f['first_case']}): {f['message']}")
+    if "verdicts" in s:
+        v = s["verdicts"]
+        out.append("verdicts: " + (", ".join(f"{k} {n} ({_pct(n, s['completed'])})"
+                                              for k, n in v.items()) or "none"))
+        p = s["p_ratchet"]
+        if p is not None:
+            out.append(f"probability of ratchet: {p['estimate']:.4f} (95 % interval "
+                       f"{p['low']:.4f} - {p['high']:.4f})")
+        d = s["drift_per_cycle_m"]
+        if d:
+            out.append(f"drift per cycle (signed, + towards +x): p05 {_um(d['p05'])}, p50 "
+                       f"{_um(d['p50'])}, p95 {_um(d['p95'])}")
+        c = s["creep_per_cycle_m"]
+        if c:
+            out.append(f"creep per cycle |drift|: p50 {_um_abs(c['p50'])}, p95 "
+                       f"{_um_abs(c['p95'])}, p99 {_um_abs(c['p99'])}")
+        a = s["drift_after_cycles_m"]
+        if a:
+            out.append(f"drift after the assessed life: p50 {_mm(a['p50'])}, p95 "
+                       f"{_mm(a['p95'])}, p99 {_mm(a['p99'])}")
+        t = s["cycles_to_tolerance"]
+        if t:
+            out.append(f"cycles until the tolerance is reached: p05 {_cycles(t['p05'])}, p50 "
+                       f"{_cycles(t['p50'])} (5 % of the cases reach it within the p05)")
+    for k, label in (("anisotropy", "anisotropy"), ("asymmetry", "asymmetry (mu_a+ - mu_a-)/mean"),
+                     ("principal_direction_deg", "principal direction (deg)")):
+        q = s.get(k)
+        if q:
+            out.append(f"{label}: p05 {_g(q['p05'])}, p50 {_g(q['p50'])}, p95 {_g(q['p95'])}")
+    out.extend(_influence_lines(s))
+    if s.get("ranking"):
+        out.append("ranked (most at risk first):")
+        for r in s["ranking"][:20]:
+            out.append("  " + _rank_line(r))
+        if len(s["ranking"]) > 20:
+            out.append(f"  ... {len(s['ranking']) - 20} more (summary.md, --export)")
+    out.append(f"store: {s['store']}")
+    return out
+
+
+def _g(x) -> str:
+    return "n/a" if x is None else f"{x:.4g}"
+
+
+def _influence_lines(s: dict) -> list[str]:
+    out = []
+    if s.get("sobol"):
+        out.append(f"Sobol indices of {s['output']} (first order S1, total ST, 95 % intervals):")
+        for n, v in sorted(s["sobol"].items(), key=lambda kv: -kv[1]["ST"]):
+            out.append(f"  {n:<28} S1 {v['S1']:+.3f} +- {v['S1_conf']:.3f}   ST "
+                       f"{v['ST']:.3f} +- {v['ST_conf']:.3f}")
+    elif s.get("sobol_note"):
+        out.append(f"Sobol indices: none ({s['sobol_note']})")
+    rc = s.get("rank_correlation")
+    if rc and not s.get("sobol"):
+        ranked = sorted(rc.items(), key=lambda kv: -(abs(kv[1]) if kv[1] is not None else -1))
+        out.append(f"most influential on {s['output']} (Spearman rank correlation): "
+                   + ", ".join(f"{n} {_g(v)}" for n, v in ranked))
+    return out
+
+
+def _rank_line(r: dict) -> str:
+    if r["status"] != "ok":
+        return f"{r['rank']:>4}. {r['file']}: {r['status']}: {r['message']}"
+    bits = []
+    if r.get("verdict") is not None:
+        bits.append(f"{r['verdict']} {_um(r.get('drift_per_cycle_m'))}/cycle")
+    if r.get("anisotropy") is not None:
+        bits.append(f"anisotropy {r['anisotropy']:.3g}")
+    if r.get("asymmetry") is not None:
+        bits.append(f"asymmetry {r['asymmetry']:+.3g}")
+    if r.get("principal_direction_deg") is not None:
+        bits.append(f"t_a {r['principal_direction_deg']:.1f} deg")
+    return f"{r['rank']:>4}. {r['file']}: " + ", ".join(bits)
+
+
+def markdown(s: dict, figures: list[str]) -> str:
+    """summary.md: the text lines, the Sobol table and the figures."""
+    md = [f"# Study {s['name']}", "", "```", *lines(s), "```", ""]
+    if s.get("parameters"):
+        md += ["## Parameters", "", "| parameter | distribution |", "|---|---|"]
+        md += [f"| `{n}` | {d} |" for n, d in s["parameters"].items()]
+        md.append("")
+    if s.get("sobol"):
+        md += ["## Sobol indices", "", f"Output: `{s['output']}`.", "",
+               "| parameter | S1 | S1 95 % | ST | ST 95 % |", "|---|---|---|---|---|"]
+        for n, v in sorted(s["sobol"].items(), key=lambda kv: -kv[1]["ST"]):
+            md.append(f"| `{n}` | {v['S1']:.4f} | {v['S1_conf']:.4f} | {v['ST']:.4f} | "
+                      f"{v['ST_conf']:.4f} |")
+        md.append("")
+    if s.get("ranking"):
+        md += ["## Ranking", "", "| rank | file | status | verdict | drift per cycle (um) | "
+               "anisotropy | asymmetry |", "|---|---|---|---|---|---|---|"]
+        for r in s["ranking"]:
+            d = r.get("drift_per_cycle_m")
+            md.append(f"| {r['rank']} | `{r['file']}` | {r['status']} | {r.get('verdict') or ''}"
+                      f" | {'' if d is None else f'{d * 1e6:+.4g}'} | "
+                      f"{_g(r.get('anisotropy'))} | {_g(r.get('asymmetry'))} |")
+        md.append("")
+    if figures:
+        md += ["## Figures", ""] + [f"![{f}]({f})" for f in figures] + [""]
+    return "\n".join(md)
+
+
+def finite_json(x):
+    """A copy of x with every non-finite float as None (JSON has no NaN)."""
+    if isinstance(x, dict):
+        return {k: finite_json(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [finite_json(v) for v in x]
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
