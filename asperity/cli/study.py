@@ -58,6 +58,9 @@ def run(args) -> dict:
     """Python API of the command: the summary (the JSON object printed with --json)."""
     from ..study.run import export_folder, run_study_file, summarise_folder
     target = args.target
+    if args.export is not None and os.path.splitext(str(args.export))[1].lower() not in (
+            ".parquet", ".csv"):
+        raise InputError(f"--export writes .parquet or .csv, got {os.path.basename(args.export)!r}")
     workers = _whole("--workers", args.workers, 0, 4096)
     batch = _whole("--batch-size", args.batch_size, 1, 1_000_000)
     if os.path.isdir(target):

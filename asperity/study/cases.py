@@ -36,6 +36,8 @@ OUTPUTS = {
              ("stabilised_at_cycle", "INTEGER"), ("extrapolated", "INTEGER")],
 }
 STATUSES = ("ok", "failed", "error")
+#: study.law -> the fit's kind (as ``asperity fit --law``)
+LAWS = {"star": "star", "ellipse": "truncated-ellipse"}
 
 
 def output_columns(stages) -> list[tuple[str, str]]:
@@ -121,7 +123,7 @@ def evaluate(spec: dict, values: dict, file: str | None = None) -> dict:
         out["admissible"] = int(bool(d.admissibility.admissible))
         if "fit" in stages:
             from ..laws.fitting import fit_derivation
-            rep = fit_derivation(d, kind=spec.get("law", "star")).fit
+            rep = fit_derivation(d, kind=LAWS[spec.get("law", "star")]).fit
             out["fit_law"] = spec.get("law", "star")
             out["fit_max_radial_error"] = _finite(rep.max_radial_error)
             out["fit_max_angle_error_deg"] = _finite(rep.max_angle_error_deg)

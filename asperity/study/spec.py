@@ -168,8 +168,10 @@ def study_from_dict(data: dict, path, text: str = "") -> Study:
     spec = _spec(st, data, folder, kind, params)
     study = Study(name, description, kind, samples, seed, tuple(params), files, spec, batch,
                   str(p), text)
-    if kind != "files" and study.n_cases < 1:
-        raise InputError("the study has no cases")
+    from .sampling import MAX_CASES
+    if kind != "files" and study.n_cases > MAX_CASES:
+        raise InputError(f"the study has {study.n_cases:.3g} cases, at most {MAX_CASES:.0e}: "
+                         f"lower study.samples or the grid sizes")
     _check_one_case(study)
     return study
 
