@@ -13,7 +13,6 @@ the batch goes on.  Statuses: ``ok``, ``failed`` (the input or outcome the messa
 """
 from __future__ import annotations
 
-import copy
 import math
 import time
 from pathlib import Path
@@ -50,37 +49,58 @@ def _put(table: dict, key: str, value) -> None:
     table[key] = value
 
 
-def build_inputs(spec: dict, values: dict, file: str | None):
+def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None = None):
     """(texture or surface or None, Assembly or None) of one case.
 
     values: {"texture.alpha_deg": 31.2, "loading.dT_max": 120.0, ...}; file: the scan of a
-    files study (read here, on the worker)."""
-    from ..microslip.assembly import assembly_from_dict
+    files study (read here, on the worker).  cache: texture and assembly objects of earlier
+    cases of the same batch, by the values that built them (immutable objects: a case that
+    varies only the texture parses the assembly once per batch)."""
+    cache = {} if cache is None else cache
     texture = None
     if file is not None:
         texture = _load_file(file, spec.get("surface", {}))
-    elif isinstance(spec.get("texture"), dict):
-        from ..texture.wedges import texture_from_dict
-        table = dict(spec["texture"])
-        for k, v in values.items():
-            if k.startswith("texture."):
-                _put(table, k.split(".", 1)[1], float(v))
-        texture = texture_from_dict(table)
-    elif isinstance(spec.get("texture"), str):
-        from ..friction.sources import load_texture_or_surface
-        texture = load_texture_or_surface(spec["texture"])
+    elif spec.get("texture") is not None:
+        key = ("texture", *((k, v) for k, v in values.items() if k.startswith("texture.")))
+        if key not in cache:
+            cache[key] = _texture(spec, values)
+        texture = cache[key]
     asm = spec.get("assembly_object")       # risk maps: a parsed assembly, not varied
     if spec.get("assembly") is not None:
-        data = copy.deepcopy(spec["assembly"])
-        for k, v in values.items():
-            table, key = k.split(".", 1)
-            if table in ("assembly", "friction", "loading"):
-                t = data.setdefault(table, {})
-                if not isinstance(t, dict):
-                    raise InputError(f"{table} of the assembly file is not a table")
-                _put(t, key, float(v))
-        asm = assembly_from_dict(data, spec["assembly_path"])
+        key = ("assembly", *((k, v) for k, v in values.items()
+                             if not k.startswith("texture.")))
+        if key not in cache:
+            cache[key] = _assembly(spec, values)
+        asm = cache[key]
+    if len(cache) > 64:
+        cache.clear()
     return texture, asm
+
+
+def _texture(spec: dict, values: dict):
+    if isinstance(spec["texture"], str):
+        from ..friction.sources import load_texture_or_surface
+        return load_texture_or_surface(spec["texture"])
+    from ..texture.wedges import texture_from_dict
+    table = dict(spec["texture"])
+    for k, v in values.items():
+        if k.startswith("texture."):
+            _put(table, k.split(".", 1)[1], float(v))
+    return texture_from_dict(table)
+
+
+def _assembly(spec: dict, values: dict):
+    from ..microslip.assembly import assembly_from_dict
+    data = dict(spec["assembly"])                  # copy the tables that change only
+    for k, v in values.items():
+        table, key = k.split(".", 1)
+        if table in ("assembly", "friction", "loading"):
+            t = data.get(table, {})
+            if not isinstance(t, dict):
+                raise InputError(f"{table} of the assembly file is not a table")
+            data[table] = t = dict(t) if t is spec["assembly"].get(table) else t
+            _put(t, key, float(v))
+    return assembly_from_dict(data, spec["assembly_path"])
 
 
 def _load_file(path: str, opts: dict):
@@ -103,9 +123,9 @@ def _finite(x):
     return x if math.isfinite(x) else None
 
 
-def evaluate(spec: dict, values: dict, file: str | None = None) -> dict:
+def evaluate(spec: dict, values: dict, file: str | None = None, cache: dict | None = None) -> dict:
     """The outputs of one case (keys of :func:`output_columns`); raises on failure."""
-    texture, asm = build_inputs(spec, values, file)
+    texture, asm = build_inputs(spec, values, file, cache)
     stages = spec["stages"]
     out: dict = {}
     contact = spec.get("contact") or "all-faces"
@@ -146,11 +166,12 @@ def evaluate(spec: dict, values: dict, file: str | None = None) -> dict:
     return out
 
 
-def run_case(spec: dict, values: dict, file: str | None = None) -> tuple[str, str, float, dict]:
+def run_case(spec: dict, values: dict, file: str | None = None,
+             cache: dict | None = None) -> tuple[str, str, float, dict]:
     """(status, message, seconds, outputs) of one case; never raises (but on Ctrl-C)."""
     t0 = time.perf_counter()
     try:
-        out = evaluate(spec, values, file)
+        out = evaluate(spec, values, file, cache)
         status, msg = "ok", ""
     except AsperityError as exc:
         out, status, msg = {}, "failed", _one_line(str(exc))
@@ -173,11 +194,24 @@ def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple
     case: (case_id, status, message, seconds, outputs).  The task a worker runs."""
     import warnings
     res = []
+    cache: dict = {}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")            # a worker's warnings reach nobody
         for i, cid in enumerate(ids):
             values = {n: float(v) for n, v in zip(names, rows[i])} if names else {}
             f = None if files is None else str(Path(files[i]))
-            status, msg, sec, out = run_case(spec, values, f)
+            status, msg, sec, out = run_case(spec, values, f, cache)
             res.append((int(cid), status, msg, sec, out))
     return res
+
+
+def warm_up(spec: dict, values: dict | None) -> bool:
+    """Import what the stages need and load their compiled kernels by running one case
+    (files studies: imports only), so that the first batches are not charged for it."""
+    import importlib
+    for m in ("asperity.microslip.risk", "asperity.friction.derive", "asperity.laws.fitting",
+              "asperity.texture.wedges", "asperity.surface.facets"):
+        importlib.import_module(m)
+    if values is not None:
+        run_case(spec, values)
+    return True

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import AsperityError, InputError, check_int
-from .cases import run_batch
+from .cases import run_batch, warm_up
 
 #: seconds of work per task the batch size aims at
 TARGET_SECONDS = 1.0
@@ -56,6 +56,7 @@ class RunReport:
     seconds: float
     where: str                 # "in-process", "LocalCluster (2 workers)", "tcp://..."
     workers: int
+    startup_seconds: float = 0.0   # starting or reaching the cluster
 
 
 class Batcher:
@@ -137,6 +138,7 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
         fl = [files[i] for i in ids] if files is not None else None
         return (study.spec, names, ids.tolist(), rows, fl)
 
+    timing = {"startup": 0.0}
     try:
         if scheduler is None and workers == 0:
             batcher = Batcher(todo, batch_size, first, 1)
@@ -147,11 +149,12 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
                 finished(res)
         else:
             where, nw = _run_dask(todo, task_args, finished, scheduler, workers, batch_size,
-                                  first)
+                                  first, timing)
     except KeyboardInterrupt:
         raise StudyInterrupted(f"{stored} of {n} cases stored in {store.folder}; run the same "
                                f"command again to resume") from None
-    return RunReport(n, stored - done.size, stored, time.perf_counter() - t0, where, nw)
+    return RunReport(n, stored - done.size, stored, time.perf_counter() - t0, where, nw,
+                     timing["startup"])
 
 
 def _connect(scheduler, workers):
@@ -161,12 +164,16 @@ def _connect(scheduler, workers):
     if scheduler is None:
         nw = workers or os.cpu_count() or 1
         try:
+            # one core per worker: the numba kernels must not start a thread per core in
+            # every worker (oversubscription)
             cluster = distributed.LocalCluster(
                 n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
-                dashboard_address=None, silence_logs=logging.ERROR)
+                dashboard_address=None, silence_logs=logging.ERROR,
+                env={"NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
         except OSError as exc:
             raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
         return distributed.Client(cluster), cluster, f"LocalCluster ({nw} workers)", nw
+    _reachable(scheduler)
     try:
         if os.path.isfile(scheduler):
             client = distributed.Client(scheduler_file=scheduler, timeout="10s")
@@ -185,14 +192,42 @@ def _connect(scheduler, workers):
     return client, None, scheduler, nw
 
 
-def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first):
+def _reachable(scheduler: str) -> None:
+    """Fail at once, in one line, when a tcp:// scheduler address refuses connections
+    (Dask itself retries until its timeout)."""
+    import socket
+    from urllib.parse import urlsplit
+    if os.path.isfile(scheduler) or "://" not in scheduler:
+        return
+    u = urlsplit(scheduler)
+    if u.scheme != "tcp" or not u.hostname or not u.port:
+        return
+    try:
+        socket.create_connection((u.hostname, u.port), timeout=10).close()
+    except OSError as exc:
+        raise EngineError(f"cannot reach the Dask scheduler at {scheduler!r} "
+                          f"({exc.strerror or type(exc).__name__}); start it with `dask "
+                          f"scheduler` or check the address") from None
+
+
+def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, timing):
     from distributed import as_completed
     from distributed.client import FutureCancelledError
     try:
         from distributed.scheduler import KilledWorker
     except ImportError:                               # pragma: no cover
         from distributed import KilledWorker
+    t0 = time.perf_counter()
     client, cluster, where, nw = _connect(scheduler, workers)
+    try:
+        spec, names, ids, rows, fl = task_args(todo[:1])
+        client.run(warm_up, spec, None if fl else dict(zip(names, map(float, rows[0])))
+                   if names else {})
+    except (ImportError, AttributeError) as exc:
+        _close(client, cluster)
+        raise EngineError(f"the workers cannot run asperity ({type(exc).__name__}: {exc}); "
+                          f"install the same asperity on every worker") from None
+    timing["startup"] = time.perf_counter() - t0
     batcher = Batcher(todo, batch_size, first, nw)
     ac = as_completed()
     meta = {}

@@ -109,6 +109,10 @@ def summarise(store) -> dict:
         ctt = store.column("cycles_to_tolerance")[ok]
         ctt = np.where(np.isnan(ctt), np.inf, ctt)
         out["cycles_to_tolerance"] = _q(ctt, (0.05, 0.5))
+        asm = spec.get("assembly") or {}
+        lo = asm.get("loading") if isinstance(asm.get("loading"), dict) else {}
+        out["tolerance_m"] = spec.get("tolerance") if spec.get("tolerance") is not None \
+            else lo.get("tolerance")
         out["life_cycles"] = spec.get("cycles")
     if "derive" in stages or "fit" in stages:
         for k in ("anisotropy", "asymmetry", "principal_direction_deg"):

@@ -54,9 +54,13 @@ def lines(s: dict) -> list[str]:
             out.append(f"drift after the assessed life: p50 {_mm(a['p50'])}, p95 "
                        f"{_mm(a['p95'])}, p99 {_mm(a['p99'])}")
         t = s["cycles_to_tolerance"]
-        if t:
-            out.append(f"cycles until the tolerance is reached: p05 {_cycles(t['p05'])}, p50 "
-                       f"{_cycles(t['p50'])} (5 % of the cases reach it within the p05)")
+        if s.get("tolerance_m") is None:
+            out.append("cycles until a tolerance is reached: no tolerance given (loading."
+                       "tolerance in the assembly file or study.tolerance)")
+        elif t:
+            out.append(f"cycles until the tolerance of {_mm(s['tolerance_m'])} is reached: p05 "
+                       f"{_cycles(t['p05'])}, p50 {_cycles(t['p50'])} (5 % of the cases reach "
+                       f"it within the p05)")
     for k, label in (("anisotropy", "anisotropy"), ("asymmetry", "asymmetry (mu_a+ - mu_a-)/mean"),
                      ("principal_direction_deg", "principal direction (deg)")):
         q = s.get(k)
@@ -94,9 +98,19 @@ def _influence_lines(s: dict) -> list[str]:
     return out
 
 
+def short_path(path: str) -> str:
+    """A file name relative to the current folder when that is shorter."""
+    import os
+    try:
+        rel = os.path.relpath(path)
+    except ValueError:
+        return path
+    return rel if len(rel) < len(path) else path
+
+
 def _rank_line(r: dict) -> str:
     if r["status"] != "ok":
-        return f"{r['rank']:>4}. {r['file']}: {r['status']}: {r['message']}"
+        return f"{r['rank']:>4}. {short_path(r['file'])}: {r['status']}: {r['message']}"
     bits = []
     if r.get("verdict") is not None:
         bits.append(f"{r['verdict']} {_um(r.get('drift_per_cycle_m'))}/cycle")
@@ -106,7 +120,7 @@ def _rank_line(r: dict) -> str:
         bits.append(f"asymmetry {r['asymmetry']:+.3g}")
     if r.get("principal_direction_deg") is not None:
         bits.append(f"t_a {r['principal_direction_deg']:.1f} deg")
-    return f"{r['rank']:>4}. {r['file']}: " + ", ".join(bits)
+    return f"{r['rank']:>4}. {short_path(r['file'])}: " + ", ".join(bits)
 
 
 def markdown(s: dict, figures: list[str]) -> str:
