@@ -195,6 +195,10 @@ def support_project(tab, off, n, x0, x1):
     rho, psr = support_radial(tab, off, n, math.atan2(x1, x0))
     if r <= rho:
         return x0, x1, True
+    if r <= rho * (1.0 + 1e-14):
+        # outside by rounding only: x is its own projection (on a flat edge the search
+        # below would see x.s - h <= 0 at the edge's normal and jump to the edge's end)
+        return x0, x1, False
     # window of samples with psi in (psr - pi, psr + pi): K in [klo, khi]
     base = 0
     while _psi_k(tab, off, n, base) > psr:
