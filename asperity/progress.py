@@ -91,3 +91,16 @@ def chunks(total: int, size: int, label: str | None = None):
         yield start, stop
         start = stop
         report(start / total if total else 1.0, label)
+
+
+class silenced:
+    """No progress bar inside the block (work nested in a larger one, such as the cases of
+    a study, must not draw over the study's bar)."""
+
+    def __enter__(self):
+        self._token = _current.set(None)
+        return self
+
+    def __exit__(self, *exc):
+        _current.reset(self._token)
+        return False

@@ -313,3 +313,20 @@ assembly = "SURF/two-node-spec.toml"
     assert {Path(f).name for f in s["figures"]} == {"drift.png", "verdicts.png", "sobol.png"}
     md = (tmp_path / "out" / "summary.md").read_text()
     assert "Sobol indices" in md and "![sobol.png](sobol.png)" in md
+
+
+def test_progress_is_reported_per_batch_up_to_the_whole_run(tmp_path, monkeypatch):
+    """The study's bar sees one fraction per batch (of this run) and nothing from inside
+    the cases (their own progress reports would draw over it)."""
+    from asperity import progress
+    seen = []
+    monkeypatch.setattr(progress.progress_bar, "__call__",
+                        lambda self, f, label=None: seen.append((f, label)))
+    study = write_study(tmp_path, MC.replace('stages = ["derive", "fit", "risk"]',
+                                             'stages = ["risk"]'))
+    with progress.progress_bar("study"):
+        run_study_file(study, tmp_path / "out", workers=0, batch_size=5)
+    assert [round(f, 6) for f, _ in seen] == [0.0, round(5 / 12, 6), round(10 / 12, 6), 1.0]
+    assert {label for _, label in seen} == {"study"}
+    s = run_study_file(study, tmp_path / "out", workers=0)
+    assert s["run"]["ran"] == 0 and s["sobol"] is None and s["p_ratchet"] is not None

@@ -193,9 +193,11 @@ def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple
     """Run cases ``ids`` (parameter values ``rows``, or ``files``) and return one tuple per
     case: (case_id, status, message, seconds, outputs).  The task a worker runs."""
     import warnings
+
+    from ..progress import silenced
     res = []
     cache: dict = {}
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), silenced():
         warnings.simplefilter("ignore")            # a worker's warnings reach nobody
         for i, cid in enumerate(ids):
             values = {n: float(v) for n, v in zip(names, rows[i])} if names else {}

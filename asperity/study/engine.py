@@ -123,7 +123,8 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
         batch_size = study.batch_size
     first = FIRST_BATCH["files" if files is not None else "default"]
     stored = done.size
-    progress.report(stored / n if n else 1.0, "study")
+    label = f"study ({done.size} stored before)" if done.size else "study"
+    progress.report(0.0, label)
     if todo.size == 0:
         return RunReport(n, 0, stored, time.perf_counter() - t0, "nothing to run", 0)
 
@@ -131,7 +132,7 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
         nonlocal stored
         store.write(results, inputs_of)
         stored += len(results)
-        progress.report(stored / n, "study")
+        progress.report((stored - done.size) / todo.size, label)   # of this run: a true ETA
 
     def task_args(ids):
         rows = matrix[ids] if names else None

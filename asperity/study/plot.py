@@ -19,7 +19,7 @@ def figures(store, summary: dict, folder) -> list[str]:
     folder = Path(folder)
     out = []
     ok = store.column("status", dtype=object) == "ok"
-    if "verdicts" in summary and ok.any():
+    if "risk" in summary["stages"] and ok.any():
         _drift(store, ok, folder / "drift.png")
         out.append("drift.png")
         top = most_influential(summary)

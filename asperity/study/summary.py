@@ -93,6 +93,7 @@ def summarise(store) -> dict:
            "stored": stored, "completed": completed,
            "failed": counts.get("failed", 0) + counts.get("error", 0),
            "missing": meta["n_cases"] - stored, "store": str(store.path)}
+    out.update({"verdicts": {}, "p_ratchet": None, "drift_per_cycle_m": None, "sobol": None})
     status = store.column("status", dtype=object)
     ok = status == "ok"
     out["failures"] = _failures(store)

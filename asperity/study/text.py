@@ -33,7 +33,7 @@ def lines(s: dict) -> list[str]:
         out.append("  (interrupted: run the same command again to resume)")
     for f in s.get("failures", [])[:3]:
         out.append(f"  failed x{f['cases']} (first: case {f['first_case']}): {f['message']}")
-    if "verdicts" in s:
+    if "risk" in s["stages"]:
         v = s["verdicts"]
         out.append("verdicts: " + (", ".join(f"{k} {n} ({_pct(n, s['completed'])})"
                                               for k, n in v.items()) or "none"))
