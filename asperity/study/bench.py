@@ -126,12 +126,17 @@ def bench_study(workers: int = 2, n_two: int = 200_000, n_strip: int = 20_000,
 
 
 def format_study(out: dict) -> str:
-    lines = [f"study engine, serial in-process loop vs {out['workers']} local workers "
-             "(LocalCluster, start-up excluded):"]
+    lines = [f"study engine, serial in-process loop (one core) vs {out['workers']} local "
+             "workers (LocalCluster; start-up and worker warm-up excluded):"]
     for label, r in out["cases"].items():
         lines.append(f"  {label:<24} {r['cases']:>7} cases: serial {r['serial_cases_per_s']:9.4g} "
                      f"cases/s ({r['serial_ms_per_case']:.3g} ms), engine "
                      f"{r['engine_cases_per_s']:9.4g} cases/s = x{r['speedup']:.2f}, "
                      f"scheduling overhead {100 * r['overhead']:.1f} %, start-up "
                      f"{r['startup_s']:.1f} s")
+    lines.append("  a 1e6-case study: " + "; ".join(
+        f"{label} {1e6 / r['engine_cases_per_s'] / 60:.3g} min here, "
+        f"{1e6 * r['serial_ms_per_case'] / 1e3 / 100 / 0.9 / 60:.3g} min on 100 workers"
+        for label, r in out["cases"].items()) + " (100 workers: serial cost / 100 at 90 % "
+        "efficiency)")
     return "\n".join(lines)
