@@ -37,8 +37,8 @@ def test_derive_springs_agree_with_closed_form(capsys):
                        "--directions", "8", "--k-f", "inf", "--n-springs", "4096", "--json")
     assert code == 0
     d = json.loads(out)
-    assert d["springs"]["max_relative_deviation_from_closed_form"] < 1e-3
-    assert d["mu_a_plus"] == pytest.approx(0.185697, rel=1e-3)
+    assert d["springs"]["max_relative_deviation_from_closed_form"] < 6e-4     # 3.7e-4 reached
+    assert d["mu_a_plus"] == pytest.approx(0.185697, rel=2e-4)                 # 5.9e-5 reached
 
 
 def test_derive_plot_written(tmp_path, capsys):

@@ -38,14 +38,17 @@ def rel_err(p, q):
 @pytest.mark.parametrize("k_f", [math.inf, 1e5 * K_N])
 @pytest.mark.parametrize("tex", TEXTURES, ids=lambda t: f"{t.alpha_deg:g}-{t.beta_deg:g}")
 def test_closed_form_agreement(tex, k_f, contact):
-    """64 springs x 32000 samples/pitch (k_f = inf or k_f/k_n = 1e5) -> rel. error < 1e-3."""
+    """64 springs x 32000 samples/pitch (k_f = inf or k_f/k_n = 1e5).  Reached: all faces
+    2.4e-4 (the springs sample the faces), windward 1.6e-5 with k_f/k_n = 1e5 and rounding
+    (2e-15) with rigid springs (every loaded tip is on the one windward face)."""
     model = SpringModel(k_n=K_N, k_f=k_f, **FINE)
     cf = compute_reservoir(tex, np.radians(PSI_DEG), contact)
+    tol = 5e-4 if contact == "all-faces" else 5e-5 if math.isfinite(k_f) else 1e-13
     for i, psid in enumerate(PSI_DEG):
         r = simulate_sliding(tex, math.radians(psid), model, contact)
         assert not r.locked
         err = rel_err(r.p, cf.p[i])
-        assert err < 1e-3, f"{contact} psi={psid} k_f={k_f:g}: p={r.p} closed form {cf.p[i]} err {err:.2e}"
+        assert err < tol, f"{contact} psi={psid} k_f={k_f:g}: p={r.p} closed form {cf.p[i]} err {err:.2e}"
 
 
 @pytest.mark.parametrize("contact", ["all-faces", "windward"])
@@ -58,7 +61,7 @@ def test_along_ridges(contact, k_f):
     cf = compute_reservoir(tex, psi, contact)
     res = simulate_reservoir(tex, psi, model, contact)
     for i in range(2):
-        assert rel_err(res.p[i], cf.p[i]) < 1e-3, (res.p[i], cf.p[i])
+        assert rel_err(res.p[i], cf.p[i]) < 6e-4, (res.p[i], cf.p[i])       # 4.4e-4 reached
     assert np.array_equal(res.set_valued, cf.set_valued)
 
 
@@ -70,13 +73,13 @@ def test_sliding_result_fields():
     assert r.tangential == pytest.approx(r.p @ s, rel=1e-14)
     assert r.lateral == pytest.approx(-r.p[0] * s[1] + r.p[1] * s[0], rel=1e-12)
     # preload 0: mean compression h/2 over the period -> sigma_n = density k_n h / 2
-    assert r.normal_stress == pytest.approx(1e10 * 1e3 * tex.height / 2, rel=1e-3)
+    assert r.normal_stress == pytest.approx(1e10 * 1e3 * tex.height / 2, rel=1e-7)  # 1.1e-8
     assert r.sliding_fraction == 1.0
 
 
 @pytest.mark.parametrize("contact", ["all-faces", "windward"])
 def test_independent_of_h_and_kn_rigid(contact):
-    """k_f = inf: scaling h or k_n by 10 and 100 changes p by < 1e-6 (relative)."""
+    """k_f = inf: scaling h or k_n by 10 and 100 changes p by rounding only (9e-16)."""
     psi = math.radians(37.0)
     ref = simulate_sliding(WedgeTexture(30, 10, 0.1, 0.2), psi, SpringModel(), contact).p
     for f in (10.0, 100.0):
@@ -84,25 +87,27 @@ def test_independent_of_h_and_kn_rigid(contact):
                               SpringModel(), contact).p
         pk = simulate_sliding(WedgeTexture(30, 10, 0.1, 0.2), psi,
                               SpringModel(k_n=K_N * f), contact).p
-        assert rel_err(ph, ref) < 1e-6 and rel_err(pk, ref) < 1e-6
+        assert rel_err(ph, ref) < 1e-13 and rel_err(pk, ref) < 1e-13
 
 
 def test_independent_of_h_and_kn_elastic():
-    """Finite k_f (1e5 k_n): h x10/x100 -> same p to 1e-6; k_n x10/x100 at fixed k_f -> 1e-3."""
+    """Finite k_f (1e5 k_n): h x10/x100 -> same p to 1e-11 (1.2e-13 reached); k_n / 10 and
+    / 100 at fixed k_f -> 1e-5 (2.3e-6 reached: the deviation goes with k_n/k_f)."""
     psi = math.radians(37.0)
     tex = WedgeTexture(30, 10, 0.1, 0.2)
     m0 = SpringModel(k_f=1e8, k_n=1e3, steps_per_period=8000)
     ref = simulate_sliding(tex, psi, m0).p
     for f in (10.0, 100.0):
         ph = simulate_sliding(WedgeTexture(30, 10, 0.1, 0.2, height=1e-6 * f), psi, m0).p
-        assert rel_err(ph, ref) < 1e-6
+        assert rel_err(ph, ref) < 1e-11
     for f in (0.1, 0.01):  # k_n / k_f from 1e-5 down to 1e-7
         pk = simulate_sliding(tex, psi, SpringModel(k_f=1e8, k_n=1e3 * f, steps_per_period=8000)).p
-        assert rel_err(pk, ref) < 1e-3
+        assert rel_err(pk, ref) < 1e-5
 
 
 def test_gaussian_heights_give_periodic_result():
-    """Gaussian heights, rest level above the base line: the periodic closed form, 1e-3."""
+    """Gaussian heights, rest level above the base line: the periodic closed form, 4e-4
+    (2.1e-4 reached)."""
     g = GaussianWedgeTexture(30, 10, 0.1, 0.2, height_mean=1e-6, height_std=0.3e-6,
                              n_wedges=50, seed=3)
     per = WedgeTexture(30, 10, 0.1, 0.2)
@@ -112,7 +117,7 @@ def test_gaussian_heights_give_periodic_result():
         model = SpringModel(k_f=k_f, preload=-K_N * 0.8e-6, steps_per_period=8000)
         for i, a in enumerate(psi):
             r = simulate_sliding(g, float(a), model)
-            assert rel_err(r.p, cf.p[i]) < 1e-3, (np.degrees(a), r.p, cf.p[i])
+            assert rel_err(r.p, cf.p[i]) < 4e-4, (np.degrees(a), r.p, cf.p[i])
 
 
 def test_kf_convergence():
@@ -125,20 +130,21 @@ def test_kf_convergence():
         r = simulate_sliding(tex, psi, SpringModel(k_f=K_N * ratio, steps_per_period=32000))
         errs.append(rel_err(r.p, cf))
     assert errs[0] > errs[1] > errs[2]
-    # roughly proportional to k_n/k_f: each decade divides the error by 5..20
-    assert 5 < errs[0] / errs[1] < 20 and 5 < errs[1] / errs[2] < 20, errs
+    # proportional to k_n/k_f: each decade divides the error by ~10 (9.8 and 8.5 reached)
+    assert 7 < errs[0] / errs[1] < 13 and 7 < errs[1] / errs[2] < 13, errs
 
 
 def test_loading_curve():
-    """Initial slope = density k_f (1e-6), plateau = closed form mu_a+ (1e-3), fraction -> 1."""
+    """Initial slope = density k_f (1e-9; 5e-11 reached), plateau = closed form mu_a+ (1e-4;
+    3.5e-5 reached), fraction -> 1."""
     tex = WedgeTexture(5, 5, 0.1, 0.1)  # tan 5 deg < 0.1: every tip sticks at rest
     model = SpringModel(k_f=1e7, preload=2 * K_N * tex.height)
     lc = simulate_loading_curve(tex, 0.0, model)
     assert isinstance(lc, LoadingCurve)
     assert lc.k_t == 1e10 * 1e7
-    assert abs(lc.k_t_measured - lc.k_t) / lc.k_t < 1e-6
+    assert abs(lc.k_t_measured - lc.k_t) / lc.k_t < 1e-9
     mu = compute_reservoir(tex, [0.0]).tangential[0]
-    assert abs(lc.mu_steady - mu) / mu < 1e-3
+    assert abs(lc.mu_steady - mu) / mu < 1e-4
     f = lc.sliding_fraction
     top = int(np.argmax(f >= 1.0))
     assert f[top] == 1.0 and np.all(np.diff(f[:top + 1]) >= 0)
@@ -152,7 +158,7 @@ def test_loading_curve():
 def test_loading_curve_steep_plateau():
     tex = WedgeTexture(30, 10, 0.1, 0.2)
     lc = simulate_loading_curve(tex, 0.0, SpringModel(k_f=1e7, preload=1e-4), n_steps=4000)
-    assert abs(lc.mu_steady - 0.185697) / 0.185697 < 1e-3
+    assert abs(lc.mu_steady - 0.185697) / 0.185697 < 1e-4                   # SPEC, 2.8e-5
 
 
 @pytest.mark.parametrize("k_f", [math.inf, 1e6])
