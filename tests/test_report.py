@@ -36,8 +36,9 @@ def test_spec_section_states_the_check_values_and_run_numbers_sections(tmp_path,
     rows = [r for r in lines if r.startswith("| ") and "SPEC.md" not in r]
     assert len(rows) == 7
     for r in rows[:4]:                                  # the closed forms to 1e-6 (SPEC.md)
-        quoted, got = (float(x) for x in r.split("|")[2:4])
+        quoted, got, diff = (float(x) for x in r.split("|")[2:5])
         assert abs(got - quoted) < 1e-6, r
+        assert abs(diff) < 5e-7, r                      # SPEC's 6 decimals, unrounded: 4.3e-7
     monkeypatch.setattr(report, "SECTIONS", ("spec", "polar"))
     text = report.run(tmp_path).read_text()
     assert "## 1. SPEC.md check values" in text and "## 2. Polar reservoirs" in text
