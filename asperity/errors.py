@@ -81,6 +81,11 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
     The message names the field, the allowed range and the value that arrived.
     """
     x = as_number(name, value)
+    if x == x and (allow_inf or x - x == 0.0) \
+            and (low is None or x > low or (x == low and not low_open)) \
+            and (high is None or x < high or (x == high and not high_open)) \
+            and not (x - x != 0.0 and ((x > 0 and high is not None) or (x < 0 and low is not None))):
+        return x                              # in range: no message to build
     lo = "(" if low_open or low is None else "["
     hi = ")" if high_open or high is None else "]"
     rng = f"{lo}{'-inf' if low is None else _fmt(low)}, {'inf' if high is None else _fmt(high)}{hi}"

@@ -330,3 +330,29 @@ def test_progress_is_reported_per_batch_up_to_the_whole_run(tmp_path, monkeypatc
     assert {label for _, label in seen} == {"study"}
     s = run_study_file(study, tmp_path / "out", workers=0)
     assert s["run"]["ran"] == 0 and s["sobol"] is None and s["p_ratchet"] is not None
+
+
+def test_a_study_varying_the_loading_only_equals_the_api_too(tmp_path):
+    """Such studies parse the assembly once per batch and replace its loading: the same
+    Assembly as parsing the file with that loading."""
+    study = write_study(tmp_path, """
+[study]
+kind = "latin-hypercube"
+samples = 6
+seed = 1
+texture = "SURF/wedge-asymmetric.toml"
+assembly = "SURF/bushing-strip.toml"
+[parameters]
+"loading.dT_max" = { distribution = "uniform", low = 10.0, high = 140.0 }
+"loading.dT_min" = { distribution = "uniform", low = -20.0, high = 5.0 }
+""")
+    run_study_file(study, tmp_path / "out", workers=0)
+    tex = load_texture(SURF / "wedge-asymmetric.toml")
+    for r in table(tmp_path / "out"):
+        asm = load_assembly(_edited(SURF / "bushing-strip.toml",
+                                    {k: r[k] for k in ("loading.dT_max", "loading.dT_min")},
+                                    tmp_path / f"a{r['case_id']}.toml"))
+        out = assess_assembly(asm, assembly_friction(asm, tex))
+        assert r["status"] == "ok", r["message"]
+        for k in ("verdict", "dT_c_K", "margin", "drift_per_cycle_m", "cycles_to_tolerance"):
+            assert r[k] == out[k], (k, r[k], out[k])

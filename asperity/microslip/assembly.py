@@ -228,6 +228,21 @@ def assembly_from_dict(data: dict, path) -> Assembly:
                     cycles, tolerance, p.parent)
 
 
+def with_loading(asm: Assembly, table: dict, path) -> Assembly:
+    """``asm`` with its ``[loading]`` table replaced by ``table`` (checked exactly as
+    :func:`assembly_from_dict` checks it): the same Assembly that parsing the whole file
+    with that table gives, for studies that vary the loading only."""
+    from dataclasses import replace
+    p = Path(path)
+    try:
+        lo = _table({"loading": table}, "loading", _LOADING_KEYS, p)
+        loading, force_at, cycles, tolerance = _loading(lo)
+    except AssemblyFileError as exc:
+        msg = str(exc).lstrip(".")
+        raise AssemblyFileError(f"{p}: {msg}") from None
+    return replace(asm, loading=loading, force_at=force_at, cycles=cycles, tolerance=tolerance)
+
+
 def _loading(lo: dict):
     from .loading import Loading
     substeps = _field("loading", check_substeps, "substeps", lo.get("substeps", 1))

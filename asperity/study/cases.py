@@ -67,13 +67,26 @@ def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None 
         texture = cache[key]
     asm = spec.get("assembly_object")       # risk maps: a parsed assembly, not varied
     if spec.get("assembly") is not None:
-        key = ("assembly", *((k, v) for k, v in values.items()
-                             if not k.startswith("texture.")))
+        varied = {k: v for k, v in values.items() if not k.startswith("texture.")}
+        key = ("assembly", *varied.items())
         if key not in cache:
-            cache[key] = _assembly(spec, values)
+            if varied and all(k.startswith("loading.") for k in varied):
+                # only the loading varies: the rest of the file is parsed once per batch
+                from ..microslip.assembly import with_loading
+                if ("assembly",) not in cache:
+                    cache[("assembly",)] = _assembly(spec, {})
+                lo = dict(spec["assembly"].get("loading") or {})
+                for k, v in varied.items():
+                    _put(lo, k.split(".", 1)[1], float(v))
+                cache[key] = with_loading(cache[("assembly",)], lo, spec["assembly_path"])
+            else:
+                cache[key] = _assembly(spec, values)
         asm = cache[key]
     if len(cache) > 64:
+        base = cache.get(("assembly",))
         cache.clear()
+        if base is not None:
+            cache[("assembly",)] = base
     return texture, asm
 
 
