@@ -342,3 +342,26 @@ def test_risk_map_on_two_workers_equals_the_in_process_map(capsys):
     code, b, err = run(capsys, *argv, "--workers", "2")
     assert code == 0, err
     assert json.loads(a) == json.loads(b)
+
+
+@pytest.mark.slow
+def test_a_case_that_kills_its_workers_is_isolated_and_stored_as_failed(tmp_path):
+    import dask
+    from study_crash import CRASH_CASE, crashing_batch
+
+    from asperity.study.engine import run_study
+    from asperity.study.spec import load_study
+    from asperity.study.store import open_store
+    study = load_study(study_file(tmp_path, SMALL.replace("samples = 300", "samples = 40")))
+    store = open_store(tmp_path / "out", study)
+    try:
+        with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+            rep = run_study(study, store, workers=2, batch_size=8, task=crashing_batch)
+    finally:
+        store.close()
+    assert rep.ran == 40
+    rows = stored(tmp_path / "out", "case_id, status, message")
+    assert [r[0] for r in rows] == list(range(40))
+    bad = [r for r in rows if r[1] != "ok"]
+    assert [r[0] for r in bad] == [CRASH_CASE], bad
+    assert "died, also when it ran alone" in bad[0][2]

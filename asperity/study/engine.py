@@ -12,7 +12,8 @@
   for any number of cases.  Scans are read by the worker from their path.
 * Faults: a batch whose worker dies is rerun by Dask on another worker (and the worker
   replaced by its nanny); a batch that kills its workers repeatedly is split until the
-  case that does it is found, which is stored as failed with the reason.
+  case that does it is found; that case is run once more alone (it may only have shared a
+  worker with the culprit) and stored as failed with the reason if it kills it again.
 * Stores: the client writes each finished batch in one transaction; Ctrl-C or a kill
   loses at most the batches in flight, and the same command resumes.
 """
@@ -102,8 +103,11 @@ def resolve_scheduler(scheduler: str | None) -> str | None:
 
 
 def run_study(study, store, *, scheduler: str | None = None, workers: int | None = None,
-              batch_size: int | None = None) -> RunReport:
-    """Run every case of ``study`` missing from ``store``."""
+              batch_size: int | None = None, task=None) -> RunReport:
+    """Run every case of ``study`` missing from ``store``.  ``task``: the function a
+    worker runs on a batch (default :func:`asperity.study.cases.run_batch`; tests give one
+    that crashes its worker)."""
+    task = task or run_batch
     from .. import progress
     t0 = time.perf_counter()
     n = study.n_cases
@@ -145,12 +149,12 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
             batcher = Batcher(todo, batch_size, first, 1)
             where, nw = "in-process", 1
             while (ids := batcher.next()) is not None:
-                res = run_batch(*task_args(ids))
+                res = task(*task_args(ids))
                 batcher.learn(len(res), sum(r[3] for r in res))
                 finished(res)
         else:
             where, nw = _run_dask(todo, task_args, finished, scheduler, workers, batch_size,
-                                  first, timing)
+                                  first, timing, task)
     except KeyboardInterrupt:
         raise StudyInterrupted(f"{stored} of {n} cases stored in {store.folder}; run the same "
                                f"command again to resume") from None
@@ -211,7 +215,7 @@ def _reachable(scheduler: str) -> None:
                           f"scheduler` or check the address") from None
 
 
-def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, timing):
+def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, timing, task):
     from distributed import as_completed
     from distributed.client import FutureCancelledError
     try:
@@ -232,9 +236,10 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
     batcher = Batcher(todo, batch_size, first, nw)
     ac = as_completed()
     meta = {}
+    quarantine = []
 
     def submit(ids):
-        fut = client.submit(run_batch, *task_args(ids), pure=False)
+        fut = client.submit(task, *task_args(ids), pure=False)
         meta[fut.key] = (ids, time.perf_counter())
         ac.add(fut)
 
@@ -254,9 +259,12 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
                     half = ids.size // 2
                     submit(ids[:half])
                     submit(ids[half:])
-                    continue
-                res = [(int(ids[0]), "failed", "the worker running this case died several "
-                        "times (out of memory or a crash)", 0.0, {})]
+                else:                                 # it may only have shared a worker
+                    quarantine.append(ids)            # with the culprit: rerun it alone
+                nxt = batcher.next()
+                if nxt is not None:
+                    submit(nxt)
+                continue
             except FutureCancelledError:
                 raise EngineError("the cluster cancelled the study's tasks") from None
             except (ImportError, AttributeError) as exc:
@@ -268,6 +276,14 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
             nxt = batcher.next()
             if nxt is not None:
                 submit(nxt)
+        for ids in quarantine:        # each alone on the cluster: only a culprit dies now
+            fut = client.submit(task, *task_args(ids), pure=False)
+            try:
+                res = fut.result()
+            except KilledWorker:
+                res = [(int(ids[0]), "failed", "the worker running this case died, also "
+                        "when it ran alone (out of memory or a crash)", 0.0, {})]
+            finished(res)
     finally:
         for f in list(ac.futures) if hasattr(ac, "futures") else []:
             f.cancel()
