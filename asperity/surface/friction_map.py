@@ -3,16 +3,18 @@ triangle of a mesh, read from ``.npy`` or a text matrix.
 """
 from __future__ import annotations
 
-from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, check_array
 from .readers import READERS, reader_for
-from .readers._files import read_bytes
+from .readers._files import read_bytes, surface_path
 from .readers.array import load_array
 from .readers.text import parse_text_matrix
 from .topography import HeightMap, Surface
+
+#: largest local friction coefficient (as for --mu)
+MAX_MU = 100.0
 
 
 def read_friction_map(path, surface: Surface) -> np.ndarray:
@@ -25,7 +27,7 @@ def read_friction_map(path, surface: Surface) -> np.ndarray:
     read in order), or one per triangle of the mesh file (the values of the dropped
     degenerate ones are then discarded).  Values must be finite and >= 0.
     """
-    p = Path(path)
+    p = surface_path(path)
     reader, suffix, gz = reader_for(p)
     if reader.name not in ("array", "text"):
         text = next(r for r in READERS if r.name == "text")
@@ -57,9 +59,20 @@ def read_friction_map(path, surface: Surface) -> np.ndarray:
                     if surface.n_degenerate and surface.kept_faces is not None else "")
             raise InputError(f"{p}: friction map has {m.size} values, expected {nf}{also}, one "
                              f"per triangle of {surface.source or 'the mesh'}")
-    bad = ~np.isfinite(m) | (m < 0)
+    bad = ~np.isfinite(m) | (m < 0) | (m > MAX_MU)
     if bad.any():
         k = int(np.flatnonzero(bad.ravel())[0])
-        raise InputError(f"{p}: friction map values must be finite and >= 0; found "
-                         f"{m.ravel()[k]:g} ({int(bad.sum())} bad values)")
+        raise InputError(f"{p}: friction map values must be finite and >= 0 (at most "
+                         f"{MAX_MU:g}); found {m.ravel()[k]:g} ({int(bad.sum())} bad values)")
     return np.array(m, dtype=np.float64)
+
+
+def check_friction_map(friction_map) -> np.ndarray:
+    """An array of local friction coefficients: finite, in [0, MAX_MU]."""
+    m = check_array("friction map", friction_map, finite=False)
+    bad = ~np.isfinite(m) | (m < 0) | (m > MAX_MU)
+    if bad.any():
+        k = int(np.flatnonzero(bad.ravel())[0])
+        raise InputError(f"friction map values must be finite and >= 0 (at most {MAX_MU:g}); found "
+                         f"{m.ravel()[k]:g} ({int(bad.sum())} bad values)")
+    return m

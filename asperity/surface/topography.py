@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, TextureFileError, check_range
+from ..errors import InputError, TextureFileError, check_array, check_int, check_range, check_text
 
 #: length units accepted for ``unit`` (and in text headers): name -> metres
 UNITS = {
@@ -27,6 +27,14 @@ UNITS = {
 
 
 UNIT_HELP = "m, mm, um (µm), nm"
+
+#: physically meaningful ranges of a surface's numbers, in metres: a pixel finer than a
+#: picometre is below any instrument (and below an atom); a pixel coarser than a metre, or a
+#: coordinate beyond a kilometre, is no surface texture (usually a wrong --unit)
+PIXEL_SIZE_RANGE = (1e-12, 1.0)
+MAX_COORDINATE = 1e3
+#: range of height_scale: enough to make nanometre AFM relief steep, or flatten a mesh
+HEIGHT_SCALE_RANGE = (1e-6, 1e6)
 
 
 @dataclass(frozen=True)
@@ -47,14 +55,17 @@ class HeightMap:
     n_undefined: int = 0
 
     def __post_init__(self):
-        z = np.asarray(self.heights, dtype=np.float64)
-        if z.ndim != 2 or z.shape[0] < 1 or z.shape[1] < 1:
-            raise InputError(f"{self.source or 'height map'}: heights must be a 2-D array, "
-                             f"got shape {z.shape}")
+        source = check_text("source", self.source)
+        name = source or "height map"
+        z = check_array(f"{name}: heights", self.heights, ndim=2, finite=False)
+        if z.shape[0] < 1 or z.shape[1] < 1:
+            raise InputError(f"{name}: heights must be a 2-D array, got shape {z.shape}")
+        check_heights(z, name)
         object.__setattr__(self, "heights", z)
-        object.__setattr__(self, "dx", positive_length("dx", self.dx))
-        object.__setattr__(self, "dy", positive_length("dy", self.dy))
-        object.__setattr__(self, "n_undefined", int(self.n_undefined))
+        object.__setattr__(self, "dx", pixel_length("dx", self.dx))
+        object.__setattr__(self, "dy", pixel_length("dy", self.dy))
+        object.__setattr__(self, "n_undefined", check_int("n_undefined", self.n_undefined, 0,
+                                                          z.size))
 
     @property
     def nx(self) -> int:
@@ -90,16 +101,15 @@ class TriangleMesh:
     kept_faces: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
-        v = np.asarray(self.vertices, dtype=np.float64)
-        f = np.asarray(self.faces)
-        name = self.source or "mesh"
-        if v.ndim != 2 or v.shape[1] != 3:
-            raise InputError(f"{name}: vertices must have shape (nv, 3), got {v.shape}")
-        if f.ndim != 2 or f.shape[1] != 3:
-            raise InputError(f"{name}: faces must have shape (nf, 3), got {f.shape}")
-        f = f.astype(np.int64)
+        name = check_text("source", self.source) or "mesh"
+        v = check_array(f"{name}: vertices", self.vertices, shape=(None, 3))
+        check_coordinates(v, f"{name}: vertex coordinates")
+        f = check_array(f"{name}: faces", self.faces, shape=(None, 3))
+        if f.size and not np.all(f == np.round(f)):
+            raise InputError(f"{name}: faces must hold whole vertex indices")
         if f.size and (f.min() < 0 or f.max() >= v.shape[0]):
             raise InputError(f"{name}: face vertex indices must be in [0, {v.shape[0] - 1}]")
+        f = f.astype(np.int64)
         object.__setattr__(self, "vertices", v)
         object.__setattr__(self, "faces", f)
         object.__setattr__(self, "n_degenerate", int(self.n_degenerate))
@@ -124,6 +134,39 @@ def positive_length(name: str, value) -> float:
     return x
 
 
+def pixel_length(name: str, value) -> float:
+    """A grid spacing in metres within :data:`PIXEL_SIZE_RANGE`."""
+    lo, hi = PIXEL_SIZE_RANGE
+    return check_range(name, value, lo, hi, unit="m")
+
+
+def check_coordinates(a: np.ndarray, what: str) -> None:
+    """Finite values (NaN allowed: undefined) within +-:data:`MAX_COORDINATE` metres."""
+    lo, hi = nan_range(a)
+    if lo != lo:                                    # all NaN: the caller says what it means
+        return
+    big = max(abs(lo), abs(hi))
+    if not big <= MAX_COORDINATE:
+        kind = "infinite values" if math.isinf(big) else f"values up to {big:.3g} m"
+        raise InputError(f"{what} must lie within +-{MAX_COORDINATE:g} m, got {kind}; check "
+                         f"the unit (and height_scale)")
+
+
+def nan_range(a: np.ndarray) -> tuple[float, float]:
+    """(min, max) ignoring NaN; (nan, nan) for an empty or all-NaN array, silently."""
+    import warnings
+    if a.size == 0:
+        return math.nan, math.nan
+    with warnings.catch_warnings(), np.errstate(invalid="ignore"):
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return float(np.nanmin(a)), float(np.nanmax(a))
+
+
+def check_heights(z: np.ndarray, name: str) -> None:
+    """Heights in metres: finite or NaN (undefined), within +-:data:`MAX_COORDINATE`."""
+    check_coordinates(z, f"{name}: heights")
+
+
 def unit_factor(unit, what: str = "unit") -> float:
     """Metres per ``unit`` (one of :data:`UNITS`), else InputError listing the allowed ones."""
     if isinstance(unit, str):
@@ -135,17 +178,35 @@ def unit_factor(unit, what: str = "unit") -> float:
 
 
 def pixel_pair(pixel_size, factor: float) -> tuple[float, float]:
-    """(dx, dy) in metres from a number or a pair, given in a unit of ``factor`` metres."""
-    if isinstance(pixel_size, (str, bytes)):
+    """(dx, dy) in metres from a number or a pair, given in a unit of ``factor`` metres;
+    each within :data:`PIXEL_SIZE_RANGE` once in metres."""
+    if isinstance(pixel_size, (str, bytes, dict)) or pixel_size is None:
         raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
-    if np.ndim(pixel_size) == 0:
-        d = positive_length("pixel_size", pixel_size)
-        return d * factor, d * factor
-    vals = list(np.asarray(pixel_size, dtype=object).ravel())
-    if len(vals) != 2:
+    try:
+        shape = np.shape(pixel_size)
+    except ValueError:
+        shape = None
+    if shape == ():
+        vals = [pixel_size]
+    elif shape == (2,):
+        vals = list(pixel_size)
+    else:
         raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
-    return (positive_length("pixel_size (dx)", vals[0]) * factor,
-            positive_length("pixel_size (dy)", vals[1]) * factor)
+    labels = ("pixel_size",) if len(vals) == 1 else ("pixel_size (dx)", "pixel_size (dy)")
+    lo, hi = PIXEL_SIZE_RANGE
+    out = []
+    for label, v in zip(labels, vals):
+        d = positive_length(label, v) * factor
+        if not lo <= d <= hi:
+            raise InputError(f"{label} must be in [{lo:g}, {hi:g}] m, got {d:g} m; check the "
+                             f"value and its unit")
+        out.append(d)
+    return (out[0], out[-1])
+
+
+def check_height_scale(value) -> float:
+    """height_scale within :data:`HEIGHT_SCALE_RANGE`."""
+    return check_range("height_scale", value, *HEIGHT_SCALE_RANGE)
 
 
 def one_line(exc: BaseException, limit: int = 160) -> str:
@@ -159,15 +220,24 @@ def count_undefined(z: np.ndarray) -> int:
 
 
 def finish_heightmap(z: np.ndarray, dx: float, dy: float, source: str, height_scale: float,
-                      name) -> HeightMap:
-    z = np.array(z, dtype=np.float64)  # a copy that owns its data
-    if np.isinf(z).any():
-        raise TextureFileError(f"{name}: the heights contain infinite values")
+                      name, copy: bool = True) -> HeightMap:
+    """The HeightMap of heights ``z`` (m) read from file ``name``: a copy (``copy``) that
+    owns its data, checked (finite or NaN, within range, pixel sizes within range)."""
+    z = np.array(z, dtype=np.float64) if copy else np.asarray(z, dtype=np.float64)
     if z.ndim != 2 or z.shape[0] < 1 or z.shape[1] < 1:
         raise TextureFileError(f"{name}: a height map must be a 2-D array, got shape {z.shape}")
+    lo, hi = nan_range(z)
+    if math.isinf(lo) or math.isinf(hi):
+        raise TextureFileError(f"{name}: the heights contain infinite values")
     n_undef = count_undefined(z)
     if n_undef == z.size:
         raise TextureFileError(f"{name}: every pixel is undefined")
+    for label, d in (("pixel size dx", dx), ("pixel size dy", dy)):
+        plo, phi = PIXEL_SIZE_RANGE
+        if not plo <= d <= phi:
+            raise TextureFileError(f"{name}: {label} {d:g} m is outside [{plo:g}, {phi:g}] m; "
+                                   f"check the unit and pixel size")
     if height_scale != 1.0:
         z *= height_scale
+    check_coordinates(np.array([lo * height_scale, hi * height_scale]), f"{name}: heights")
     return HeightMap(heights=z, dx=dx, dy=dy, source=source, n_undefined=n_undef)

@@ -31,17 +31,23 @@ every format (``surface.stl.gz``, ``matrix.txt.gz``, ``scan.x3p.gz`` ...):
     header does not state must be passed (``unit`` for the heights, ``pixel_size``);
     explicit arguments override the header (``unit`` then applies to the raw numbers
     in the file, ``pixel_size`` to the spacing).
-``.x3p`` (ISO 25178-72) and the instrument formats (``.mi .sur .opd .datx .plu .nms``, ...)
+``.x3p`` (ISO 25178-72 / ISO 5436-2)
+    Read by the built-in reader (:mod:`.x3p`): every areal grid the standard allows
+    (binary or inline points, the four data types, valid-point masks, incremental or
+    regular absolute x/y axes); profiles, point clouds and the like are refused with a
+    message that says what the file is.
+The instrument formats (``.mi .sur .opd .datx .plu .nms``, ...)
     Read with SurfaceTopography (the ``metrology`` extra), which knows the units and
     pixel sizes from the file.  Of a multi-channel file (``.mi``) the first height
-    channel is read, and :attr:`HeightMap.source` names it.  ``.x3p`` files are read by the built-in reader (:func:`read_x3p`, about 30 times
-    faster and tolerant of an empty z-offset element), SurfaceTopography being the
-    fallback for x3p variants it does not know.
+    channel is read, and :attr:`HeightMap.source` names it.  A file whose content is not
+    a surface in the format of its suffix is refused.
 
 Every error a user can cause (missing file, unknown suffix or unit, malformed header or
-matrix, non-positive pixel size) is an :class:`~asperity.errors.InputError` (a
-:class:`~asperity.errors.TextureFileError` for a file that does not follow its format)
-with a one-line message naming the file.
+matrix, a pixel size or height outside the physical ranges of
+:mod:`~asperity.surface.topography`, a file too large for the memory) is an
+:class:`~asperity.errors.InputError` (a :class:`~asperity.errors.TextureFileError` for a
+file that does not follow its format) with a one-line message naming the file.  Sizes
+stated in a file's header are checked against the memory before the data is expanded.
 
 The heavy libraries (trimesh, SurfaceTopography, zip and XML parsing) are imported only
 when a file needs them.
@@ -50,19 +56,20 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
-from pathlib import Path
 
 from ...errors import InputError
-from ..topography import HeightMap, TriangleMesh, positive_length, unit_factor
-from ._files import read_bytes, split_suffix
+from ..topography import HeightMap, TriangleMesh, check_height_scale, unit_factor
+from ._files import read_bytes, split_suffix, surface_path
 
 
 @dataclass(frozen=True)
 class Reader:
     """One format family: the suffixes it claims and the module whose ``read`` reads it.
 
-    ``read(data, *, suffix, gz, name, unit, pixel_size, height_scale)`` gets the file's bytes
-    (gunzipped) and returns a :class:`HeightMap` or a :class:`TriangleMesh` in metres.
+    ``read(data, *, suffix, gz, name, unit, pixel_size, height_scale, point_bytes)`` gets
+    the file's bytes (gunzipped) and returns a :class:`HeightMap` or a
+    :class:`TriangleMesh` in metres; ``point_bytes`` is the memory per grid point the caller
+    needs beyond reading (a reader that knows the grid size from a header checks it first).
     """
 
     name: str
@@ -95,11 +102,12 @@ READERS = (
 
 def reader_for(path) -> tuple[Reader, str, bool]:
     """(reader, format suffix, gzipped?) of a file name."""
-    suffix, gz = split_suffix(Path(path))
+    suffix, gz = split_suffix(surface_path(path))
     return next(r for r in READERS if r.can_read(suffix)), suffix, gz
 
 
-def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0) -> HeightMap | TriangleMesh:
+def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0,
+                 point_bytes: float = 0.0) -> HeightMap | TriangleMesh:
     """Read a mesh or height-map file (format by suffix, see the module docstring).
 
     unit         : length unit of the numbers in the file, one of m, mm, um/µm, nm (long
@@ -111,17 +119,21 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0) -> Heigh
     pixel_size   : grid spacing of a height map in ``unit``, a number or (dx, dy).
                    Required for ``.npy``/``.npz`` and headerless text matrices; overrides
                    a text header's sizes (and then needs ``unit``).
-    height_scale : factor (> 0) applied to the heights (z) after conversion to metres,
-                   e.g. to make nanometre-high AFM relief steep enough for friction work.
+    height_scale : factor in [1e-6, 1e6] applied to the heights (z) after conversion to
+                   metres, e.g. to make nanometre-high AFM relief steep enough for friction
+                   work.
+    point_bytes  : memory per grid point the caller needs beyond reading (load_surface:
+                   the facets); a file whose grid cannot fit is refused before its data is
+                   expanded.
 
     Returns a :class:`HeightMap` or a :class:`TriangleMesh`, in metres.
     """
-    p = Path(path)
-    hs = positive_length("height_scale", height_scale)
+    p = surface_path(path)
+    hs = check_height_scale(height_scale)
     reader, suffix, gz = reader_for(p)
     if unit is not None:
         unit_factor(unit)                 # fail early on an unknown unit
     if pixel_size is not None and not reader.takes_pixel_size:
         raise InputError(f"{p}: pixel_size applies to height maps, not to a mesh file")
     return reader.read(read_bytes(p, gz), suffix=suffix, gz=gz, name=p, unit=unit,
-                       pixel_size=pixel_size, height_scale=hs)
+                       pixel_size=pixel_size, height_scale=hs, point_bytes=float(point_bytes))

@@ -15,7 +15,7 @@ from ..topography import UNIT_HELP, TriangleMesh, one_line, unit_factor
 
 
 def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
-         height_scale: float) -> TriangleMesh:
+         height_scale: float, point_bytes: float = 0.0) -> TriangleMesh:
     """The mesh in ``data`` (``pixel_size`` does not apply to meshes: refused before)."""
     if unit is None:
         raise InputError(f"{name}: a {suffix} mesh file carries no length unit; pass unit "

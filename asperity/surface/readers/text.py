@@ -138,7 +138,7 @@ def _first_key(header: dict[str, str], keys) -> str | None:
 
 
 def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
-                         height_scale: float) -> HeightMap:
+                         height_scale: float, point_bytes: float = 0.0) -> HeightMap:
     m, header, _ = parse_text_matrix(data, name)
     ny, nx = m.shape
     # grid counts stated in the header must match the matrix
