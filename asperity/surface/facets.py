@@ -32,8 +32,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_mu, check_range
+from ..errors import InputError, check_choice, check_instance, check_mu, check_range
 from ..friction.reservoir import Faces
+from ..resources import check_memory
+from ._previews import height_preview, mesh_preview
+from .friction_map import MAX_MU, check_friction_map
+from .topography import MAX_COORDINATE, HeightMap, TriangleMesh
 
 #: default local friction coefficient of a surface when no --mu or friction map is given
 DEFAULT_MU = 0.1
@@ -41,6 +45,12 @@ DEFAULT_MU = 0.1
 DETREND = {"none": None, "slope": "slope", "mean": 0, "plane": 1, "poly2": 2, "poly3": 3}
 #: |n_z| / |n| below which a mesh triangle counts as vertical
 VERTICAL_TOL = 1e-9
+#: bytes per pixel of a height map's facets and their friction homogenisation (measured
+#: peaks, with a margin): two facets per pixel, each with two gradients and a weight, the
+#: friction kernel's 1/|n|, masks and the copies made while dropping undefined facets; a
+#: rest level (or bearing fraction) adds the facet heights, their sorting and the weights
+FACET_BYTES_PER_PIXEL = 80
+REST_LEVEL_BYTES_PER_PIXEL = 120
 
 
 @dataclass(frozen=True)
@@ -132,8 +142,16 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
     if level_slope:
         # shear z -> z - a x - b y: projected areas unchanged, gradients shifted by (a, b)
         a, b = (float(np.dot(area, g) / area.sum()) for g in (gx, gy))
-        gx, gy = gx - a, gy - b
-        zc = zc - (a * xy[0] + b * xy[1])
+        if _rows_of_one(gx, gy):          # our own arrays: shifted in place
+            gx -= a
+            gy -= b
+        else:
+            gx, gy = gx - a, gy - b
+        if zc is not None:                # zc is our own array: sheared in place
+            t = a * xy[0]
+            t += b * xy[1]
+            zc -= t
+            del t, xy
         info["removed_slope"] = [a, b]
     if bearing_fraction is not None:
         rest_level = rest_level_for_bearing(zc, area, bearing_fraction)
@@ -153,18 +171,49 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
         gx, gy, w = gx[loaded], gy[loaded], w[loaded]
         if not np.isscalar(mu):
             mu = mu[loaded]
-    g = np.empty((2, gx.size))
-    g[0], g[1] = gx, gy
-    return FacetSurface(gx=g[0], gy=g[1], mu=mu, weight=np.ascontiguousarray(w), info=info, **extra)
+    if not _rows_of_one(gx, gy):
+        g = np.empty((2, gx.size))
+        g[0], g[1] = gx, gy
+        gx, gy = g[0], g[1]
+    return FacetSurface(gx=gx, gy=gy, mu=mu, weight=np.ascontiguousarray(w), info=info,
+                        **extra)
+
+
+def _rows_of_one(gx: np.ndarray, gy: np.ndarray) -> bool:
+    """``gx`` and ``gy`` are the two rows of one (2, n) array (what :func:`_columns` views)."""
+    base = gx.base
+    return (base is not None and base is gy.base and base.ndim == 2
+            and base.shape == (2, gx.size) and base.flags.c_contiguous
+            and gx.ctypes.data == base.ctypes.data
+            and gy.ctypes.data == base.ctypes.data + 8 * gx.size)
 
 
 def _facet_mu(mu, friction_map, to_facets):
     """Uniform float, or a per-facet array from a friction map."""
     if friction_map is None:
-        return check_mu("mu", DEFAULT_MU if mu is None else mu)
+        return check_mu("mu", DEFAULT_MU if mu is None else mu, MAX_MU)
     if mu is not None:
         raise InputError("give mu or a friction map, not both")
-    return to_facets(np.asarray(friction_map, dtype=float))
+    return to_facets(check_friction_map(friction_map))
+
+
+def facet_bytes(rest_level: bool) -> float:
+    """Memory per height-map pixel of the facets and their homogenisation (bytes)."""
+    return float(FACET_BYTES_PER_PIXEL + (REST_LEVEL_BYTES_PER_PIXEL if rest_level else 0))
+
+
+def _check_options(rest_level, bearing_fraction, level_slope, info):
+    if rest_level is not None:
+        rest_level = check_range("rest_level", rest_level, -MAX_COORDINATE, MAX_COORDINATE,
+                                 unit="m")
+    if bearing_fraction is not None:
+        bearing_fraction = check_range("bearing_fraction", bearing_fraction, 0.0, 1.0,
+                                       low_open=True)
+    if not isinstance(level_slope, (bool, np.bool_)):
+        raise InputError(f"level_slope must be True or False, got {level_slope!r}")
+    if info is not None and not isinstance(info, dict):
+        raise InputError(f"info must be a dict or None, got {type(info).__name__}")
+    return rest_level, bearing_fraction
 
 
 def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
@@ -174,42 +223,86 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     friction_map: (nx, ny) local friction per pixel; a facet takes the mean of its
     three corners.  level_slope: remove the area-weighted mean gradient (the surface
     is sheared so that its facets' mean slope is zero; for a periodic texture over whole
-    periods this changes nothing, unlike a least-squares plane).
+    periods this changes nothing, unlike a least-squares plane).  The facet arrays are
+    built in place (about :data:`FACET_BYTES_PER_PIXEL` bytes per pixel with the
+    homogenisation); a map that does not fit in memory is refused first.
     """
-    z = np.asarray(hm.heights, dtype=float)
-    if z.ndim != 2 or z.shape[0] < 2 or z.shape[1] < 2:
+    check_instance("surface", hm, HeightMap, "HeightMap")
+    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, level_slope,
+                                                  info)
+    z = hm.heights
+    if z.shape[0] < 2 or z.shape[1] < 2:
         raise InputError(f"{hm.source}: a height map needs at least 2 x 2 pixels, got {z.shape}")
+    name = hm.source or "the height map"
+    need_z = rest_level is not None or bearing_fraction is not None
+    check_memory(z.size * facet_bytes(need_z), f"the facets of {name} "
+                 f"({z.shape[0]} x {z.shape[1]} pixels)", "crop or resample the scan to fewer "
+                 "points")
     dx, dy = float(hm.dx), float(hm.dy)
+    nxm, nym = z.shape[0] - 1, z.shape[1] - 1
+    nc = nxm * nym
     z00, z10, z01, z11 = z[:-1, :-1], z[1:, :-1], z[:-1, 1:], z[1:, 1:]
     # lower triangle (i,j) (i+1,j) (i,j+1); upper triangle (i+1,j+1) (i,j+1) (i+1,j)
-    gx = np.concatenate([((z10 - z00) / dx).ravel(), ((z11 - z01) / dx).ravel()])
-    gy = np.concatenate([((z01 - z00) / dy).ravel(), ((z11 - z10) / dy).ravel()])
-    zc = np.concatenate([((z00 + z10 + z01) / 3.0).ravel(), ((z11 + z01 + z10) / 3.0).ravel()])
-    ok = np.isfinite(gx) & np.isfinite(gy)
-    n_cells_tri = gx.size
+    g = np.empty((2, 2 * nc))
+    with np.errstate(invalid="ignore"):
+        for row, d, pairs in ((0, dx, ((z10, z00), (z11, z01))), (1, dy, ((z01, z00), (z11, z10)))):
+            for half, (p, q) in enumerate(pairs):
+                out = g[row, half * nc:(half + 1) * nc].reshape(nxm, nym)
+                np.subtract(p, q, out=out)
+                out /= d
+        ok = np.isfinite(g[0])
+        ok &= np.isfinite(g[1])
+    zc = None
+    if need_z:
+        zc = np.empty(2 * nc)
+        for half, (p, q, r) in enumerate(((z00, z10, z01), (z11, z01, z10))):
+            out = zc[half * nc:(half + 1) * nc].reshape(nxm, nym)
+            np.add(p, q, out=out)
+            out += r
+            out /= 3.0
+    n_ok = int(np.count_nonzero(ok))
+    every = n_ok == ok.size
+
+    def keep(a):
+        """``a`` (facets along the last axis) without the undefined facets."""
+        if every:
+            return a
+        out = np.empty(a.shape[:-1] + (n_ok,))
+        for idx in np.ndindex(*a.shape[:-1]):
+            np.compress(ok, a[idx], out=out[idx])
+        return out
 
     def per_vertex(m):
         if m.shape != z.shape:
             raise InputError(f"friction map has shape {m.shape}, the height map {z.shape}")
         a, b, c, d = m[:-1, :-1], m[1:, :-1], m[:-1, 1:], m[1:, 1:]
-        return np.concatenate([((a + b + c) / 3).ravel(), ((d + c + b) / 3).ravel()])[ok]
+        return keep(np.concatenate([((a + b + c) / 3).ravel(), ((d + c + b) / 3).ravel()]))
 
     fmu = _facet_mu(mu, friction_map, per_vertex)
+    g = keep(g)
+    zc = keep(zc) if need_z else None
     info = dict(info or {})
     info.update(kind="heightmap", source=hm.source, grid=[int(z.shape[0]), int(z.shape[1])],
                 pixel_size_m=[dx, dy], physical_size_m=[dx * z.shape[0], dy * z.shape[1]],
                 n_undefined=int(getattr(hm, "n_undefined", np.count_nonzero(~np.isfinite(z)))),
-                n_skipped_undefined=int(n_cells_tri - ok.sum()),
+                n_skipped_undefined=int(ok.size - n_ok),
                 mu=None if not np.isscalar(fmu) else float(fmu))
-    area = np.full(int(ok.sum()), 0.5 * dx * dy)
     xy = None
-    if level_slope:
-        i, j = np.meshgrid(np.arange(z.shape[0] - 1), np.arange(z.shape[1] - 1), indexing="ij")
-        xy = (np.concatenate([(i + 1 / 3) * dx, (i + 2 / 3) * dx], axis=None)[ok],
-              np.concatenate([(j + 1 / 3) * dy, (j + 2 / 3) * dy], axis=None)[ok])
-    return _finish(gx[ok], gy[ok], fmu, area, zc[ok], xy, level_slope, rest_level,
+    if level_slope and need_z:            # facet centroids, to shear the heights
+        xy = []
+        for d, n_along, along in ((dx, nxm, 0), (dy, nym, 1)):
+            c = np.empty(2 * nc)
+            for half, third in enumerate((1 / 3, 2 / 3)):
+                k = (np.arange(n_along) + third) * d
+                c[half * nc:(half + 1) * nc].reshape(nxm, nym)[...] = \
+                    k[:, None] if along == 0 else k[None, :]
+            xy.append(keep(c))
+            del c
+    del ok
+    area = np.full(n_ok, 0.5 * dx * dy)
+    return _finish(g[0], g[1], fmu, area, zc, xy, level_slope, rest_level,
                    bearing_fraction, info,
-                   preview=_preview(z), extent=(dx * z.shape[0], dy * z.shape[1]))
+                   preview=height_preview(z), extent=(dx * z.shape[0], dy * z.shape[1]))
 
 
 def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
@@ -218,6 +311,9 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
 
     friction_map: one local friction value per triangle of ``mesh.faces``.
     """
+    check_instance("surface", mesh, TriangleMesh, "TriangleMesh")
+    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, level_slope,
+                                                  info)
     v = np.asarray(mesh.vertices, dtype=float)
     f = np.asarray(mesh.faces, dtype=np.int64)
     p0, p1, p2 = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
@@ -251,34 +347,14 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
     xy = ((p0[facing, 0] + p1[facing, 0] + p2[facing, 0]) / 3.0,
           (p0[facing, 1] + p1[facing, 1] + p2[facing, 1]) / 3.0)
     return _finish(gx, gy, fmu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
-                   preview=_mesh_preview(p0, p1, p2, lo, hi),
+                   preview=mesh_preview(p0, p1, p2, lo, hi),
                    extent=(float(hi[0] - lo[0]), float(hi[1] - lo[1])))
-
-
-def _preview(z: np.ndarray, size: int = 256) -> np.ndarray:
-    step = max(1, int(math.ceil(max(z.shape) / size)))
-    return np.array(z[::step, ::step], dtype=float)
-
-
-def _mesh_preview(p0, p1, p2, lo, hi, size: int = 160) -> np.ndarray:
-    """Centroid heights binned on a small grid (mean per bin; NaN where empty)."""
-    c = (p0 + p1 + p2) / 3.0
-    span = np.maximum(hi - lo, 1e-300)
-    nx = size
-    ny = max(2, int(round(size * span[1] / span[0]))) if span[0] > 0 else size
-    ix = np.clip(((c[:, 0] - lo[0]) / span[0] * nx).astype(int), 0, nx - 1)
-    iy = np.clip(((c[:, 1] - lo[1]) / span[1] * ny).astype(int), 0, ny - 1)
-    s = np.zeros((nx, ny))
-    k = np.zeros((nx, ny))
-    np.add.at(s, (ix, iy), c[:, 2])
-    np.add.at(k, (ix, iy), 1.0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(k > 0, s / np.where(k > 0, k, 1.0), np.nan)
 
 
 def surface_facets(surface, **kwargs) -> FacetSurface:
     """Facets of a HeightMap or TriangleMesh (see :func:`heightmap_facets`, :func:`mesh_facets`)."""
-    if hasattr(surface, "heights"):
+    check_instance("surface", surface, (HeightMap, TriangleMesh), "HeightMap or TriangleMesh")
+    if isinstance(surface, HeightMap):
         return heightmap_facets(surface, **kwargs)
     return mesh_facets(surface, **kwargs)
 
@@ -298,9 +374,13 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
     """
     from .friction_map import read_friction_map
     from .readers import read_surface
-    if detrend not in DETREND:
-        raise InputError(f"detrend must be one of {', '.join(DETREND)}, got {detrend!r}")
-    s = read_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
+    check_choice("detrend", detrend, tuple(DETREND))
+    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, False, None)
+    if mu is not None:
+        check_mu("mu", mu, MAX_MU)
+    s = read_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale,
+                     point_bytes=facet_bytes(rest_level is not None
+                                             or bearing_fraction is not None))
     if DETREND[detrend] not in (None, "slope"):
         from .detrend import detrend as _detrend
         s = _detrend(s, DETREND[detrend])
@@ -310,9 +390,7 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
         info["friction_map"] = str(friction_map)
         fm = read_friction_map(friction_map, s)
     if fm is not None:
-        fm = np.asarray(fm, dtype=float)
-        if not np.all(np.isfinite(fm)) or np.any(fm < 0):
-            raise InputError("friction map values must be finite and >= 0")
+        fm = check_friction_map(fm)
     return surface_facets(s, mu=mu, friction_map=fm, rest_level=rest_level,
                           bearing_fraction=bearing_fraction, level_slope=detrend == "slope",
                           info=info)
