@@ -25,7 +25,7 @@ from .diagnostics import (
     find_self_locking,
     locking_share,
 )
-from .faces import compute_faces_reservoir
+from .faces import compute_faces_reservoir, faces_source
 from .reservoir import Reservoir, check_contact, directions, locked_runs
 
 METHODS = ("closed-form", "springs")
@@ -60,8 +60,12 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
     method "springs" (wedge textures only) runs the spring-on-wedge simulation
     (``model``: a SpringModel, the default one if None) for every direction and for the
     four axis directions, and reports its largest relative deviation from the closed form.
-    ``progress(fraction)`` is called during long facet computations.
+    ``progress(fraction)`` is called during long facet computations.  A HeightMap or
+    TriangleMesh is taken as its facets (default friction, mean slope removed).
     """
+    texture = faces_source(texture)
+    if progress is not None and not callable(progress):
+        raise InputError(f"progress must be a callable or None, got {progress!r}")
     check_contact(contact)
     if method not in METHODS:
         raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")

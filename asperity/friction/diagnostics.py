@@ -141,10 +141,15 @@ def locking_share(faces, res: Reservoir) -> np.ndarray:
     g = faces.gradient
     mu = np.asarray(faces.mu, dtype=float)
     uniform = mu.strides == (0,)
-    lw = locked_weight(np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1]),
-                       np.ascontiguousarray(mu[:1] if uniform else mu), uniform,
-                       np.ascontiguousarray(faces.weight, dtype=float),
-                       np.cos(res.psi[k]), np.sin(res.psi[k]), res.contact == "windward",
-                       LOCK_TOL, LEVEL_SLOPE_TOL)
+    from ..progress import chunks
+    from .facet_reservoir import PIECE_WORK
+    args = (np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1]),
+            np.ascontiguousarray(mu[:1] if uniform else mu), uniform,
+            np.ascontiguousarray(faces.weight, dtype=float))
+    lw = np.empty((k.size, 2))
+    # directions in pieces of ~PIECE_WORK facet-directions: Ctrl-C is honoured between them
+    for a, b in chunks(k.size, max(1, PIECE_WORK // max(1, g.shape[0]))):
+        lw[a:b] = locked_weight(*args, np.cos(res.psi[k[a:b]]), np.sin(res.psi[k[a:b]]),
+                                res.contact == "windward", LOCK_TOL, LEVEL_SLOPE_TOL)
     out[k] = lw[:, 0] / np.where(lw[:, 1] > 0, lw[:, 1], 1.0)
     return out

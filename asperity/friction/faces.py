@@ -117,10 +117,25 @@ def compute_faces_reservoir(faces, psi, contact: str = "all-faces", progress=Non
                                    faces.weight, psi, contact, progress=progress)
 
 
+def faces_source(texture):
+    """``texture`` if it has faces (a wedge texture, a FacetSurface); a HeightMap or a
+    TriangleMesh as its facets (default friction, mean slope removed as by load_surface);
+    else InputError."""
+    from ..surface.topography import HeightMap, TriangleMesh
+    if isinstance(texture, (HeightMap, TriangleMesh)):
+        from ..surface.facets import surface_facets
+        return surface_facets(texture, level_slope=True)
+    if not callable(getattr(texture, "faces", None)) or isinstance(texture, type):
+        from ..errors import _kind, _show
+        raise InputError(f"texture must be a wedge texture, a surface (load_surface) or a "
+                         f"HeightMap or TriangleMesh, got {_show(texture)} ({_kind(texture)})")
+    return texture
+
+
 def compute_reservoir(texture, psi, contact: str = "all-faces", progress=None) -> Reservoir:
-    """Reservoir points p(psi) of a texture or surface (anything with ``faces()``), psi in
-    radians."""
-    return compute_faces_reservoir(texture.faces(), psi, contact, progress)
+    """Reservoir points p(psi) of a texture or surface (anything with ``faces()``, or a
+    HeightMap/TriangleMesh), psi in radians."""
+    return compute_faces_reservoir(faces_source(texture).faces(), psi, contact, progress)
 
 
 def compute_axis_coefficients(texture, contact: str = "all-faces") -> dict:

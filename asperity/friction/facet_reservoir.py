@@ -30,6 +30,9 @@ CHUNK = 1024
 BATCH_WORK = 1 << 30
 #: below this many facets per thread the kernel splits directions instead of facets
 MIN_FACETS_PER_WORKER = 8192
+#: facet-directions per kernel call (~0.05-0.2 s): a pass runs in pieces, and Ctrl-C is
+#: honoured between them
+PIECE_WORK = 1 << 26
 
 
 class _Facets:
@@ -48,6 +51,9 @@ class _Facets:
             raise InputError(f"weight must have shape ({n},), got {w.shape}")
         mu_uniform = np.ndim(mu) == 0
         if mu_uniform:
+            if isinstance(mu, (str, bytes, bool, np.bool_)) or mu is None:
+                raise InputError(f"mu must be a number or an array of shape ({n},), "
+                                 f"got {mu!r}")
             try:
                 m = float(mu)
             except (TypeError, ValueError):
@@ -72,9 +78,13 @@ class _Facets:
             bad_mu = int(np.count_nonzero(~(np.isfinite(mu_arr) & (mu_arr >= 0))))
             bad_w = int(np.count_nonzero(~(np.isfinite(w) & (w >= 0))))
             npos = int(np.count_nonzero(w > 0))
+            a = np.empty(n)
             with np.errstate(all="ignore"):
-                # the reference's 1/nrm, nrm = sqrt(1 + gx*gx + gy*gy), bitwise
-                a = 1.0 / np.sqrt(1.0 + gx * gx + gy * gy)
+                # the reference's 1/nrm, nrm = sqrt(1 + gx*gx + gy*gy), bitwise, in blocks
+                for lo in range(0, n, 1 << 20):
+                    hi = min(n, lo + (1 << 20))
+                    x, y = gx[lo:hi], gy[lo:hi]
+                    a[lo:hi] = 1.0 / np.sqrt(1.0 + x * x + y * y)
         if bad_g:
             raise InputError(f"gx and gy must be finite ({bad_g} facets are not)")
         if bad_mu:
@@ -201,7 +211,12 @@ def _plan(n: int, m: int, nthreads: int):
             np.zeros(k, np.int64), np.full(k, m, np.int64))
 
 
-def _numba_pass(fac: _Facets, cs, ss, mode: int):
+def _numba_pass(fac: _Facets, cs, ss, mode: int, tick=None):
+    """Sums of one batch of directions, in kernel calls of about :data:`PIECE_WORK`
+    facet-directions.  Every worker advances through its facets by whole cache chunks,
+    all workers in step, so the chunks and the order in which they are added are those of
+    a single call: the result is the same bit for bit, and Ctrl-C (raised by Python
+    between two calls) stops the pass within a fraction of a second."""
     from numba import get_num_threads
 
     from ._facet_kernels import N_ACC, facet_sweep
@@ -210,8 +225,15 @@ def _numba_pass(fac: _Facets, cs, ss, mode: int):
     k = f0.shape[0]
     acc = np.zeros((k, m, N_ACC))
     first = np.full((k, m), -1, dtype=np.int64)
-    facet_sweep(fac.gx, fac.gy, fac.a, fac.mu, fac.mu_uniform, fac.w, cs, ss, mode, LOCK_TOL,
-                LEVEL_SLOPE_TOL, f0, f1, d0, d1, CHUNK, acc, first)
+    span = int((f1 - f0).max())
+    dirs = max(1, int((d1 - d0).max()))
+    step = CHUNK * max(1, PIECE_WORK // (CHUNK * dirs * k))
+    for lo in range(0, span, step):
+        facet_sweep(fac.gx, fac.gy, fac.a, fac.mu, fac.mu_uniform, fac.w, cs, ss, mode,
+                    LOCK_TOL, LEVEL_SLOPE_TOL, np.minimum(f0 + lo, f1),
+                    np.minimum(f0 + lo + step, f1), d0, d1, CHUNK, acc, first)
+        if tick is not None:
+            tick(min(lo + step, span) / span)
     return _reduce(acc, first)
 
 
@@ -257,9 +279,10 @@ def _run(fac, psi, contact, progress, b, pass_fn) -> Reservoir:
     first = np.full(m, -1, dtype=np.int64)
     for start in range(0, m, b):
         stop = min(m, start + b)
-        sums[start:stop], first[start:stop] = pass_fn(fac, cs[start:stop], ss[start:stop], mode)
-        if progress is not None:
-            progress(stop / m)
+        tick = None if progress is None else \
+            (lambda f, a=start, z=stop: progress((a + f * (z - a)) / m))
+        sums[start:stop], first[start:stop] = pass_fn(fac, cs[start:stop], ss[start:stop], mode,
+                                                      tick)
 
     def level(sel):
         return pass_fn(fac, cs[sel], ss[sel], MODE_LEVEL)
@@ -273,7 +296,7 @@ def _run(fac, psi, contact, progress, b, pass_fn) -> Reservoir:
 NUMPY_BLOCK = 1 << 16
 
 
-def _numpy_pass(fac: _Facets, cs, ss, mode: int):
+def _numpy_pass(fac: _Facets, cs, ss, mode: int, tick=None):
     """Streamed NumPy sums of :func:`_numba_pass`, with the reference's formulas."""
     n, m = fac.n, cs.shape[0]
     sums = np.zeros((m, 6))
@@ -320,6 +343,8 @@ def _numpy_pass(fac: _Facets, cs, ss, mode: int):
             new = (fb < 0) & (nl > 0)
             if new.any():
                 fb[new] = lo + np.argmax(lk[new], axis=1)
+        if tick is not None:
+            tick(j1 / m)
     return sums, first
 
 
