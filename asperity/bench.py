@@ -54,31 +54,69 @@ def bench_springs(seconds: float = 2.0) -> dict:
     return out
 
 
+#: memory of the facet benchmark per grid point (bytes, measured peak with a margin): the
+#: height map and its spectrum while it is made, then 2 facets x (gx, gy, weight, 1/|n|)
+#: and the NumPy baseline's temporaries
+BENCH_BYTES_PER_POINT = 112
+#: largest facet-directions of the benchmark's numba and NumPy runs (~15 and ~5 min)
+MAX_NUMBA_WORK = 1e12
+MAX_NUMPY_WORK = 2e10
+
+
 def rough_surface_facets(n_grid: int = 2048, rms_slope: float = 0.3, hurst: float = 0.8,
                          seed: int = 0):
     """(gx, gy, weight) of the 2 n_grid^2 triangles of a random periodic self-affine height
     map (unit grid spacing, two triangles per cell, gradients from the corner heights),
-    scaled to the given rms facet slope."""
+    scaled to the given rms facet slope.  Built in place: about 56 bytes per grid point."""
     rng = np.random.default_rng(seed)
     k = n_grid
     fy = np.fft.fftfreq(k)[:, None]
     fx = np.fft.rfftfreq(k)[None, :]
     kr = np.hypot(fx, fy)
     kr[0, 0] = 1.0
-    spec = np.fft.rfft2(rng.standard_normal((k, k))) * kr ** (-(1.0 + hurst))
+    spec = np.fft.rfft2(rng.standard_normal((k, k)))
+    spec *= kr ** (-(1.0 + hurst))
     spec[0, 0] = 0.0
+    del kr
     z = np.fft.irfft2(spec, s=(k, k))
-    del spec, kr
-    z10 = np.roll(z, -1, axis=1)       # (x + 1, y)
-    z01 = np.roll(z, -1, axis=0)       # (x, y + 1)
-    z11 = np.roll(z10, -1, axis=0)     # (x + 1, y + 1)
-    gx = np.concatenate([(z10 - z).ravel(), (z11 - z01).ravel()])
-    gy = np.concatenate([(z01 - z).ravel(), (z11 - z10).ravel()])
-    del z, z10, z01, z11
-    scale = rms_slope / math.sqrt(float(np.mean(gx * gx + gy * gy)))
-    gx *= scale
-    gy *= scale
-    return gx, gy, np.full(gx.shape, 0.5)
+    del spec
+    n = k * k
+    g = np.empty((2, 2 * n))
+    # first half: z(x + 1, y) - z(x, y) and z(x, y + 1) - z(x, y) (periodic); the second
+    # half, z(x+1, y+1) - z(x, y+1) and z(x+1, y+1) - z(x+1, y), is the first half one
+    # row (column) on
+    for row, axis in ((0, 1), (1, 0)):
+        d = g[row, :n].reshape(k, k)
+        if axis == 1:
+            np.subtract(z[:, 1:], z[:, :-1], out=d[:, :-1])
+            np.subtract(z[:, 0], z[:, -1], out=d[:, -1])
+        else:
+            np.subtract(z[1:, :], z[:-1, :], out=d[:-1, :])
+            np.subtract(z[0, :], z[-1, :], out=d[-1, :])
+        e = g[row, n:].reshape(k, k)
+        if axis == 1:
+            e[:-1], e[-1] = d[1:], d[0]
+        else:
+            e[:, :-1], e[:, -1] = d[:, 1:], d[:, 0]
+    del z
+    ms = 0.0
+    for a, b in ((0, n), (n, 2 * n)):        # mean of gx^2 + gy^2 in two pieces
+        ms += float(np.dot(g[0, a:b], g[0, a:b]) + np.dot(g[1, a:b], g[1, a:b]))
+    g *= rms_slope / math.sqrt(ms / (2 * n))
+    return g[0], g[1], np.full(2 * n, 0.5)
+
+
+def check_facets_request(n_grid: int, n_directions: int, numpy_directions: int) -> None:
+    """Refuse a facet benchmark that memory cannot hold or that would run for hours."""
+    from .resources import check_memory, check_work
+    check_memory(BENCH_BYTES_PER_POINT * float(n_grid) ** 2,
+                 f"the facet benchmark on a {n_grid} x {n_grid} grid", "lower --facets")
+    n = 2.0 * n_grid * n_grid
+    check_work(2 * n * n_directions, MAX_NUMBA_WORK, "the facet benchmark (2 x facets x "
+               "--directions)", "lower --directions or --facets")
+    check_work(2 * n * min(numpy_directions, n_directions), MAX_NUMPY_WORK,
+               "its NumPy baseline (2 x facets x --numpy-directions)",
+               "lower --numpy-directions or --facets")
 
 
 def bench_facets(n_grid: int = 2048, n_directions: int = 360, numpy_directions: int = 8,
@@ -95,6 +133,8 @@ def bench_facets(n_grid: int = 2048, n_directions: int = 360, numpy_directions: 
     import numba
 
     from .friction.facet_reservoir import compute_facet_reservoir, numpy_facet_reservoir
+    from .progress import report
+    check_facets_request(n_grid, n_directions, numpy_directions)
     t0 = time.perf_counter()
     gx, gy, w = rough_surface_facets(n_grid, rms_slope, seed=seed)
     setup = time.perf_counter() - t0
@@ -108,10 +148,12 @@ def bench_facets(n_grid: int = 2048, n_directions: int = 360, numpy_directions: 
     for contact in ("all-faces", "windward"):
         compute_facet_reservoir(gx[:20000], gy[:20000], mu, w[:20000], psi[:4], contact)
         t0 = time.perf_counter()
-        r = compute_facet_reservoir(gx, gy, mu, w, psi, contact)
+        r = compute_facet_reservoir(gx, gy, mu, w, psi, contact,
+                                    progress=lambda f, c=contact: report(f, f"numba, {c}"))
         t_nb = time.perf_counter() - t0
         t0 = time.perf_counter()
-        r_np = numpy_facet_reservoir(gx, gy, mu, w, sub, contact)
+        r_np = numpy_facet_reservoir(gx, gy, mu, w, sub, contact,
+                                     progress=lambda f, c=contact: report(f, f"NumPy, {c}"))
         t_np = time.perf_counter() - t0
         r_sub = compute_facet_reservoir(gx, gy, mu, w, sub, contact)
         ok = ~r_np.locked
