@@ -17,6 +17,10 @@ WEDGE_FLAGS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
 
 
 SURFACE_FLAGS = ("mu", "friction_map", "unit", "pixel_size", "rest_level", "bearing_fraction")
+#: library field names in messages -> the command-line flag
+_FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
+                "bearing_fraction": "--bearing-fraction",
+                "mu ": "--mu ", "unit ": "--unit ", "detrend ": "--detrend "}
 
 
 def surface_from_args(args, progress=None):
@@ -25,11 +29,19 @@ def surface_from_args(args, progress=None):
     px = args.pixel_size
     if px is not None and len(px) not in (1, 2):
         raise InputError(f"--pixel-size takes one value or two (dx dy), got {len(px)}")
-    return load_surface(args.texture, unit=args.unit,
-                        pixel_size=None if px is None else (px[0] if len(px) == 1 else tuple(px)),
-                        height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
-                        friction_map=args.friction_map, rest_level=args.rest_level,
-                        bearing_fraction=args.bearing_fraction)
+    try:
+        return load_surface(args.texture, unit=args.unit,
+                            pixel_size=None if px is None else (px[0] if len(px) == 1
+                                                                else tuple(px)),
+                            height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
+                            friction_map=args.friction_map, rest_level=args.rest_level,
+                            bearing_fraction=args.bearing_fraction)
+    except InputError as exc:             # the library's field names as the user's flags
+        msg = str(exc)
+        for field, flag in _FIELD_FLAGS.items():
+            if msg.startswith(field):
+                raise type(exc)(flag + msg[len(field):]) from None
+        raise
 
 
 def add_source_arguments(p) -> None:
