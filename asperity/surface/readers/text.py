@@ -19,7 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
+from ...resources import check_memory
 from ..topography import UNIT_HELP, HeightMap, finish_heightmap, pixel_pair, unit_factor
+from ._files import SMALLER_SCAN
 
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _SEPARATORS = re.compile(r"[\s,;]+")
@@ -50,10 +52,10 @@ def parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], in
     """
     if b"\x00" in data[:4096]:
         raise TextureFileError(f"{name}: a text matrix was expected, this is a binary file")
+    check_memory(4.0 * len(data), f"{name}: parsing this text matrix", SMALLER_SCAN)
     text = _decode(data)
     header: dict[str, str] = {}
-    rows: list[list[str]] = []
-    linenos: list[int] = []
+    rows: list[np.ndarray] = []               # converted line by line: 8 bytes per value
     n_header = 0
     width = None
     for lineno, raw in enumerate(text.splitlines(), start=1):
@@ -75,18 +77,17 @@ def parse_text_matrix(data: bytes, name) -> tuple[np.ndarray, dict[str, str], in
         elif len(toks) != width:
             raise TextureFileError(f"{name}: line {lineno} has {len(toks)} values, the matrix "
                                    f"rows above have {width}")
-        rows.append(toks)
-        linenos.append(lineno)
+        try:
+            rows.append(np.array(toks, dtype=np.float64))
+        except ValueError:
+            bad = next((t for t in toks if not _is_number(t)), "?")
+            raise TextureFileError(f"{name}: line {lineno}: {bad[:40]!r} in the matrix is not "
+                                   f"a number") from None
     if not rows:
         raise TextureFileError(f"{name}: no matrix of numbers found (rows of values separated by "
                                f"blanks, tabs, commas or semicolons)")
-    try:
-        m = np.array(rows, dtype=np.float64)
-    except ValueError:
-        k, bad = next(((k, t) for k, r in enumerate(rows) for t in r if not _is_number(t)),
-                      (0, "?"))
-        raise TextureFileError(f"{name}: line {linenos[k]}: {bad!r} in the matrix is not a "
-                               f"number") from None
+    m = np.array(rows, dtype=np.float64)
+    del rows
     if np.isinf(m).any():
         raise TextureFileError(f"{name}: the matrix contains infinite values")
     return m, header, n_header
