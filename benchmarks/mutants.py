@@ -13,6 +13,7 @@ tree is never touched, so others' tests never see a planted bug.
     python benchmarks/mutants.py --check          # does every mutant still apply?
     python benchmarks/mutants.py NAME [NAME ...]  # only these
     python benchmarks/mutants.py --json out.json  # also write the results as JSON
+    python benchmarks/mutants.py --from-head      # mutate the committed package instead
 
 A mutant is ``caught`` when its tests fail (the first failing test is shown), ``missed``
 when they pass.  Before the mutants, the same test files run on the unmutated copy
@@ -180,10 +181,26 @@ MUTANTS = [
 ]
 
 
-def snapshot(dest: Path) -> Path:
-    """Copy asperity/ (numba caches included, mtimes kept) into dest; returns dest."""
-    shutil.copytree(REPO / "asperity", dest / "asperity", copy_function=shutil.copy2)
+def snapshot(dest: Path, from_head: bool = False) -> Path:
+    """Copy asperity/ (numba caches included, mtimes kept) into dest, or with ``from_head``
+    the committed package (``git archive HEAD``: no caches, compiled once by the baseline
+    run); returns dest."""
+    if from_head:
+        dest.mkdir(parents=True)
+        tar = subprocess.run(["git", "-C", str(REPO), "archive", "HEAD", "asperity"],
+                             capture_output=True, check=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(dest)], input=tar, check=True)
+    else:
+        shutil.copytree(REPO / "asperity", dest / "asperity", copy_function=shutil.copy2)
     return dest
+
+
+def source(path: str, from_head: bool) -> str:
+    """Text of asperity/``path`` in the working tree or at git HEAD."""
+    if from_head:
+        return subprocess.run(["git", "-C", str(REPO), "show", f"HEAD:asperity/{path}"],
+                              capture_output=True, text=True, check=True).stdout
+    return (REPO / "asperity" / path).read_text()
 
 
 def plant(root: Path, m: Mutant) -> str | None:
@@ -240,6 +257,9 @@ def main(argv=None) -> int:
     ap.add_argument("--no-baseline", action="store_true",
                     help="skip the run of the test files on the unmutated copy")
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per mutant")
+    ap.add_argument("--from-head", action="store_true",
+                    help="mutate the committed package (git HEAD) instead of the working "
+                         "tree, e.g. while others have unfinished edits in it")
     ap.add_argument("--check", action="store_true",
                     help="only check that every mutant still applies (no tests run)")
     a = ap.parse_args(argv)
@@ -250,7 +270,7 @@ def main(argv=None) -> int:
     if a.check:
         bad = 0
         for m in MUTANTS:
-            k = (REPO / "asperity" / m.path).read_text().count(m.old)
+            k = source(m.path, a.from_head).count(m.old)
             bad += k != 1
             print(f"{'ok' if k == 1 else 'STALE':5s} {m.name}" + ("" if k == 1 else
                                                                   f": found {k} times"))
@@ -262,7 +282,7 @@ def main(argv=None) -> int:
     todo = [known[n] for n in a.names] if a.names else MUTANTS
     results = []
     with tempfile.TemporaryDirectory(prefix="asperity-mutants-") as tmp:
-        base = snapshot(Path(tmp) / "base")
+        base = snapshot(Path(tmp) / "base", a.from_head)
         check_import(base)
         if not a.no_baseline:
             files = sorted({t for m in todo for t in m.tests})
