@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from . import json_text
 
-PARTS = ("closed-form", "springs", "facets", "microslip", "moreau")
+PARTS = ("closed-form", "springs", "facets", "microslip", "moreau", "study")
 #: largest --facets: the benchmark then takes 4.4 GB (peak RSS measured; estimated 7.5 GB)
 MAX_FACETS_GRID = 8192
 
@@ -16,7 +16,9 @@ def add_parser(sub) -> None:
                                    "--facets N) facet-directions per second of the facet "
                                    "kernel against streamed NumPy and (with --only moreau) "
                                    "Moreau time steps per second of one sliding body with "
-                                   "each friction law (compilation excluded).")
+                                   "each friction law (compilation excluded); --only study: "
+                                   "study cases per second, a serial loop against 2 local "
+                                   "Dask workers.")
     p.add_argument("--seconds", type=float, default=1.0, help="time per measurement (s)")
     p.add_argument("--only", choices=PARTS, default=None,
                    help="run one benchmark only (default: closed-form and springs)")
@@ -28,6 +30,8 @@ def add_parser(sub) -> None:
                    help="sliding directions of the facet benchmark (default 360)")
     p.add_argument("--numpy-directions", type=int, default=8,
                    help="directions timed for the NumPy baseline (default 8)")
+    p.add_argument("--workers", type=int, default=2,
+                   help="local workers of the study benchmark (1 to 64)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=main)
 
@@ -45,6 +49,8 @@ def main(args) -> int:
         n_dir = int(check_range("--directions", args.directions, 1, 1_000_000))
         n_np = int(check_range("--numpy-directions", args.numpy_directions, 1, 1_000_000))
         bench.check_facets_request(n_grid, n_dir, n_np)
+    if "study" in parts:
+        workers = int(check_range("--workers", args.workers, 1, 64))
     out = {}
     if "closed-form" in parts:
         out["closed_form"] = bench.bench_closed_form(seconds)
@@ -56,6 +62,9 @@ def main(args) -> int:
         out["moreau"] = bench.bench_moreau(seconds)
     if "microslip" in parts:
         out["microslip"] = bench.bench_microslip()
+    if "study" in parts:
+        from ..study.bench import bench_study
+        out["study"] = bench_study(workers=workers)
     if args.json:
         print(json_text(out))
         return 0
@@ -69,4 +78,7 @@ def main(args) -> int:
         print(bench.format_moreau(out["moreau"]))
     if "microslip" in out:
         print(bench.format_microslip(out["microslip"]))
+    if "study" in out:
+        from ..study.bench import format_study
+        print(format_study(out["study"]))
     return 0

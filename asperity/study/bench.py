@@ -92,8 +92,8 @@ def _loop(study, limit_seconds: float) -> tuple[float, int]:
     return n / (time.perf_counter() - t0), n
 
 
-def bench_study(workers: int = 2, n_two: int = 200_000, n_strip: int = 20_000,
-                n_scans: int = 48, serial_seconds: float = 3.0) -> dict:
+def bench_study(workers: int = 2, n_two: int = 200_000, n_strip: int = 40_000,
+                n_scans: int = 400, serial_seconds: float = 3.0) -> dict:
     """{case kind: serial cases/s, engine cases/s, speed-up, overhead, ...}."""
     from .engine import run_study
     from .spec import load_study
