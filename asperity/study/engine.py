@@ -197,6 +197,25 @@ def _connect(scheduler, workers):
     return client, None, scheduler, nw
 
 
+class cluster:
+    """A Dask client for other work than studies (e.g. the tiles of one huge scan): the
+    same choice as :func:`run_study` -- ``scheduler`` (or $ASPERITY_SCHEDULER) an existing
+    cluster, else a LocalCluster of ``workers`` single-threaded processes on 127.0.0.1 --
+    closed at the end.  ``with cluster(None, 2) as (client, where, n_workers): ...``"""
+
+    def __init__(self, scheduler: str | None = None, workers: int | None = None):
+        self.scheduler = resolve_scheduler(scheduler)
+        self.workers = None if workers is None else check_int("--workers", workers, 1, 4096)
+
+    def __enter__(self):
+        self.client, self.local, where, nw = _connect(self.scheduler, self.workers)
+        return self.client, where, nw
+
+    def __exit__(self, *exc):
+        _close(self.client, self.local)
+        return False
+
+
 def _reachable(scheduler: str) -> None:
     """Fail at once, in one line, when a tcp:// scheduler address refuses connections
     (Dask itself retries until its timeout)."""
