@@ -67,6 +67,17 @@ def test_rotated_texture_gives_rotated_reservoir(angle):
     assert sorted(a) == pytest.approx(sorted((ref_axes["mu_a_plus"], ref_axes["mu_a_minus"])), rel=1e-13)
 
 
+def test_facets_given_as_views_keep_their_gradients():
+    """A FacetSurface whose gx, gy are rows of one array in the other order, the same row
+    twice or parts of rows: faces() gives (gx, gy) as given (turning or mirroring a surface
+    by swapping its gradient rows must turn or mirror its friction)."""
+    from asperity.surface.facets import FacetSurface
+    g = np.array([[0.1, 0.2, 0.3], [-0.4, 0.5, -0.6]])
+    for gx, gy in ((g[0], g[1]), (g[1], g[0]), (g[0], g[0]), (g[0, :2], g[1, :2])):
+        s = FacetSurface(gx=gx, gy=gy, mu=0.2, weight=np.ones(gx.size), info={})
+        np.testing.assert_array_equal(s.faces().gradient, np.column_stack([gx, gy]))
+
+
 def test_heightmap_slopes_with_rectangular_pixels():
     """A plane z = 0.3 x - 0.2 y sampled on pixels 1 um x 3 um: every facet has the plane's
     gradient, and its friction is that of one tilted plane, SPEC.md 2 for one face."""

@@ -106,9 +106,8 @@ class FacetSurface:
 def _columns(gx: np.ndarray, gy: np.ndarray) -> np.ndarray:
     """(n, 2) view whose columns are ``gx`` and ``gy`` without copying either, when they
     are two rows of one (2, n) array; a copy otherwise."""
-    base = gx.base
-    if base is not None and base is gy.base and base.ndim == 2 and base.shape[0] == 2:
-        return base.T
+    if _rows_of_one(gx, gy):
+        return gx.base.T
     return np.stack([gx, gy]).T
 
 
