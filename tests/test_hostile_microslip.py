@@ -493,3 +493,28 @@ def test_accepted_extremes_give_finite_output(capsys, tmp_path):
             code, out, err = run(capsys, "risk", p, *extra)
             assert code == 0, err
             assert_finite_output(out)
+
+
+@pytest.mark.parametrize("k,kt,N,l0,aT,mup,mum,rng", [
+    (10.0 ** 6.375, 1e15, 1.0, 1.0, 1e-9, 1.0, 1.000000005872572, 1110.0),   # hypothesis: half
+    (1.0, 1.0, 1.0, 10.0, 0.001, 1.0, 1.000000005872572, 593.0),   # the drift; no convergence
+    (30413.639716874168, 11534291441183.266, 6890.052007564204, 162.1133547581583,  # fuzzed:
+     -4.430981027573224e-05, 0.0013138742332858165, 0.001314010515681902, 123.9962765009478),
+])                                               # stiff contacts, margin 1500: no drift at all
+def test_friction_too_close_to_symmetric_to_resolve_is_refused(k, kt, N, l0, aT, mup, mum, rng):
+    """Across mu+ = mu- the drift of a ratchet jumps from one side to the other; below the
+    solvers' resolution the side would be rounding (seen: half the drift, or no
+    convergence), so such pairs are refused in one line; a pair equal but for rounding is
+    the symmetric case (no drift); a resolved asymmetry gives the closed form."""
+    with pytest.raises(InputError, match="mu_plus and mu_minus differ by") as exc:
+        A.assess(two_node_chain(k, l0, aT, kt, N, mup, mum), Loading.cycles_between(0.0, rng),
+                 1e6, 1e-4)
+    assert "\n" not in str(exc.value)
+    same = A.assess(two_node_chain(k, l0, aT, kt, N, mup, mup * (1 + 1e-15)),
+                    Loading.cycles_between(0.0, rng), 1e6, 1e-4)
+    assert same["drift_per_cycle_m"] == 0.0
+    assert two_node_drift_per_cycle(k, kt, N, mup, mup * (1 + 1e-15), aT, l0, 0.0, rng) == 0.0
+    ok = A.assess(two_node_chain(1e6, 0.1, 1.2e-5, 5e5, 100.0, 0.2, 0.2 * (1 + 2e-4)),
+                  Loading.cycles_between(0.0, 300.0), 1e6, 1e-4)
+    want = two_node_drift_per_cycle(1e6, 5e5, 100.0, 0.2, 0.2 * (1 + 2e-4), 1.2e-5, 0.1, 0.0, 300.0)
+    assert ok["drift_per_cycle_m"] == pytest.approx(want, rel=1e-9) and want > 0

@@ -35,6 +35,7 @@ import numpy as np
 from ..errors import AsperityError, InputError, check_array, check_instance, check_range, check_text
 from .limits import (
     ASYMMETRY,
+    ASYMMETRY_RESOLVED,
     STIFFNESS_RATIO,
     STRIP,
     TWO_NODE,
@@ -42,6 +43,7 @@ from .limits import (
     check_mu,
     check_nodes,
     check_param,
+    same_friction,
 )
 
 MODES = ("quasi-static", "dynamic")
@@ -178,6 +180,25 @@ def _check_chain(c: Chain) -> None:
     if len(mus) == 2 and max(mus) > ASYMMETRY * min(mus):
         raise InputError(f"mu_plus / mu_minus = {c.mu_plus / c.mu_minus:.3g} is beyond what the "
                          f"chain solvers resolve (at most {ASYMMETRY:g} either way)")
+    check_asymmetry(c.mu_plus, c.mu_minus, ASYMMETRY_RESOLVED)
+
+
+def stiffness_ratio(c: Chain) -> float:
+    """The largest element/contact stiffness ratio of a chain, either way."""
+    return float(max(c.kb.max() / c.kt.min(), c.kt.max() / c.kb.min()))
+
+
+def check_asymmetry(mu_plus: float, mu_minus: float, resolved: float) -> None:
+    """Refuse mu+ != mu- closer than ``resolved`` (relative): the drift of a ratcheting
+    chain goes all the way one way or the other across mu+ = mu-, and below the solvers'
+    resolution the side would be decided by rounding (same_friction: equal)."""
+    mus = [m for m in (mu_plus, mu_minus) if math.isfinite(m)]
+    if len(mus) == 2 and not same_friction(*mus) and abs(mus[0] - mus[1]) < resolved * max(mus):
+        raise InputError(f"mu_plus and mu_minus differ by {abs(mus[0] - mus[1]) / max(mus):.2g} "
+                         f"of their value, less than the {resolved:.2g} the chain solvers "
+                         "resolve here: a ratchet, if any, would run its full drift one way or "
+                         "the other; give equal coefficients (symmetric friction) or a larger "
+                         "difference")
 
 
 def two_node_chain(k, l0, alpha_T, k_t, N, mu_plus, mu_minus) -> Chain:

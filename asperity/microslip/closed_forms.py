@@ -13,7 +13,15 @@ from __future__ import annotations
 import math
 
 from ..errors import InputError
-from .limits import STRIP, TWO_NODE, check_alpha_T, check_dT, check_mu, check_param
+from .limits import (
+    STRIP,
+    TWO_NODE,
+    check_alpha_T,
+    check_dT,
+    check_mu,
+    check_param,
+    same_friction,
+)
 
 
 def _two_node(k, k_t, N, mu_plus, mu_minus, alpha_T, l0):
@@ -35,12 +43,12 @@ def two_node_drift_per_cycle(k, k_t, N, mu_plus, mu_minus, alpha_T, l0, dT_min, 
     """Displacement of both nodes per full cycle once stabilised (m, SPEC.md 5):
     ``|alpha_T| l0 (dT_max - dT_min - 2 dT_c)`` towards the side of the smaller coefficient
     (-x if mu+ > mu-, whatever the sign of alpha_T), zero if the range is at most 2 dT_c
-    or if mu+ = mu-."""
+    or if mu+ = mu- (to within :data:`limits.SAME_FRICTION`)."""
     k, k_t, N, mp, mm, aT, l0 = _two_node(k, k_t, N, mu_plus, mu_minus, alpha_T, l0)
     lo, hi = check_dT("dT_min", dT_min), check_dT("dT_max", dT_max)
     if hi < lo:
         raise InputError(f"needs dT_min <= dT_max, got dT_min = {lo:g} K, dT_max = {hi:g} K")
-    if mp == mm:
+    if same_friction(mp, mm):                       # the same coefficient but for rounding
         return 0.0
     dT_c = two_node_dT_c(k, k_t, N, mp, mm, aT, l0)
     excess = max(0.0, (hi - lo) - 2.0 * dT_c)

@@ -49,6 +49,20 @@ POINTS_PER_CYCLE = 10_000_000
 STIFFNESS_RATIO = 1e9
 ASYMMETRY = 1e3
 MARGIN = 1e4
+#: the smallest friction asymmetry |mu+ - mu-| / max(mu+, mu-) the chain solvers resolve:
+#: the drift of a ratcheting chain jumps from one direction to the other across mu+ = mu-,
+#: and below this the side is decided by rounding (refused; fuzzed two-node chains over
+#: the whole ranges: the Newton iteration stalls or takes the wrong side below 1e-4, and
+#: with very stiff contacts and large margins below 10 margin ratio eps, see
+#: quasi_static.check_margin); differences up to SAME_FRICTION are the rounding of a
+#: symmetric texture: the same coefficient
+ASYMMETRY_RESOLVED = 1e-4
+SAME_FRICTION = 1e-12
+
+
+def same_friction(mu_plus: float, mu_minus: float) -> bool:
+    """mu+ and mu- equal but for rounding (relative difference at most SAME_FRICTION)."""
+    return abs(mu_plus - mu_minus) <= SAME_FRICTION * max(abs(mu_plus), abs(mu_minus))
 
 
 def check_param(name: str, value, rng: tuple) -> float:

@@ -123,6 +123,13 @@ def check_margin(chain: Chain, loading: Loading) -> None:
     from .limits import MARGIN
     dT_c = elastic_limit(chain)
     margin = loading.dT_range / (2.0 * dT_c) if math.isfinite(dT_c) else 0.0
+    # the asymmetry must stand out of the rounding of the thermal forces (margin) in the
+    # stiffness-ratio-conditioned solves (fuzzed: below this, wrong sides and stalls)
+    from .chains import check_asymmetry, stiffness_ratio
+    from .limits import ASYMMETRY_RESOLVED
+    check_asymmetry(chain.mu_plus, chain.mu_minus,
+                    max(ASYMMETRY_RESOLVED, 10.0 * max(margin, 1.0) * stiffness_ratio(chain)
+                        * 2.2e-16))
     if margin > MARGIN:
         raise InputError(f"the margin dT range / (2 dT_c) = {margin:.3g} is beyond what the "
                          f"chain solvers resolve (at most {MARGIN:g}: the friction holds less "
