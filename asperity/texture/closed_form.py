@@ -9,9 +9,11 @@ psi = 90 deg cases, is :mod:`asperity.friction.faces`.
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 
+from ..errors import InputError, check_array, check_mu, check_range
 from ..friction.reservoir import LOCK_TOL
 
 
@@ -20,22 +22,50 @@ def compute_H(x, y):
 
     H(x, y) = (x + tan y) / (1 - x tan y)   (Antoni et al. eq. 8)
 
-    x : local friction coefficient (>= 0); y : signed slope angle in radians, positive
-    when the tip climbs.  Returns ``inf`` where ``x tan y >= 1`` (self-locking).
+    x : local friction coefficient in [0, 100]; y : signed slope angle in radians, in
+    (-pi/2, pi/2), positive when the tip climbs (numbers or arrays of one shape, or one of
+    them a number).  Returns ``inf`` where ``x tan y >= 1`` (self-locking), never NaN.
     """
-    x = np.asarray(x, dtype=float)
-    t = np.tan(np.asarray(y, dtype=float))
+    x = _check_values("x (local friction)", x, 0.0, 100.0)
+    yv = _check_values("y (slope angle)", y, -0.5 * math.pi, 0.5 * math.pi, open_ends=True,
+                       unit="rad")
+    try:
+        x, yv = np.broadcast_arrays(x, yv)
+    except ValueError:
+        raise InputError(f"x and y must have one shape (or one be a number), got "
+                         f"{np.shape(x)} and {np.shape(yv)}") from None
+    t = np.tan(yv)
     den = 1.0 - x * t
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         out = np.where(den > LOCK_TOL, (x + t) / np.where(den > LOCK_TOL, den, 1.0), np.inf)
     return out[()] if out.ndim == 0 else out
+
+
+def _check_values(name: str, value, low: float, high: float, open_ends: bool = False,
+                  unit: str = ""):
+    """A number or an array of numbers within [low, high] ((low, high) if open_ends)."""
+    if isinstance(value, numbers.Real) or isinstance(value, (str, bytes)) or value is None:
+        return np.float64(check_range(name, value, low, high, low_open=open_ends,
+                                      high_open=open_ends, unit=unit))
+    a = check_array(name, value)
+    inside = (a > low) & (a < high) if open_ends else (a >= low) & (a <= high)
+    if not np.all(inside):
+        k = int(np.flatnonzero(~inside.ravel())[0])
+        lo, hi = ("(", ")") if open_ends else ("[", "]")
+        raise InputError(f"{name} must be in {lo}{low:g}, {high:g}{hi}{' ' + unit if unit else ''}"
+                         f", got {a.ravel()[k]:g} at index {k}")
+    return a
 
 
 def compute_wedge_axis_closed_form(alpha, beta, mu_alpha, mu_beta) -> dict:
     """mu_a+, mu_a-, mu_b (= mu_b+ = mu_b-) of the all-faces wedge model, SPEC.md section 2.
 
-    Angles in radians.  Infinite where a face self-locks.
+    Angles in radians, in (0, pi/2); local friction in [0, 100].  Infinite where a face
+    self-locks.
     """
+    alpha, beta = (check_range(n, v, 0.0, 0.5 * math.pi, low_open=True, high_open=True,
+                               unit="rad") for n, v in (("alpha", alpha), ("beta", beta)))
+    mu_alpha, mu_beta = check_mu("mu_alpha", mu_alpha), check_mu("mu_beta", mu_beta)
     ta, tb = math.tan(alpha), math.tan(beta)
     ha = compute_H(mu_alpha, alpha)
     hb = compute_H(mu_beta, beta)

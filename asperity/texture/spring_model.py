@@ -13,7 +13,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..errors import InputError, check_int, check_range
+from ..errors import InputError, as_number, check_instance, check_int, check_range
 from ..friction.reservoir import LEVEL_SLOPE_TOL, LOCK_TOL, check_contact
 
 #: horizontal force of one tip, in units of k_n (z_max - z_r), above which the tip is
@@ -21,7 +21,20 @@ from ..friction.reservoir import LEVEL_SLOPE_TOL, LOCK_TOL, check_contact
 LOCK_FORCE_RATIO = 1.0e4
 #: run-in travel in units of the elastic slip length (1 + max|p_f| + max mu) k_n dz / k_f
 RUN_IN_SLIP_LENGTHS = 20.0
+#: physically meaningful ranges (SI units) of the spring model's inputs; k_f may also be
+#: inf (rigid springs).  The friction depends only on k_f/k_n and preload/(k_n h); beyond
+#: 1e12 the tips' elastic offsets k_n h/k_f fall below the round-off of their positions.
+LIMITS = {"k_n": (1e-6, 1e12), "k_f": (1e-6, 1e12), "density": (1.0, 1e20),
+          "preload": (-1e6, 1e6), "k_f/k_n": (1e-6, 1e12)}
+#: most spring-tip updates (springs x steps, summed over the directions of one request):
+#: one to three minutes on two cores of a 2020 laptop (rigid ~5e7/s, elastic ~2e6/s)
+MAX_UPDATES = {"rigid": 5e9, "elastic": 2.5e8}
+#: updates one direction costs whatever its size (set-up, kernel start)
+DIRECTION_UPDATES = {"rigid": 2e4, "elastic": 1e3}
 
+
+#: the textures the springs slide on (texture.wedges)
+TEXTURE_KINDS = ("wedge", "gaussian-wedge")
 
 _STATUS_TEXT = {
     1: "self-locking: a spring tip cannot climb its face",
@@ -32,12 +45,14 @@ _STATUS_TEXT = {
 
 @dataclass(frozen=True)
 class SpringModel:
-    """Springs carried by the sliding body (see module docstring).
+    """Springs carried by the sliding body (see module docstring); ranges in :data:`LIMITS`.
 
-    k_n      : N/m, normal stiffness of one spring, (0, inf)
-    k_f      : N/m, flexural (tangential) stiffness of one spring, (0, inf]; inf = rigid
-    density  : springs per m^2, (0, inf); stresses = density x mean spring force
-    preload  : N, force of a spring whose tip is at z = 0; rest level z_r = -preload/k_n
+    k_n      : N/m, normal stiffness of one spring, [1e-6, 1e12]
+    k_f      : N/m, flexural (tangential) stiffness of one spring, [1e-6, 1e12] or inf
+               (rigid), with k_f/k_n in [1e-6, 1e12]
+    density  : springs per m^2, [1, 1e20]; stresses = density x mean spring force
+    preload  : N, force of a spring whose tip is at z = 0, [-1e6, 1e6]; rest level
+               z_r = -preload/k_n (it must lie below the texture's highest point)
     n_springs: springs per wedge pitch (stratified along t_a), [1, 1e6]
     steps_per_period : samples per wedge pitch of travel along t_a, [1, 1e8]
     """
@@ -50,23 +65,13 @@ class SpringModel:
     steps_per_period: int = 8000
 
     def __post_init__(self):
-        def finite_pos(name):
-            x = check_range(name, getattr(self, name), 0.0, None, low_open=True)
-            if not math.isfinite(x):
-                raise InputError(f"{name} must be in (0, inf) and finite, got {x:g}")
-            object.__setattr__(self, name, x)
-
-        finite_pos("k_n")
-        finite_pos("density")
-        kf = self.k_f
-        if isinstance(kf, str) and kf.strip().lower() in ("inf", "infinity"):
-            kf = math.inf
-        object.__setattr__(self, "k_f", check_range("k_f", kf, 0.0, None, low_open=True,
-                                                       allow_inf=True))
-        pre = check_range("preload", self.preload)
-        if not math.isfinite(pre):
-            raise InputError(f"preload must be finite, got {pre:g}")
-        object.__setattr__(self, "preload", pre)
+        kn = check_range("k_n", self.k_n, *LIMITS["k_n"], unit="N/m")
+        object.__setattr__(self, "k_n", kn)
+        object.__setattr__(self, "density", check_range("density", self.density,
+                                                        *LIMITS["density"], unit="springs/m^2"))
+        object.__setattr__(self, "k_f", _check_k_f(self.k_f, kn))
+        object.__setattr__(self, "preload", check_range("preload", self.preload,
+                                                        *LIMITS["preload"], unit="N"))
         object.__setattr__(self, "n_springs", check_int("n_springs", self.n_springs, 1, 1_000_000))
         object.__setattr__(self, "steps_per_period",
                            check_int("steps_per_period", self.steps_per_period, 1, 100_000_000))
@@ -90,8 +95,32 @@ class SpringModel:
         for key in d:
             if key not in allowed:
                 raise InputError(f"unknown key springs.{key}; allowed: {', '.join(allowed)}")
-        from .wedges import build_from_table
-        return build_from_table(cls, d, "springs")
+        try:
+            return cls(**d)
+        except InputError as exc:
+            raise InputError(f"springs.{exc}") from None
+
+
+def _check_k_f(value, k_n: float) -> float:
+    """k_f: a number in LIMITS["k_f"] with k_f/k_n in LIMITS["k_f/k_n"], or inf ("inf" in a
+    file) for rigid springs."""
+    if isinstance(value, str) and value.strip().lower() in ("inf", "infinity"):
+        return math.inf
+    kf = as_number("k_f", value)
+    if kf == math.inf:
+        return kf
+    lo, hi = LIMITS["k_f"]
+    if not lo <= kf <= hi:
+        got = "NaN" if kf != kf else f"{kf:g}"
+        raise InputError(f"k_f must be in [{lo:g}, {hi:g}] N/m or inf (rigid springs), got {got}")
+    lo, hi = LIMITS["k_f/k_n"]
+    if not lo <= kf / k_n <= hi:
+        why = ("above it the tips' elastic offsets fall below round-off: use k_f = inf, the "
+               "rigid limit" if kf / k_n > hi else "below it a tip is dragged over a million "
+               "wedge heights before it slides")
+        raise InputError(f"k_f / k_n must be in [{lo:g}, {hi:g}], got {kf / k_n:.3g} "
+                         f"(k_f = {kf:g}, k_n = {k_n:g} N/m): {why}")
+    return kf
 
 
 @dataclass(frozen=True)
@@ -152,27 +181,42 @@ class _Setup:
     set_valued: bool
     c: float
     sn: float
+    zref: float   # m, the highest point: the kernels' unit of length
 
 
 def _check_model(model) -> SpringModel:
-    if not isinstance(model, SpringModel):
-        raise InputError(f"model must be a SpringModel, got {type(model).__name__}")
-    return model
+    return check_instance("model", model, SpringModel)
 
 
 def _check_psi(psi) -> float:
-    x = check_range("psi", psi)
-    if not math.isfinite(x):
-        raise InputError(f"psi must be finite (radians), got {x:g}")
-    return x
+    return check_range("psi", psi, -1e3, 1e3, unit="rad")
+
+
+def _check_texture(texture):
+    """A wedge texture (texture.wedges, which reads this module's [springs] tables)."""
+    if isinstance(texture, type) or getattr(texture, "kind", None) not in TEXTURE_KINDS:
+        check_instance("texture", texture, (), "WedgeTexture or GaussianWedgeTexture")
+    return texture
+
+
+def _face_points(g, mu, c: float, sn: float):
+    """Closed-form reservoir point (px, py) of a tip sliding in s = (c, sn) on faces of
+    slope g and friction mu (friction.faces.compute_face_reservoir), and their
+    self-locking flags; inf-free (locked faces get the point of F_z = 1)."""
+    slope = g * c
+    nrm = np.sqrt(1.0 + g * g)
+    vlen = np.sqrt(1.0 + slope * slope)
+    fz = 1.0 / nrm - mu * slope / vlen
+    hx = g / nrm + mu * c / vlen
+    hy = mu * sn / vlen
+    lock = fz <= LOCK_TOL
+    safe = np.where(lock, 1.0, fz)
+    return hx / safe, hy / safe, lock
 
 
 def _setup(texture, psi: float, model: SpringModel, contact: str) -> _Setup:
     check_contact(contact)
-    if not hasattr(texture, "profile"):
-        raise InputError(f"texture must be a WedgeTexture or GaussianWedgeTexture, "
-                         f"got {type(texture).__name__}")
-    prof = texture.profile()
+    prof = _check_texture(texture).profile()
     xs = np.ascontiguousarray(prof.x, dtype=np.float64)
     zs = np.ascontiguousarray(prof.z, dtype=np.float64)
     dx = np.diff(xs)
@@ -200,17 +244,10 @@ def _setup(texture, psi: float, model: SpringModel, contact: str) -> _Setup:
             level = np.abs(slope) <= LEVEL_SLOPE_TOL
             loaded = level.astype(np.int8)
             set_valued = bool(np.any(level & (np.abs(g) > LEVEL_SLOPE_TOL)))
-    # closed-form per-face reservoir point (friction.faces.compute_face_reservoir)
-    nrm = np.sqrt(1.0 + g * g)
-    vlen = np.sqrt(1.0 + slope * slope)
-    fz = 1.0 / nrm - seg_mu * slope / vlen
-    hx = g / nrm + seg_mu * c / vlen
-    hy = seg_mu * sn / vlen
-    lock = fz <= LOCK_TOL
-    safe = np.where(lock, 1.0, fz)
+    px, py, lock = _face_points(g, seg_mu, c, sn)
     n_pitch = max(1, int(np.count_nonzero(seg_face == 0)))
-    return _Setup(xs, zs, seg_mu, seg_face, g, loaded, hx / safe, hy / safe,
-                  lock.astype(np.int8), float(xs[-1]), n_pitch, z_rest, set_valued, c, sn)
+    return _Setup(xs, zs, seg_mu, seg_face, g, loaded, px, py, lock.astype(np.int8),
+                  float(xs[-1]), n_pitch, z_rest, set_valued, c, sn, zmax)
 
 
 def _slip_length(st: _Setup, model: SpringModel) -> float:

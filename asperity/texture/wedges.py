@@ -18,13 +18,22 @@ metres.
 from __future__ import annotations
 
 import math
+from os import PathLike
 from dataclasses import MISSING as _MISSING
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError, TextureFileError, check_int, check_mu, check_range
+from ..errors import (
+    InputError,
+    TextureFileError,
+    check_instance,
+    check_int,
+    check_mu,
+    check_range,
+    check_text,
+)
 from ..friction.reservoir import Faces
 from ..io import read_toml
 
@@ -54,15 +63,25 @@ class Profile:
         return np.interp(xq, self.x, self.z)
 
 
+#: physically meaningful ranges: face angles (deg; a flatter face is level), wedge heights
+#: (m, from an atom to a hundred metres), the mean gap between Gaussian wedges in mean
+#: base widths (sparser wedges are not sampled by the springs)
+LIMITS = {"angle": (1e-6, 90.0), "height": (1e-10, 100.0), "gap_widths": (0.0, 100.0)}
+#: bytes of memory per wedge of a Gaussian texture's profile and its spring set-up
+BYTES_PER_WEDGE = 600
+
+
 def _check_angle(name: str, value) -> float:
-    return check_range(name, value, 0.0, 90.0, low_open=True, high_open=True, unit="deg")
+    x = check_range(name, value, 0.0, 90.0, low_open=True, high_open=True, unit="deg")
+    if x < LIMITS["angle"][0]:
+        raise InputError(f"{name} must be at least {LIMITS['angle'][0]:g} deg (a flatter face "
+                         f"is level), got {x:g}")
+    return x
 
 
 def _check_length(name: str, value, allow_zero: bool = False) -> float:
-    x = check_range(name, value, 0.0, None, low_open=not allow_zero, unit="m")
-    if not math.isfinite(x):
-        raise InputError(f"{name} must be finite, got {x:g}")
-    return x
+    lo, hi = LIMITS["height"]
+    return check_range(name, value, 0.0 if allow_zero else lo, hi, unit="m")
 
 
 @dataclass(frozen=True)
@@ -149,7 +168,7 @@ class GaussianWedgeTexture:
     seed: int = 0
     mean_gap: float | None = None
     kind = "gaussian-wedge"
-    _profile: Profile | None = field(default=None, repr=False, compare=False)
+    _profile: Profile | None = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "alpha_deg", _check_angle("alpha_deg", self.alpha_deg))
@@ -161,12 +180,17 @@ class GaussianWedgeTexture:
                            _check_length("height_std", self.height_std, allow_zero=True))
         object.__setattr__(self, "n_wedges", check_int("n_wedges", self.n_wedges, 1, 10_000_000))
         object.__setattr__(self, "seed", check_int("seed", self.seed, 0, 2**63 - 1))
+        width = self.height_mean * (1 / math.tan(self.alpha) + 1 / math.tan(self.beta))
         if self.mean_gap is None:
-            width = self.height_mean * (1 / math.tan(self.alpha) + 1 / math.tan(self.beta))
             object.__setattr__(self, "mean_gap", 0.5 * width)
         else:
-            object.__setattr__(self, "mean_gap",
-                               _check_length("mean_gap", self.mean_gap, allow_zero=True))
+            gap = check_range("mean_gap", self.mean_gap, 0.0, None, unit="m")
+            most = LIMITS["gap_widths"][1]
+            if gap > most * width:
+                raise InputError(f"mean_gap must be at most {most:g} mean base widths "
+                                 f"({most * width:g} m; sparser wedges are not sampled), got "
+                                 f"{gap:g}")
+            object.__setattr__(self, "mean_gap", gap)
         if self.height_std > 3.0 * self.height_mean:
             raise InputError(
                 f"height_std must be at most 3 x height_mean ({3 * self.height_mean:g} m) "
@@ -196,26 +220,22 @@ class GaussianWedgeTexture:
     def profile(self) -> Profile:
         if self._profile is not None:
             return self._profile
+        from ..resources import check_memory
+        n = self.n_wedges
+        check_memory(BYTES_PER_WEDGE * float(n), f"a profile of {n} wedges", "use fewer wedges")
         rng = np.random.default_rng([self.seed, 1])
         h = self.heights()
-        gaps = rng.exponential(self.mean_gap, self.n_wedges) if self.mean_gap > 0 else \
-            np.zeros(self.n_wedges)
+        gaps = rng.exponential(self.mean_gap, n) if self.mean_gap > 0 else np.zeros(n)
         ca, cb = 1 / math.tan(self.alpha), 1 / math.tan(self.beta)
-        # nodes per wedge: valley, ridge, valley, then the gap to the next valley
-        xs = [0.0]
-        zs = [0.0]
-        mus = []
-        face = []
-        x = 0.0
-        for hj, gj in zip(h, gaps):
-            x += hj * ca
-            xs.append(x); zs.append(hj); mus.append(self.mu_alpha); face.append(0)
-            x += hj * cb
-            xs.append(x); zs.append(0.0); mus.append(self.mu_beta); face.append(1)
-            if gj > 0:
-                x += gj
-                xs.append(x); zs.append(0.0); mus.append(self.mu_alpha); face.append(-1)
-        prof = Profile(np.array(xs), np.array(zs), np.array(mus), np.array(face, dtype=np.int64))
+        # nodes per wedge: ridge, valley, then the end of the gap to the next valley (if
+        # any); x by a running sum of the steps, as one would add them one by one
+        keep = np.column_stack([np.ones((n, 2), bool), gaps > 0]).ravel()
+        step = np.column_stack([h * ca, h * cb, gaps]).ravel()[keep]
+        xs = np.concatenate([[0.0], np.cumsum(step)])
+        zs = np.concatenate([[0.0], np.column_stack([h, np.zeros((n, 2))]).ravel()[keep]])
+        mus = np.tile([self.mu_alpha, self.mu_beta, self.mu_alpha], n)[keep]
+        face = np.tile(np.array([0, 1, -1], dtype=np.int64), n)[keep]
+        prof = Profile(xs, zs, mus, face)
         object.__setattr__(self, "_profile", prof)
         return prof
 
@@ -241,10 +261,10 @@ def texture_from_dict(d: dict, where: str = "texture") -> Texture:
     if not isinstance(d, dict):
         raise TextureFileError(f"{where} must be a table")
     kind = d.get("kind", "wedge")
-    cls = _TEXTURE_KINDS.get(kind)
-    if cls is None:
+    if not isinstance(kind, str) or kind not in _TEXTURE_KINDS:
         raise TextureFileError(
-            f"{where}.kind must be one of {', '.join(sorted(_TEXTURE_KINDS))}, got {kind!r}")
+            f"{where}.kind must be one of {', '.join(sorted(_TEXTURE_KINDS))}, got {kind!r}"[:300])
+    cls = _TEXTURE_KINDS[kind]
     allowed = _dataclass_keys(cls) | {"kind"}
     unknown = sorted(set(d) - allowed)
     if unknown:
@@ -279,20 +299,24 @@ class TextureFile:
 
 
 def load_texture_file(path: str | Path) -> TextureFile:
-    """Read a TOML texture file (format documented in README.md)."""
-    p = Path(path)
+    """Read a TOML texture file (format documented in README.md); its ``[springs]`` table,
+    if any, is checked too (keys and ranges of :class:`~.spring_model.SpringModel`)."""
+    from .spring_model import SpringModel
+    p = Path(check_instance("path", path, (str, PathLike), "file name (text or a Path)"))
     data = read_toml(p, "texture file", _TOP_KEYS, TextureFileError)
     if "texture" not in data:
         raise TextureFileError(f"{p}: missing table [texture]")
     try:
         tex = texture_from_dict(data["texture"])
-    except TextureFileError as exc:
+        springs = data.get("springs", {})
+        if not isinstance(springs, dict):
+            raise TextureFileError("springs must be a table")
+        SpringModel.from_dict(springs)
+        name = check_text("name", data.get("name", p.stem), 200)
+        description = check_text("description", data.get("description", ""))
+    except InputError as exc:
         raise TextureFileError(f"{p}: {exc}") from None
-    springs = data.get("springs", {})
-    if not isinstance(springs, dict):
-        raise TextureFileError(f"{p}: springs must be a table")
-    return TextureFile(tex, dict(springs), str(data.get("name", p.stem)),
-                       str(data.get("description", "")))
+    return TextureFile(tex, dict(springs), name, description)
 
 
 def load_texture(path: str | Path) -> Texture:
