@@ -29,7 +29,7 @@ def add_parser(sub) -> None:
                    help="number of equally spaced sliding directions (8 to 100000)")
     s = p.add_argument_group("spring model (--method springs; overrides the file's [springs] table)")
     s.add_argument("--k-n", type=float, metavar="N_M", help="normal stiffness of one spring, N/m")
-    s.add_argument("--k-f", type=str, metavar="N_M", help="flexural stiffness of one spring, N/m, or 'inf' (rigid)")
+    s.add_argument("--k-f", type=float, metavar="N_M", help="flexural stiffness of one spring, N/m, or 'inf' (rigid)")
     s.add_argument("--preload", type=float, metavar="N", help="force of a spring whose tip is at the base line z=0, N")
     s.add_argument("--density", type=float, metavar="PER_M2", help="springs per m^2")
     s.add_argument("--n-springs", type=int, metavar="N", help="springs per texture period")

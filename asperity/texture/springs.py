@@ -75,29 +75,49 @@ pitch").  The s-step is W/(m |cos psi|) (W = L/N), capped at one wedge pitch: wi
 ~1/steps_per_period rad of psi = 90 deg (along the ridges) the body does not travel
 across the wedges and the period is sampled by the N springs only, so use more springs
 there.  With finite k_f a run-in of 20 x (1 + max|p_f| + max mu) k_n (z_max - z_r)/k_f
-plus one window precedes the window, so every tip has left its rest state.
+plus one window precedes the window, so every tip has left its rest state.  A sampling
+too coarse for the texture's narrowest loaded face (a single sample would carry more than
+1 % of the friction) and a request of more spring-tip updates than spring_model.MAX_UPDATES
+are refused before any work; the kernels run in pieces that Ctrl-C can stop
+(:mod:`asperity.texture.spring_runs`, which also holds the units of the kernels: h and k_n h).
 """
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 
-from ..errors import InputError, check_int, check_range
+from ..errors import InputError, check_array, check_int, check_range
 from ..friction.reservoir import Reservoir
+from ..resources import check_memory
 from .spring_model import (
     _STATUS_TEXT,
-    LOCK_FORCE_RATIO,
-    RUN_IN_SLIP_LENGTHS,
     LoadingCurve,
     SlidingResult,
     SpringModel,
     _check_model,
     _check_psi,
+    _check_texture,
     _face_of_segment,
     _setup,
     _slip_length,
 )
+from .spring_runs import (
+    Tracker,
+    check_cost,
+    check_cost_early,
+    check_resolution,
+    plan,
+    run_loading,
+    run_sliding,
+    scale_of_forces,
+)
+
+#: most sliding directions of one request
+MAX_DIRECTIONS = 1_000_000
+#: bytes per step of a loading curve (per-step sums, displacements, stresses)
+LOADING_BYTES_PER_STEP = 200
 
 
 def simulate_sliding(texture, psi: float, model: SpringModel = SpringModel(),
@@ -106,61 +126,37 @@ def simulate_sliding(texture, psi: float, model: SpringModel = SpringModel(),
 
     Returns the averaged reservoir point p = -lambda_T/lambda_N (eq. 2 of the module
     docstring) and its tangential/lateral parts; ``locked`` (p = inf) if a tip
-    self-locks.  Raises InputError for bad input or a kernel failure other than locking.
+    self-locks.  Raises InputError for bad input or a kernel failure other than locking,
+    ResourceError (before any work) for a request beyond spring_model.MAX_UPDATES.
     """
-    from . import _spring_kernels as K
-
     psi = _check_psi(psi)
     model = _check_model(model)
+    check_cost_early(_check_texture(texture), 1, model)
     st = _setup(texture, psi, model, contact)
-    N = model.n_springs * st.n_pitch
-    W = st.period / N
-    m = -(-model.steps_per_period // model.n_springs)
-    pitch = st.period / st.n_pitch
-    ac = abs(st.c)
-    if ac * pitch * m <= W:
-        # (nearly) along the ridges the body does not travel across the texture: only
-        # the springs' positions sample the period, so use steps_per_period of them per
-        # pitch (one window step) instead of n_springs.
-        N = max(N, model.steps_per_period * st.n_pitch)
-        W = st.period / N
-        m = 1
-    ds = pitch if ac * pitch * m <= W else W / (m * ac)
-    X0 = (np.arange(N) + 0.5) * W
-    if model.rigid:
-        ux = np.arange(1, m + 1) * ds * st.c
-        sums, status, lock_seg = K.run_rigid(st.xs, st.zs, st.seg_px, st.seg_py, st.seg_lock,
-                                             st.seg_loaded, X0, ux, model.k_n, st.z_rest)
-        n_steps = m
-    else:
-        run_in = RUN_IN_SLIP_LENGTHS * _slip_length(st, model) + m * ds
-        n_run = int(math.ceil(run_in / ds))
-        n_steps = n_run + m + 1
-        d = np.arange(n_steps) * ds  # step 0: rest
-        dz_scale = model.k_n * (st.zs.max() - st.z_rest)
-        sums, _, status, lock_seg, _ = K.run_elastic(
-            st.xs, st.zs, st.seg_mu, st.seg_loaded, X0, d * st.c, d * st.sn, model.k_n,
-            model.k_f, st.z_rest, st.c, m, False, LOCK_FORCE_RATIO * dz_scale)
-    return _result(st, psi, model, sums, status, lock_seg, N, n_steps, m)
+    pl = plan(st, [psi], model)
+    check_resolution(st, [psi], pl, model)
+    tracker = Tracker(check_cost(pl, st, model))
+    return _slide(st, psi, model, *pl.take(0), tracker)
 
 
-def _result(st, psi, model, sums, status, lock_seg, N, n_steps, m) -> SlidingResult:
-    """Turn kernel sums/status into a SlidingResult (m = steps in the averaging window)."""
-    bad = status[(status != 0) & (status != 1)]
-    if bad.size:
+def _slide(st, psi, model, N, m, ds, n_steps, tracker) -> SlidingResult:
+    out = run_sliding(st, model, N, m, ds, n_steps, tracker)
+    if out.code:
         raise InputError(f"spring simulation failed at psi = {math.degrees(psi):g} deg: "
-                         f"{_STATUS_TEXT.get(int(bad[0]), 'status %d' % bad[0])}")
-    if np.any(status == 1):
-        face = _face_of_segment(st, lock_seg[status == 1])
+                         f"{_STATUS_TEXT.get(out.code, 'status %d' % out.code)}")
+    if out.locked:
         return SlidingResult(psi, np.array([np.inf, np.inf]), math.inf, 0.0, math.inf, True,
-                             face, N, n_steps, 0.0, st.set_valued, _STATUS_TEXT[1])
-    tot = sums.sum(axis=0)
+                             _face_of_segment(st, np.array([out.lock_seg])), N, n_steps, 0.0,
+                             st.set_valued, _STATUS_TEXT[1])
+    tot = out.total
     if not tot[2] > 0.0:
-        raise InputError("no spring tip touched the texture (check preload)")
+        raise InputError(f"no spring tip touched the texture at psi = {math.degrees(psi):g} "
+                         "deg: the rest level -preload/k_n is too close to the highest point "
+                         "for the springs' spacing (lower it, or use more springs)")
     p = -tot[:2] / tot[2]
     s = np.array([st.c, st.sn])
     sp = np.array([-st.sn, st.c])
-    normal_stress = model.density * tot[2] / (N * m)
+    normal_stress = model.density * scale_of_forces(st, model) * tot[2] / (N * m)
     frac = float(tot[4] / tot[3]) if tot[3] > 0 else 0.0
     return SlidingResult(psi, p, float(p @ s), float(p @ sp), float(normal_stress), False, -1,
                          N, n_steps, frac, st.set_valued, "")
@@ -171,14 +167,22 @@ def simulate_reservoir(texture, psi, model: SpringModel = SpringModel(),
     """Reservoir points p(psi) from the spring simulation, as a friction.reservoir.Reservoir.
 
     psi : (m,) radians.  Self-locking rows hold inf; ``set_valued`` as in the closed form
-    (windward regime, sliding exactly along the ridges).
+    (windward regime, sliding exactly along the ridges).  The work of all directions is
+    checked before the first runs (ResourceError); progress is reported per piece.
     """
-    psi = np.atleast_1d(np.asarray(psi, dtype=float))
-    if psi.ndim != 1:
-        raise InputError(f"psi must be a 1-D array of angles, got shape {psi.shape}")
-    if not np.all(np.isfinite(psi)):
-        raise InputError("psi must be finite (radians)")
-    res = [simulate_sliding(texture, float(a), model, contact) for a in psi]
+    psi = np.array([_check_psi(psi)]) if isinstance(psi, (numbers.Real, bool)) else \
+        check_array("psi", psi, ndim=1, min_size=1)
+    if psi.size > MAX_DIRECTIONS or np.any(np.abs(psi) > 1e3):
+        raise InputError(f"psi must be at most {MAX_DIRECTIONS} angles within +-1000 rad, got "
+                         f"{psi.size} up to {np.abs(psi).max():g}")
+    model = _check_model(model)
+    check_cost_early(_check_texture(texture), psi.size, model)
+    st = _setup(texture, float(psi[0]), model, contact)
+    pl = plan(st, psi, model)
+    check_resolution(st, psi, pl, model)
+    tracker = Tracker(check_cost(pl, st, model))
+    res = [_slide(st if k == 0 else _setup(texture, float(a), model, contact), float(a), model,
+                  *pl.take(k), tracker) for k, a in enumerate(psi)]
     return Reservoir(psi=psi, p=np.array([r.p for r in res]).reshape(-1, 2),
                      locked=np.array([r.locked for r in res], dtype=bool),
                      locked_face=np.array([r.locked_face for r in res], dtype=np.int64),
@@ -198,26 +202,29 @@ def simulate_loading_curve(texture, psi: float, model: SpringModel, distance: fl
     contact sticks, d sigma_t / d u = density k_f x (fraction of tips in contact): the
     model's k_t = density k_f when all tips touch (preload > 0).  Default distance:
     3 elastic slip lengths (module docstring) plus one period of the profile along t_a
-    (L/|cos psi|, at most 10 L), over which ``mu_steady`` is averaged.
+    (L/|cos psi|, at most 10 L), over which ``mu_steady`` is averaged; a distance is at
+    most 1e6 profile periods.
     """
-    from . import _spring_kernels as K
-
     psi = _check_psi(psi)
     model = _check_model(model)
     if model.rigid:
         raise InputError("k_f must be finite for a loading curve (k_f = inf has no elastic stage)")
     n_steps = check_int("n_steps", n_steps, 2, 100_000_000)
+    check_memory(LOADING_BYTES_PER_STEP * (n_steps + 1.0), f"a loading curve of {n_steps} steps",
+                 "lower n_steps")
+    check_cost_early(_check_texture(texture), 1, model, n_steps + 1)
     st = _setup(texture, psi, model, contact)
     L_s = min(st.period / abs(st.c), 10.0 * st.period) if abs(st.c) > 0.1 else 10.0 * st.period
     if distance is None:
         distance = 3.0 * _slip_length(st, model) + L_s
-    else:
-        distance = check_range("distance", distance, 0.0, None, low_open=True, unit="m")
-        if not math.isfinite(distance):
-            raise InputError(f"distance must be finite, got {distance:g}")
+        if distance > 1e6 * st.period:
+            raise InputError(f"the default distance, 3 elastic slip lengths and one period "
+                             f"({distance:.3g} m), is more than 1e6 profile periods: raise "
+                             "k_f/k_n, lower the preload or give a distance")
+    distance = check_range("distance", distance, 0.0, 1e6 * st.period, low_open=True, unit="m")
     N = model.n_springs * st.n_pitch
-    W = st.period / N
-    X0 = (np.arange(N) + 0.5) * W
+    tracker = Tracker(check_cost(_loading_plan(N, n_steps), st, model,
+                                 "lower n_steps or n_springs"))
     # displacement grid: half the steps over the stick-to-slide transition (3 slip
     # lengths) so that the elastic stage is resolved, the other half over the rest
     d3 = 3.0 * _slip_length(st, model)
@@ -227,29 +234,31 @@ def simulate_loading_curve(texture, psi: float, model: SpringModel, distance: fl
                             np.linspace(d3, distance, n_steps - n1 + 1)[1:]])
     else:
         d = np.linspace(0.0, distance, n_steps + 1)
-    dz_scale = model.k_n * (st.zs.max() - st.z_rest)
-    _, steps, status, lock_seg, _ = K.run_elastic(
-        st.xs, st.zs, st.seg_mu, st.seg_loaded, X0, d * st.c, d * st.sn, model.k_n, model.k_f,
-        st.z_rest, st.c, 1, True, LOCK_FORCE_RATIO * dz_scale)
-    bad = status[(status != 0) & (status != 1)]
-    if bad.size:
+    out = run_loading(st, model, N, d, tracker)
+    if out.code:
         raise InputError(f"spring simulation failed at psi = {math.degrees(psi):g} deg: "
-                         f"{_STATUS_TEXT.get(int(bad[0]), 'status %d' % bad[0])}")
-    tot = steps.sum(axis=0)  # (n_steps + 1, 5)
+                         f"{_STATUS_TEXT.get(out.code, 'status %d' % out.code)}")
+    tot = out.total  # (n_steps + 1, 5)
     s = np.array([st.c, st.sn])
     sp = np.array([-st.sn, st.c])
-    scale = model.density / N
+    scale = model.density * scale_of_forces(st, model) / N
     sig_t = -scale * tot[:, :2] @ s
     sig_l = -scale * tot[:, :2] @ sp
     sig_n = scale * tot[:, 2]
     frac = np.divide(tot[:, 4], tot[:, 3], out=np.zeros(tot.shape[0]), where=tot[:, 3] > 0)
     frac[0] = 0.0  # rest state: the relaxation of step 0 is not part of the motion
     k_meas = float((sig_t[1] - sig_t[0]) / (d[1] - d[0]))
-    locked = bool(np.any(status == 1))
+    locked = out.locked
     last = d > distance - min(L_s, distance) + 1e-12 * distance
     w = np.gradient(d)[last]  # travel-weighted average over the last period
     num, den = (w * sig_t[last]).sum(), (w * sig_n[last]).sum()
     mu_steady = math.inf if locked or not den > 0 else float(num / den)
-    face = _face_of_segment(st, lock_seg[status == 1]) if locked else -1
+    face = _face_of_segment(st, np.array([out.lock_seg])) if locked else -1
     return LoadingCurve(psi, d, sig_t, sig_l, sig_n, frac, model.k_t, k_meas, mu_steady,
                         locked, face)
+
+
+def _loading_plan(N: int, n_steps: int):
+    from .spring_runs import Plan
+    one = np.ones(1)
+    return Plan(np.array([N]), one.astype(int), one, np.array([n_steps + 1.0]))
