@@ -37,6 +37,9 @@ from ..friction.reservoir import Faces
 from ..resources import check_memory
 from ._previews import height_preview, mesh_preview
 from .friction_map import MAX_MU, check_friction_map
+from . import grid_facets as grid
+from . import quality as Q
+from .grid_facets import rest_level_for_bearing  # noqa: F401  (re-exported)
 from .topography import MAX_COORDINATE, HeightMap, TriangleMesh
 
 #: default local friction coefficient of a surface when no --mu or friction map is given
@@ -62,6 +65,7 @@ class FacetSurface:
     weight   : (n,) float, projected area x contact weight, m^2 (> 0)
     info     : what it came from and what was skipped (see :meth:`to_dict`)
     preview  : small (nx, ny) height array (m) and its physical size, for plots
+    quality  : data-quality figures (:func:`asperity.surface.quality.quality_stats`)
     """
 
     gx: np.ndarray
@@ -71,6 +75,7 @@ class FacetSurface:
     info: dict
     preview: np.ndarray | None = field(default=None, repr=False)
     extent: tuple[float, float] | None = None
+    quality: dict | None = field(default=None, repr=False, compare=False)
 
     kind = "surface"
 
@@ -111,28 +116,8 @@ def _columns(gx: np.ndarray, gy: np.ndarray) -> np.ndarray:
     return np.stack([gx, gy]).T
 
 
-def _contact_weight(area: np.ndarray, zc: np.ndarray, rest_level: float | None) -> np.ndarray:
-    if rest_level is None:
-        return area
-    return area * np.maximum(zc - rest_level, 0.0)
-
-
-def rest_level_for_bearing(zc: np.ndarray, area: np.ndarray, fraction: float) -> float:
-    """Rest level z0 such that the facets whose centroids lie above z0 hold ``fraction`` of
-    the projected area (0 < fraction <= 1): z0 halfway between the lowest facet taken and
-    the highest one left out (1: just below the lowest facet)."""
-    fraction = check_range("bearing_fraction", fraction, 0.0, 1.0, low_open=True)
-    order = np.argsort(zc, kind="stable")[::-1]
-    z = zc[order]
-    cum = np.cumsum(area[order])
-    k = min(int(np.searchsorted(cum, fraction * cum[-1] * (1 - 1e-12))), z.size - 1)
-    if k + 1 < z.size:
-        return float(0.5 * (z[k] + z[k + 1]))
-    return float(z[-1] - 1e-9 * max(z[0] - z[-1], abs(z[-1]), 1e-300))
-
-
 def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
-            **extra) -> FacetSurface:
+            max_slope=None, pixels=None, **extra) -> FacetSurface:
     if rest_level is not None and bearing_fraction is not None:
         raise InputError("give rest_level or bearing_fraction, not both")
     if gx.size == 0:
@@ -147,22 +132,32 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
         else:
             gx, gy = gx - a, gy - b
         if zc is not None:                # zc is our own array: sheared in place
-            t = a * xy[0]
-            t += b * xy[1]
-            zc -= t
-            del t, xy
+            grid.shear(zc, a, b, xy[0], xy[1])
+            del xy
         info["removed_slope"] = [a, b]
+    steep = Q.steep_facets(gx, gy, max_slope)
     if bearing_fraction is not None:
-        rest_level = rest_level_for_bearing(zc, area, bearing_fraction)
+        rest_level = grid.rest_level_for_bearing(zc if steep is None else zc[~steep],
+                                            area if steep is None else area[~steep],
+                                            bearing_fraction)
         info["bearing_fraction"] = float(bearing_fraction)
     if rest_level is not None:
         rest_level = float(rest_level)
         if not math.isfinite(rest_level):
             raise InputError(f"rest_level must be a finite height in m, got {rest_level}")
-    w = _contact_weight(area, zc, rest_level)
+    w = grid.contact_weight(area, zc, rest_level)
+    mu_max = float(mu) if np.isscalar(mu) else float(mu.max())
+    stats = Q.SlopeStats(Q.locking_limit_deg(mu_max))
+    Q.add_slopes(stats, gx, gy, w, steep)
     loaded = w > 0
+    if steep is not None:
+        loaded &= ~steep
+        if not loaded.any() and steep.all():
+            raise InputError(f"max_slope {max_slope:g} deg drops every facet of "
+                             f"{info.get('source')} (the gentlest is steeper)")
     info["rest_level_m"] = rest_level
-    info["n_unloaded"] = int(gx.size - np.count_nonzero(loaded))
+    info["n_unloaded"] = int(gx.size - np.count_nonzero(loaded)
+                             - (0 if steep is None else np.count_nonzero(steep)))
     if not loaded.any():
         raise InputError(f"rest_level {rest_level:g} m lies above the highest facet "
                          f"({float(zc.max()):g} m): nothing is in contact")
@@ -174,8 +169,11 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
         g = np.empty((2, gx.size))
         g[0], g[1] = gx, gy
         gx, gy = g[0], g[1]
+    quality = Q.quality_stats(pixels=pixels, undefined=info.get("n_undefined", 0),
+                              despike=None, spikes=0, max_slope=max_slope, mu_max=mu_max,
+                              stats=stats)
     return FacetSurface(gx=gx, gy=gy, mu=mu, weight=np.ascontiguousarray(w), info=info,
-                        **extra)
+                        quality=quality, **extra)
 
 
 def _rows_of_one(gx: np.ndarray, gy: np.ndarray) -> bool:
@@ -216,19 +214,22 @@ def _check_options(rest_level, bearing_fraction, level_slope, info):
 
 
 def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
-                     bearing_fraction=None, level_slope=False, info=None) -> FacetSurface:
+                     bearing_fraction=None, level_slope=False, info=None,
+                     max_slope=None) -> FacetSurface:
     """Facets of a :class:`~asperity.surface.topography.HeightMap` (two triangles per cell).
 
     friction_map: (nx, ny) local friction per pixel; a facet takes the mean of its
     three corners.  level_slope: remove the area-weighted mean gradient (the surface
     is sheared so that its facets' mean slope is zero; for a periodic texture over whole
-    periods this changes nothing, unlike a least-squares plane).  The facet arrays are
-    built in place (about :data:`FACET_BYTES_PER_PIXEL` bytes per pixel with the
-    homogenisation); a map that does not fit in memory is refused first.
+    periods this changes nothing, unlike a least-squares plane).  max_slope (deg): drop
+    the facets steeper than that (after the slope removal), counted in ``quality``.  The
+    facet arrays are built in place (about :data:`FACET_BYTES_PER_PIXEL` bytes per pixel
+    with the homogenisation); a map that does not fit in memory is refused first.
     """
     check_instance("surface", hm, HeightMap, "HeightMap")
     rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, level_slope,
                                                   info)
+    max_slope = Q.check_max_slope(max_slope)
     z = hm.heights
     if z.shape[0] < 2 or z.shape[1] < 2:
         raise InputError(f"{hm.source}: a height map needs at least 2 x 2 pixels, got {z.shape}")
@@ -240,25 +241,15 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     dx, dy = float(hm.dx), float(hm.dy)
     nxm, nym = z.shape[0] - 1, z.shape[1] - 1
     nc = nxm * nym
-    z00, z10, z01, z11 = z[:-1, :-1], z[1:, :-1], z[:-1, 1:], z[1:, 1:]
     # lower triangle (i,j) (i+1,j) (i,j+1); upper triangle (i+1,j+1) (i,j+1) (i+1,j)
     g = np.empty((2, 2 * nc))
-    with np.errstate(invalid="ignore"):
-        for row, d, pairs in ((0, dx, ((z10, z00), (z11, z01))), (1, dy, ((z01, z00), (z11, z10)))):
-            for half, (p, q) in enumerate(pairs):
-                out = g[row, half * nc:(half + 1) * nc].reshape(nxm, nym)
-                np.subtract(p, q, out=out)
-                out /= d
-        ok = np.isfinite(g[0])
-        ok &= np.isfinite(g[1])
+    grid.cell_gradients(z, dx, dy, g)
+    ok = np.isfinite(g[0])
+    ok &= np.isfinite(g[1])
     zc = None
     if need_z:
         zc = np.empty(2 * nc)
-        for half, (p, q, r) in enumerate(((z00, z10, z01), (z11, z01, z10))):
-            out = zc[half * nc:(half + 1) * nc].reshape(nxm, nym)
-            np.add(p, q, out=out)
-            out += r
-            out /= 3.0
+        grid.centroid_heights(z, zc)
     n_ok = int(np.count_nonzero(ok))
     every = n_ok == ok.size
 
@@ -274,8 +265,7 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     def per_vertex(m):
         if m.shape != z.shape:
             raise InputError(f"friction map has shape {m.shape}, the height map {z.shape}")
-        a, b, c, d = m[:-1, :-1], m[1:, :-1], m[:-1, 1:], m[1:, 1:]
-        return keep(np.concatenate([((a + b + c) / 3).ravel(), ((d + c + b) / 3).ravel()]))
+        return keep(grid.facet_mu(m))
 
     fmu = _facet_mu(mu, friction_map, per_vertex)
     g = keep(g)
@@ -288,31 +278,27 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
                 mu=None if not np.isscalar(fmu) else float(fmu))
     xy = None
     if level_slope and need_z:            # facet centroids, to shear the heights
-        xy = []
-        for d, n_along, along in ((dx, nxm, 0), (dy, nym, 1)):
-            c = np.empty(2 * nc)
-            for half, third in enumerate((1 / 3, 2 / 3)):
-                k = (np.arange(n_along) + third) * d
-                c[half * nc:(half + 1) * nc].reshape(nxm, nym)[...] = \
-                    k[:, None] if along == 0 else k[None, :]
-            xy.append(keep(c))
-            del c
+        xy = [keep(grid.centroid_coordinate(nxm, nym, d, along, 0))
+              for d, along in ((dx, 0), (dy, 1))]
     del ok
     area = np.full(n_ok, 0.5 * dx * dy)
     return _finish(g[0], g[1], fmu, area, zc, xy, level_slope, rest_level,
-                   bearing_fraction, info,
+                   bearing_fraction, info, max_slope=max_slope, pixels=z.size,
                    preview=height_preview(z), extent=(dx * z.shape[0], dy * z.shape[1]))
 
 
 def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
-                bearing_fraction=None, level_slope=False, info=None) -> FacetSurface:
+                bearing_fraction=None, level_slope=False, info=None,
+                max_slope=None) -> FacetSurface:
     """Facets of a :class:`~asperity.surface.topography.TriangleMesh`.
 
-    friction_map: one local friction value per triangle of ``mesh.faces``.
+    friction_map: one local friction value per triangle of ``mesh.faces``; max_slope as
+    for :func:`heightmap_facets`.
     """
     check_instance("surface", mesh, TriangleMesh, "TriangleMesh")
     rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, level_slope,
                                                   info)
+    max_slope = Q.check_max_slope(max_slope)
     v = np.asarray(mesh.vertices, dtype=float)
     f = np.asarray(mesh.faces, dtype=np.int64)
     p0, p1, p2 = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
@@ -346,7 +332,7 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
     xy = ((p0[facing, 0] + p1[facing, 0] + p2[facing, 0]) / 3.0,
           (p0[facing, 1] + p1[facing, 1] + p2[facing, 1]) / 3.0)
     return _finish(gx, gy, fmu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
-                   preview=mesh_preview(p0, p1, p2, lo, hi),
+                   max_slope=max_slope, preview=mesh_preview(p0, p1, p2, lo, hi),
                    extent=(float(hi[0] - lo[0]), float(hi[1] - lo[1])))
 
 
@@ -359,27 +345,37 @@ def surface_facets(surface, **kwargs) -> FacetSurface:
 
 
 def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="slope",
-                 mu=None, friction_map=None, rest_level=None,
-                 bearing_fraction=None) -> FacetSurface:
+                 mu=None, friction_map=None, rest_level=None, bearing_fraction=None,
+                 despike=None, despike_window=None, max_slope=None) -> FacetSurface:
     """Read a mesh or height-map file and return its facets.
 
     detrend: one of :data:`DETREND`: "slope" (default) removes the mean facet gradient
     (zero mean slope, exact for periodic textures over whole periods); "mean", "plane",
     "poly2", "poly3" subtract a least-squares polynomial of that degree (form removal)
-    before triangulation; "none" keeps the heights as read.  friction_map: a file (read by :func:`asperity.surface.friction_map.read_friction_map`)
-    or an array.  rest_level (m, from the detrended mean plane) or bearing_fraction
-    (share of the projected area in contact) select the spring rest level; neither:
-    uniform preload.
+    before triangulation; "none" keeps the heights as read.  friction_map: a file (read by
+    :func:`asperity.surface.friction_map.read_friction_map`) or an array.  rest_level (m,
+    from the detrended mean plane) or bearing_fraction (share of the projected area in
+    contact) select the spring rest level; neither: uniform preload.  despike (threshold,
+    with despike_window) marks spikes undefined before the form is removed, max_slope
+    (deg) drops steeper facets (:mod:`asperity.surface.quality`; figures in ``quality``).
     """
     from .friction_map import read_friction_map
+    from .quality import remove_spikes
     from .readers import read_surface
     check_choice("detrend", detrend, tuple(DETREND))
     rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, False, None)
+    despike = Q.check_despike(despike, despike_window)
+    max_slope = Q.check_max_slope(max_slope)
     if mu is not None:
         check_mu("mu", mu, MAX_MU)
     s = read_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale,
                      point_bytes=facet_bytes(rest_level is not None
                                              or bearing_fraction is not None))
+    spikes = 0
+    if despike is not None:
+        if not isinstance(s, HeightMap):
+            raise InputError(f"despike applies to height maps, not to the mesh {s.source}")
+        spikes = remove_spikes(s.heights, despike)
     if DETREND[detrend] not in (None, "slope"):
         from .detrend import detrend as _detrend
         s = _detrend(s, DETREND[detrend])
@@ -390,6 +386,9 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
         fm = read_friction_map(friction_map, s)
     if fm is not None:
         fm = check_friction_map(fm)
-    return surface_facets(s, mu=mu, friction_map=fm, rest_level=rest_level,
-                          bearing_fraction=bearing_fraction, level_slope=detrend == "slope",
-                          info=info)
+    out = surface_facets(s, mu=mu, friction_map=fm, rest_level=rest_level,
+                         bearing_fraction=bearing_fraction, level_slope=detrend == "slope",
+                         info=info, max_slope=max_slope)
+    out.quality.update(spike_filter=None if despike is None else
+                       {"threshold": despike[0], "window": despike[1]}, spikes_removed=spikes)
+    return out
