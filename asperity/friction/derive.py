@@ -190,8 +190,12 @@ def to_json(d: Derivation) -> dict:
         "directions": dirs,
     }
     if getattr(d.texture, "kind", "") == "surface":
+        from .quality import data_quality
         out["n_facets"] = d.texture.n_facets
         out["n_undefined"] = d.texture.n_undefined
+        out["data_quality"] = data_quality(d)
+        if getattr(d.texture, "tiling", None):
+            out["tiling"] = d.texture.tiling
     if d.springs is not None:
         out["springs"] = d.springs
     return out
@@ -239,11 +243,17 @@ def format_text(d: Derivation) -> str:
                      "the tips cannot climb, friction is unbounded there")
         lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g} % "
                      "of the load")
+        if surface:
+            from .quality import locking_advice
+            lines += locking_advice(d)
     else:
         lines.append("self-locking: none")
     if d.reservoir.set_valued.any():
         lines.append("set-valued (windward, sliding along the ridges) at psi = " + ", ".join(
             f"{x:g}" for x in np.degrees(d.reservoir.psi[d.reservoir.set_valued])) + " deg")
+    if surface:
+        from .quality import quality_lines
+        lines += quality_lines(d)
     if d.springs is not None:
         dev = d.springs["max_relative_deviation_from_closed_form"]
         lines.append(f"spring simulation: max |p_springs - p_closed| / |p_closed| = "
