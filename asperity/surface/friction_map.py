@@ -13,6 +13,21 @@ from .readers.array import load_array
 from .readers.text import parse_text_matrix
 from .topography import HeightMap, Surface
 
+
+class GridShape(tuple):
+    """(nx, ny) of a height map known by its shape only (a scan read in tiles)."""
+
+    source = ""
+
+    @property
+    def nx(self) -> int:
+        return self[0]
+
+    @property
+    def ny(self) -> int:
+        return self[1]
+
+
 #: largest local friction coefficient (as for --mu)
 MAX_MU = 100.0
 
@@ -35,7 +50,7 @@ def read_friction_map(path, surface: Surface) -> np.ndarray:
                          f"({' '.join(text.suffixes)}), optionally .gz; got suffix "
                          f"{suffix or '(none)'!r}")
     data = read_bytes(p, gz)
-    is_map = isinstance(surface, HeightMap)
+    is_map = isinstance(surface, (HeightMap, GridShape))
     if reader.name == "array":
         m = load_array(data, suffix, p)
     else:

@@ -22,6 +22,7 @@ from ...errors import InputError, TextureFileError
 from ...resources import check_memory
 from ..topography import UNIT_HELP, HeightMap, finish_heightmap, pixel_pair, unit_factor
 from ._files import SMALLER_SCAN
+from ._lines import LineSource
 
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _SEPARATORS = re.compile(r"[\s,;]+")
@@ -142,6 +143,13 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
                          height_scale: float, point_bytes: float = 0.0) -> HeightMap:
     m, header, _ = parse_text_matrix(data, name)
     ny, nx = m.shape
+    zfac, dx, dy = text_scales(header, nx, ny, unit, pixel_size, name)
+    return finish_heightmap(m.T * zfac, dx, dy, name.name, height_scale, name)
+
+
+def text_scales(header: dict, nx: int, ny: int, unit, pixel_size, name):
+    """(metres per number in the file, dx, dy) of a text matrix of ``ny`` lines of ``nx``
+    values from its header and the caller's unit and pixel size."""
     # grid counts stated in the header must match the matrix
     for key, n, what in (("w", nx, "columns"), ("h", ny, "rows")):
         if key in header:
@@ -191,4 +199,97 @@ def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
                     if (kw or kh) else "")
             raise InputError(f"{name}: the text matrix states no pixel size{part}; pass "
                              f"pixel_size (in unit, a number or (dx, dy))")
-    return finish_heightmap(m.T * zfac, dx, dy, name.name, height_scale, name)
+    return zfac, dx, dy
+
+
+def open_text_lines(p: Path, unit, pixel_size, height_scale):
+    """A :class:`~._streams.TextLines` of an uncompressed text matrix: the header read and
+    the offset of every matrix line indexed (values are parsed tile by tile); None for a
+    file whose lines do not end in newlines."""
+    header: dict[str, str] = {}
+    offsets, linenos = [], []
+    width = None
+    with open(p, "rb") as fh:
+        head = fh.read(4096)
+        if b"\x00" in head:
+            raise TextureFileError(f"{p}: a text matrix was expected, this is a binary file")
+        if b"\r" in head.replace(b"\r\n", b""):
+            return None                      # old Mac line ends: read whole
+        fh.seek(0)
+        pos = 0
+        for lineno, raw in enumerate(fh, start=1):
+            off, pos = pos, pos + len(raw)
+            if lineno == 1 and raw.startswith(b"\xef\xbb\xbf"):
+                raw = raw[3:]
+                off += 3
+            line = raw.strip()
+            if not line:
+                continue
+            if line[:1] in (b"#", b"%"):
+                if width is None:
+                    _header_entry(_decode(line).lstrip("#%").strip(), header)
+                continue
+            if width is None:
+                text = _decode(line)
+                toks = [t for t in _SEPARATORS.split(text) if t]
+                if not all(_is_number(t) for t in toks):
+                    _header_entry(text, header)
+                    continue
+                width = len(toks)
+            offsets.append(off)
+            linenos.append(lineno)
+    if width is None:
+        raise TextureFileError(f"{p}: no matrix of numbers found (rows of values separated by "
+                               f"blanks, tabs, commas or semicolons)")
+    zfac, dx, dy = text_scales(header, width, len(offsets), unit, pixel_size, p)
+    return TextLines(p, width, np.array(offsets, dtype=np.int64),
+                     np.array(linenos, dtype=np.int64), zfac, dx, dy, height_scale)
+
+
+def parse_lines(fh, count: int, width: int, linenos, name) -> np.ndarray:
+    """(count, width) values of the next ``count`` matrix lines of ``fh`` (blank and '#'
+    lines skipped), with the whole-file reader's messages."""
+    rows = np.empty((count, width))
+    k = 0
+    while k < count:
+        raw = fh.readline()
+        if not raw:
+            raise TextureFileError(f"{name}: the file ended early (changed while read?)")
+        line = raw.decode("latin-1").strip()
+        if not line or line[0] in "#%":
+            continue
+        toks = [t for t in _SEPARATORS.split(line) if t]
+        if len(toks) != width:
+            raise TextureFileError(f"{name}: line {linenos[k]} has {len(toks)} values, the "
+                                   f"matrix rows above have {width}")
+        try:
+            rows[k] = np.array(toks, dtype=np.float64)
+        except ValueError:
+            bad = next((t for t in toks if not _is_number(t)), "?")
+            raise TextureFileError(f"{name}: line {linenos[k]}: {bad[:40]!r} in the matrix is "
+                                   f"not a number") from None
+        k += 1
+    if np.isinf(rows).any():
+        raise TextureFileError(f"{name}: the matrix contains infinite values")
+    return rows
+
+
+class TextLines(LineSource):
+    """A text matrix (one line per y), its lines parsed tile by tile."""
+
+    axis = 1
+
+    def __init__(self, path, width, offsets, linenos, zfac, dx, dy, height_scale):
+        super().__init__(path, (width, offsets.size), dx, dy, Path(path).name)
+        self.name = str(path)
+        self.offsets, self.linenos = offsets, linenos
+        self.zfac, self.height_scale = float(zfac), float(height_scale)
+
+    def lines(self, a, b):
+        with open(self.path, "rb") as fh:
+            fh.seek(int(self.offsets[a]))
+            rows = parse_lines(fh, b - a, self.shape[0], self.linenos[a:b], self.name)
+        z = rows.T * self.zfac
+        if self.height_scale != 1.0:
+            z *= self.height_scale
+        return z

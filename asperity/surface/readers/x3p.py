@@ -244,8 +244,9 @@ def _layout(root, name, point_bytes, inline: bool) -> Layout:
         valid = _text(_child(link, "ValidPointsLink")) or None
     layout = Layout(nx, ny, axes, member, valid)
     xy = sum(8 for a in axes[:2] if a.absolute)
-    check_grid(nx, ny, name, READ_BYTES_PER_POINT + layout.record.itemsize + 3 * xy + 2 +
-               float(point_bytes))
+    if point_bytes is not None or inline:      # None: streamed in tiles, never held whole
+        check_grid(nx, ny, name, READ_BYTES_PER_POINT + layout.record.itemsize + 3 * xy + 2 +
+                   float(point_bytes or 0.0))
     return layout
 
 
