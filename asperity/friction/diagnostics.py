@@ -123,6 +123,17 @@ def dT_dpsi_from(rp: Reservoir, rm: Reservoir, h: float = DERIVATIVE_STEP
 MAX_SHARE_DIRECTIONS = 64
 
 
+def share_directions(res: Reservoir) -> tuple[np.ndarray, np.ndarray]:
+    """(shares: zeros, NaN on the self-locking directions left out; the indices of the
+    self-locking directions on which :func:`locking_share` is evaluated)."""
+    out = np.zeros(res.psi.shape)
+    k = np.flatnonzero(res.locked)
+    if k.size > MAX_SHARE_DIRECTIONS:
+        out[k] = np.nan
+        k = k[np.linspace(0, k.size - 1, MAX_SHARE_DIRECTIONS).round().astype(int)]
+    return out, k
+
+
 def locking_share(faces, res: Reservoir) -> np.ndarray:
     """For each direction of ``res``: the share of the load (weight) carried by faces that
     cannot be climbed (0 where the direction does not self-lock).  Tells whether a
@@ -131,13 +142,9 @@ def locking_share(faces, res: Reservoir) -> np.ndarray:
     spread (NaN on the others)."""
     from ._facet_kernels import locked_weight
     from .reservoir import LEVEL_SLOPE_TOL, LOCK_TOL
-    out = np.zeros(res.psi.shape)
-    k = np.flatnonzero(res.locked)
+    out, k = share_directions(res)
     if k.size == 0:
         return out
-    if k.size > MAX_SHARE_DIRECTIONS:
-        out[k] = np.nan
-        k = k[np.linspace(0, k.size - 1, MAX_SHARE_DIRECTIONS).round().astype(int)]
     g = faces.gradient
     mu = np.asarray(faces.mu, dtype=float)
     uniform = mu.strides == (0,)

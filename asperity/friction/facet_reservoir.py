@@ -211,17 +211,19 @@ def _plan(n: int, m: int, nthreads: int):
             np.zeros(k, np.int64), np.full(k, m, np.int64))
 
 
-def _numba_pass(fac: _Facets, cs, ss, mode: int, tick=None):
+def _numba_pass(fac: _Facets, cs, ss, mode: int, tick=None, workers=None):
     """Sums of one batch of directions, in kernel calls of about :data:`PIECE_WORK`
     facet-directions.  Every worker advances through its facets by whole cache chunks,
     all workers in step, so the chunks and the order in which they are added are those of
     a single call: the result is the same bit for bit, and Ctrl-C (raised by Python
-    between two calls) stops the pass within a fraction of a second."""
+    between two calls) stops the pass within a fraction of a second.  ``workers``: the
+    number of accumulators (default: one per thread; a fixed number makes the sums
+    independent of the threads that run them)."""
     from numba import get_num_threads
 
     from ._facet_kernels import N_ACC, facet_sweep
     m = cs.shape[0]
-    f0, f1, d0, d1 = _plan(fac.n, m, get_num_threads())
+    f0, f1, d0, d1 = _plan(fac.n, m, get_num_threads() if workers is None else workers)
     k = f0.shape[0]
     acc = np.zeros((k, m, N_ACC))
     first = np.full((k, m), -1, dtype=np.int64)

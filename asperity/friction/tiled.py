@@ -1,0 +1,188 @@
+"""Directional friction of a height-map scan of any size, in tiles of bounded memory.
+
+:func:`derive_scan` gives the :class:`~asperity.friction.derive.Derivation` of
+``derive(load_surface(path, ...))`` without ever holding all the facets: the map is read
+tile by tile (:mod:`asperity.surface.tiles`) in passes over the tiles
+(:mod:`.tile_tasks`), each reduced here in tile order:
+
+1. ``prep``: spikes, undefined pixels, the height range, the least-squares form (normal
+   equations summed over the tiles), the mean facet slope, the friction map's largest value;
+2. with a bearing fraction, the centroid heights' range, histograms and the few values
+   around the rest level (exact: the same order statistics as the whole map);
+3. ``sweep``: the reservoir sums of every direction, psi +- h for dT/dpsi included, and
+   the facets' figures (counts, slopes, preview);
+4. ``sweep`` again for what the first sweep decides: the axis directions of the principal
+   direction, the load share of the self-locking directions, the other contact regime
+   (figures), the windward fallback on level facets.
+
+The self-locking facet named for a direction is the first in the whole map's facet order
+(its index is rebuilt from the tiles' counts per cell row).  Results agree with the
+in-memory path to rounding (sums taken in another order), and are the same wherever the
+tiles run: in this process or as tasks on a Dask cluster (``client``), whose workers read
+their tiles from the file themselves.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import InputError, check_choice, check_int, check_mu
+from ..progress import report
+from .tile_tasks import run_tiles
+
+#: height maps with more pixels than this are derived in tiles when the format streams
+AUTO_TILE_PIXELS = 1 << 22
+#: memory a tile's work may take (bytes), and what it takes per pixel (measured, margin)
+TILE_BYTES = 256 << 20
+TILE_BYTES_PER_PIXEL = 200
+#: facet-directions of a tiled derivation at most (about 2 hours on 2 cores)
+MAX_SCAN_WORK = 2e13
+#: Dask tasks per worker (each a run of consecutive tiles)
+TASKS_PER_WORKER = 4
+#: bins of a histogram pass and values collected, when placing a bearing fraction's level
+BEARING_BINS = 1 << 16
+BEARING_COLLECT = 1 << 22
+
+
+def default_tile_lines(src) -> int:
+    """Lines per tile so that a tile's work takes about :data:`TILE_BYTES`."""
+    per_line = src.shape[1 - src.axis] * TILE_BYTES_PER_PIXEL
+    return int(max(1, min(src.n_lines, TILE_BYTES // max(1, per_line))))
+
+
+class _Runner:
+    """Runs a pass over every tile, in this process or on a Dask client."""
+
+    def __init__(self, plan, client):
+        self.client = client
+        self.n = plan.n_tiles
+        self.passes = 0
+        if client is not None:
+            nw = max(1, len(client.scheduler_info(n_workers=-1)["workers"]))
+            k = min(self.n, TASKS_PER_WORKER * nw)
+            edges = np.linspace(0, self.n, k + 1).round().astype(int)
+            self.groups = [list(range(a, b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+
+    def map(self, kind, plan, args=(), label="tiles") -> list:
+        self.passes += 1
+        label = f"pass {self.passes}: {label}"
+        report(0.0, label)
+        if self.client is None:
+            out = []
+            for t in range(self.n):
+                out += run_tiles(kind, plan, [t], args,
+                                 tick=lambda f, t=t: report((t + f) / self.n, label))
+            return out
+        return self._dask(kind, plan, args, label)
+
+    def _dask(self, kind, plan, args, label) -> list:
+        from distributed import as_completed
+        c = self.client
+        pf = c.scatter(plan, broadcast=True, hash=False)
+        futs = [c.submit(run_tiles, kind, pf, g, args, pure=False) for g in self.groups]
+        where = {f.key: i for i, f in enumerate(futs)}
+        parts = [None] * len(futs)
+        try:
+            for done, fut in enumerate(as_completed(futs), start=1):
+                try:
+                    parts[where[fut.key]] = fut.result()
+                except (ImportError, AttributeError) as exc:
+                    raise InputError(f"the Dask workers cannot run asperity ({type(exc).__name__}"
+                                     f": {exc}); install the same asperity on every worker") \
+                        from None
+                report(done / len(futs), label)
+        finally:
+            for f in futs:
+                f.cancel()
+        return [r for p in parts for r in p]
+
+
+def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="slope",
+                mu=None, friction_map=None, rest_level=None, bearing_fraction=None,
+                despike=None, despike_window=None, max_slope=None, contact="all-faces",
+                n_directions=72, tile_lines=None, client=None, other_contact=None,
+                source=None):
+    """The :class:`~asperity.friction.derive.Derivation` of a height-map file derived in
+    tiles of ``tile_lines`` file lines (default: about :data:`TILE_BYTES` of work each),
+    with the options of :func:`~asperity.surface.facets.load_surface` and
+    :func:`~asperity.friction.derive.derive`.  ``client``: a dask.distributed Client whose
+    workers run the tiles (reading the file themselves: a path they can open);
+    ``other_contact``: also the reservoir of that regime (``d.texture.other``);
+    ``source``: the file already opened by :func:`asperity.surface.tiles.open_scan`."""
+    from ..surface import quality as Q
+    from ..surface.facets import DEFAULT_MU, DETREND, _check_options
+    from ..surface.friction_map import MAX_MU
+    from ..surface.tiles import TilePlan, open_friction_map, open_scan
+    from .reservoir import check_contact
+    check_choice("detrend", detrend, tuple(DETREND))
+    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, False, None)
+    despike = Q.check_despike(despike, despike_window)
+    max_slope = Q.check_max_slope(max_slope)
+    check_contact(contact)
+    if other_contact is not None:
+        check_contact(other_contact)
+    n = check_int("directions", n_directions, 8, 100_000)
+    if mu is not None and friction_map is not None:
+        raise InputError("give mu or a friction map, not both")
+    if friction_map is None:
+        mu = check_mu("mu", DEFAULT_MU if mu is None else mu, MAX_MU)
+    src = source or open_scan(path, unit=unit, pixel_size=pixel_size,
+                              height_scale=height_scale)
+    if min(src.shape) < 2:
+        raise InputError(f"{src.source}: a height map needs at least 2 x 2 pixels, got "
+                         f"{src.shape}")
+    from ..resources import check_work
+    nx, ny = src.shape
+    check_work(2.0 * (nx - 1) * (ny - 1) * 3 * n, MAX_SCAN_WORK,
+               f"{src.source}: a {nx} x {ny} grid x {n} directions (facet-directions)",
+               "lower --directions or crop the scan")
+    lines = default_tile_lines(src) if tile_lines is None else \
+        check_int("tile_lines", tile_lines, 1, 10 ** 9)
+    lines = min(lines, src.n_lines)
+    if client is not None and not src.streams:
+        raise InputError(f"{src.source}: this file is read whole (gzip, .npz, instrument "
+                         f"formats); tiles on Dask workers need .npy, .x3p or a text matrix")
+    _check_tile_memory(src, lines)
+    plan = TilePlan(heights=src, tile_lines=lines, despike=despike, mu=mu,
+                    mu_map=None if friction_map is None else open_friction_map(friction_map,
+                                                                               src),
+                    max_slope=max_slope)
+    run = _Runner(plan, client)
+    from .tile_reduce import assemble, bearing_level, prepare
+    plan, info, prep = prepare(run, plan, path, detrend, friction_map, height_scale)
+    if bearing_fraction is not None:
+        plan = plan.with_(rest_level=bearing_level(run, plan, bearing_fraction))
+        info["bearing_fraction"] = float(bearing_fraction)
+    elif rest_level is not None:
+        plan = plan.with_(rest_level=float(rest_level), need_z=True)
+    return assemble(run, plan, info, prep, contact, n, other_contact, client)
+
+
+def _check_tile_memory(src, lines) -> None:
+    from ..resources import check_memory
+    check_memory(lines * src.shape[1 - src.axis] * TILE_BYTES_PER_PIXEL,
+                 f"a tile of {lines} lines of {src.source}", "lower --tile-rows")
+
+
+def tiles_wanted(path, *, unit=None, pixel_size=None, height_scale=1.0, tile_lines=None,
+                 distributed=False):
+    """The scan opened as lines when it should be derived in tiles, else None:
+    ``tile_lines`` 0 never, >= 1 always (so does ``distributed``), None when the format
+    streams and the map has more than :data:`AUTO_TILE_PIXELS` pixels.  Meshes: None."""
+    from ..surface.readers import reader_for
+    from ..surface.tiles import open_scan
+    if tile_lines == 0 and not distributed:
+        return None
+    if reader_for(path)[0].name == "mesh":
+        if tile_lines or distributed:
+            raise InputError(f"{path}: a mesh is derived whole; tiles and workers are for "
+                             f"height maps")
+        return None
+    if tile_lines is None and not distributed:
+        from ..surface.readers._streams import open_lines
+        src = open_lines(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
+        if src is None or math.prod(src.shape) <= AUTO_TILE_PIXELS:
+            return None
+        return src
+    return open_scan(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
