@@ -410,7 +410,10 @@ def _claims(tmp_path, **kw) -> Path:
 
 def _resource_cases(tmp_path) -> dict:
     """name -> (argv of asperity, words of the refusal)."""
-    cases = {"x3p binary claim": (["derive", _claims(tmp_path)], "65536 x 65536 grid")}
+    # held in memory (--tile-rows 0): refused from the header; in tiles the missing data is
+    # what gets it refused (tests/test_scan_tiles.py)
+    cases = {"x3p binary claim": (["derive", _claims(tmp_path), "--tile-rows", "0"],
+                                  "65536 x 65536 grid")}
     q = tmp_path / "inline.x3p"
     q.write_bytes(x3p_bytes(ZX, members={"main.xml": main_xml(
         nx=_HUGE, ny=_HUGE, data="<Datum>1</Datum>" * 10)}))
@@ -460,7 +463,7 @@ def test_memory_bound_of_a_claimed_grid_under_a_2_gb_limit(tmp_path):
     """The claimed grid is refused by the estimate, not by running out of memory."""
     p = tmp_path / "claim.x3p"
     p.write_bytes(x3p_bytes(ZX, members={"main.xml": main_xml(nx=8192, ny=8192)}))
-    assert_refused(cli("derive", p, preexec_fn=limit_memory(2 << 30)),
+    assert_refused(cli("derive", p, "--tile-rows", "0", preexec_fn=limit_memory(2 << 30)),
                    contains=["8192 x 8192 grid", "GB of memory", "crop or resample"])
     assert_refused(cli("bench", "--only", "facets", "--facets", "8192",
                        preexec_fn=limit_memory(2 << 30)),
@@ -470,12 +473,14 @@ def test_memory_bound_of_a_claimed_grid_under_a_2_gb_limit(tmp_path):
 @pytest.mark.slow
 def test_zipped_zeros_claiming_16384_squared_float64(tmp_path):
     """The issue's case: a 2 MB x3p whose member expands to 2 GiB of float64 zeros.  Read
-    for derive: refused at once from the header; read alone under a 2 GB address-space
+    for derive in memory (--tile-rows 0): refused at once from the header (in tiles it is
+    a flat scan like any other, read in bounded memory); read alone under a 2 GB address-space
     limit: refused by the estimate, well before the limit."""
     p = tmp_path / "bomb.x3p"
     zeros_member(p, "bindata/data.bin", 16384 * 16384 * 8, main_xml(nx=16384, ny=16384))
     assert p.stat().st_size < 4 << 20
-    assert_refused(cli("derive", p, timeout=60), contains="16384 x 16384 grid")
+    assert_refused(cli("derive", p, "--tile-rows", "0", timeout=60),
+                   contains="16384 x 16384 grid")
     code = ("import sys\nfrom asperity.surface.readers import read_surface\n"
             "try:\n    read_surface(sys.argv[1])\nexcept Exception as e:\n"
             "    print(type(e).__name__, e)\n")

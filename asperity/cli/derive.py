@@ -5,7 +5,13 @@ import argparse
 
 from ..progress import progress_bar
 from . import emit
-from .sources import add_source_arguments, spring_model_from_args, texture_from_args
+from .sources import (
+    add_source_arguments,
+    flag_names,
+    spring_model_from_args,
+    surface_options,
+    texture_from_args,
+)
 
 
 def add_parser(sub) -> None:
@@ -34,6 +40,24 @@ def add_parser(sub) -> None:
     s.add_argument("--density", type=float, metavar="PER_M2", help="springs per m^2")
     s.add_argument("--n-springs", type=int, metavar="N", help="springs per texture period")
     s.add_argument("--steps-per-period", type=int, metavar="N", help="quasi-static steps per period of travel")
+    t = p.add_argument_group(
+        "scans in tiles (height maps of any size in bounded memory)",
+        "A height map read in lines (.npy, .x3p with binary points, an uncompressed text "
+        "matrix) of more than 4194304 pixels (2048 x 2048) is derived in tiles "
+        "automatically: read a few hundred MB at a time, in several passes, with the same "
+        "result as in memory (to rounding). Other height maps are read whole, then tiled "
+        "when --tile-rows is given.")
+    t.add_argument("--tile-rows", metavar="N", default=None,
+                   help="file lines per tile (1 to 1e9); 0: never tile (the whole map in "
+                        "memory); default: automatic, about 256 MB of work per tile")
+    where = t.add_mutually_exclusive_group()
+    where.add_argument("--workers", metavar="N", default=None,
+                       help="run the tiles on a local Dask cluster of N worker processes "
+                            "(1 to 4096; 0: in this process, the default)")
+    where.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                       help="run the tiles on an existing Dask cluster (scheduler address "
+                            "tcp://HOST:PORT or scheduler file); the workers read the tiles "
+                            "from the file's path")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
                                                       "(surfaces: and a height-map preview)")
@@ -44,6 +68,10 @@ def add_parser(sub) -> None:
 def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json."""
     from ..friction.derive import derive, to_json
+    scan = _scan(args)
+    if scan is not None:
+        d = _derive_tiles(args, *scan)
+        return d, to_json(d)
     texture, table = texture_from_args(args)
     model = spring_model_from_args(args, table) if args.method == "springs" else None
     with progress_bar("facets") as progress:
@@ -51,13 +79,72 @@ def run(args) -> dict:
     return d, to_json(d)
 
 
+def _whole(flag, text, low, high):
+    from ..errors import check_int, number_from_text
+    return None if text is None else check_int(flag, number_from_text(flag, text), low, high)
+
+
+def _scan(args):
+    """(lines of the height map, tile lines, workers) when it is derived in tiles, else None."""
+    from ..errors import InputError
+    from ..friction.sources import is_texture_file
+    rows = _whole("--tile-rows", args.tile_rows, 0, 10 ** 9)
+    workers = _whole("--workers", args.workers, 0, 4096)
+    distributed = bool(workers) or args.scheduler is not None
+    if args.texture is None or is_texture_file(args.texture):
+        if rows is not None or distributed:
+            flag = "--tile-rows" if rows is not None else \
+                "--workers" if workers else "--scheduler"
+            raise InputError(f"{flag} applies to height-map files, not to wedge textures")
+        return None
+    if args.method != "closed-form":
+        return None                       # refused by derive as for any surface
+    if rows == 0 and distributed:
+        raise InputError("--tile-rows 0 keeps the map in memory; --workers and --scheduler "
+                         "run tiles")
+    from ..friction.tiled import tiles_wanted
+    opts = surface_options(args)
+    with flag_names():
+        src = tiles_wanted(args.texture, unit=opts["unit"], pixel_size=opts["pixel_size"],
+                           height_scale=opts["height_scale"], tile_lines=rows,
+                           distributed=distributed)
+    if src is None:
+        return None
+    return src, (rows or None), workers
+
+
+def _derive_tiles(args, src, rows, workers):
+    """derive_scan with the command's flags: in this process, or on a Dask cluster."""
+    from ..friction.tiled import derive_scan
+    opts = surface_options(args)
+    other = ("windward" if args.contact == "all-faces" else "all-faces") if args.plot else None
+
+    def go(client):
+        with flag_names():
+            return derive_scan(args.texture, **opts, contact=args.contact,
+                               n_directions=args.directions, tile_lines=rows, client=client,
+                               other_contact=other, source=src)
+    if not workers and args.scheduler is None:
+        d = go(None)
+        d.texture.tiling.update(where="in-process", workers=0)
+        return d
+    from ..study.engine import cluster
+    with cluster(args.scheduler, workers or None) as (client, where, nw):
+        d = go(client)
+    d.texture.tiling.update(where=where, workers=nw)
+    return d
+
+
 def main(args) -> int:
     from ..friction.derive import format_text
     d, obj = run(args)
     if args.plot:
-        from ..friction.faces import compute_reservoir
         from ..friction.plot import plot_derivation
         other = "windward" if d.contact == "all-faces" else "all-faces"
-        plot_derivation(d, args.plot, other=compute_reservoir(d.texture, d.reservoir.psi, other))
+        scan_other = getattr(d.texture, "other", {}).get(other)
+        if scan_other is None:
+            from ..friction.faces import compute_reservoir
+            scan_other = compute_reservoir(d.texture, d.reservoir.psi, other)
+        plot_derivation(d, args.plot, other=scan_other)
     emit(args, obj, format_text(d))
     return 0

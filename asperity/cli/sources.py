@@ -16,32 +16,51 @@ WEDGE_FLAGS = {"alpha": "alpha_deg", "beta": "beta_deg", "mu_alpha": "mu_alpha",
                "mu_beta": "mu_beta", "height": "height"}
 
 
-SURFACE_FLAGS = ("mu", "friction_map", "unit", "pixel_size", "rest_level", "bearing_fraction")
+SURFACE_FLAGS = ("mu", "friction_map", "unit", "pixel_size", "rest_level", "bearing_fraction",
+                 "max_slope", "despike", "despike_window")
 #: library field names in messages -> the command-line flag
 _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "bearing_fraction": "--bearing-fraction",
-                "mu ": "--mu ", "unit ": "--unit ", "detrend ": "--detrend "}
+                "mu ": "--mu ", "unit ": "--unit ", "detrend ": "--detrend ",
+                "max_slope": "--max-slope", "despike_window": "--despike-window",
+                "despike": "--despike", "tile_lines": "--tile-rows"}
+
+
+def surface_options(args) -> dict:
+    """The surface flags as keyword arguments of load_surface (and derive_scan)."""
+    px = args.pixel_size
+    if px is not None and len(px) not in (1, 2):
+        raise InputError(f"--pixel-size takes one value or two (dx dy), got {len(px)}")
+    if args.despike_window is not None and args.despike is None:
+        raise InputError("--despike-window needs --despike (the spike filter's threshold)")
+    return dict(unit=args.unit, pixel_size=None if px is None else (px[0] if len(px) == 1
+                                                                     else tuple(px)),
+                height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
+                friction_map=args.friction_map, rest_level=args.rest_level,
+                bearing_fraction=args.bearing_fraction, despike=args.despike,
+                despike_window=args.despike_window, max_slope=args.max_slope)
+
+
+class flag_names:
+    """Library field names at the start of an InputError's message -> the user's flags."""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, exc, tb):
+        if kind is not None and issubclass(kind, InputError):
+            msg = str(exc)
+            for field, flag in _FIELD_FLAGS.items():
+                if msg.startswith(field):
+                    raise kind(flag + msg[len(field):]) from None
+        return False
 
 
 def surface_from_args(args, progress=None):
     """FacetSurface from a surface file and the surface flags."""
     from ..surface.facets import load_surface
-    px = args.pixel_size
-    if px is not None and len(px) not in (1, 2):
-        raise InputError(f"--pixel-size takes one value or two (dx dy), got {len(px)}")
-    try:
-        return load_surface(args.texture, unit=args.unit,
-                            pixel_size=None if px is None else (px[0] if len(px) == 1
-                                                                else tuple(px)),
-                            height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
-                            friction_map=args.friction_map, rest_level=args.rest_level,
-                            bearing_fraction=args.bearing_fraction)
-    except InputError as exc:             # the library's field names as the user's flags
-        msg = str(exc)
-        for field, flag in _FIELD_FLAGS.items():
-            if msg.startswith(field):
-                raise type(exc)(flag + msg[len(field):]) from None
-        raise
+    with flag_names():                    # the library's field names as the user's flags
+        return load_surface(args.texture, **surface_options(args))
 
 
 def add_source_arguments(p) -> None:
@@ -72,6 +91,17 @@ def add_source_arguments(p) -> None:
                    "gradient (zero mean slope; exact for periodic textures); mean/plane/poly2/"
                    "poly3 = subtract a least-squares polynomial of that degree from the heights; "
                    "none = as read")
+    f.add_argument("--max-slope", type=float, metavar="DEG",
+                   help="drop the facets steeper than DEG degrees (after form and tilt "
+                        "removal), in (0, 90): slopes the instrument cannot measure; their "
+                        "number and load share are reported (data_quality)")
+    f.add_argument("--despike", type=float, metavar="K",
+                   help="spike filter (height maps): mark undefined the pixels further than K "
+                        "robust standard deviations (1.4826 x MAD) from the median of their "
+                        "neighbourhood (itself left out), K in [2, 1e6], e.g. 8")
+    f.add_argument("--despike-window", type=int, metavar="W",
+                   help="neighbourhood of --despike: W x W pixels, W odd in [3, 15] "
+                        "(default 5)")
     load = f.add_mutually_exclusive_group()
     load.add_argument("--rest-level", type=float, metavar="M",
                       help="spring rest level in m above the detrended mean plane: only points "
