@@ -9,7 +9,8 @@ Profile arrays (one period of the texture, see texture.Profile):
     seg_mu (k,)           local friction of segment j
     seg_loaded (k,) int8  1 if tips on segment j can carry load (contact regime)
 The tip x coordinate is stored unwrapped; segment ``J`` (any integer) is segment
-``J mod k`` shifted by ``(J div k) L``.  Node ``J`` is the left end of segment ``J``.
+``J mod k`` shifted by ``(J div k) L``.  Node ``J`` is the left end of segment ``J``
+(and, to the last bit, the right end of segment ``J - 1``: _tip_kernels.seg_geom).
 """
 from __future__ import annotations
 

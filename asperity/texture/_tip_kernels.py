@@ -1,7 +1,9 @@
 """Numba kernels of one spring tip on a piecewise-linear profile (physics in
 :mod:`asperity.texture.springs`): locating the tip, the return mapping on a face and at a
 corner, and the update of one tip over a step.  Array-in/array-out, no validation; the
-status codes are those of :mod:`asperity.texture._spring_kernels`.
+status codes are those of :mod:`asperity.texture._spring_kernels`.  numba's cache does not
+follow a change of this file into the kernels that inline these functions: change
+_spring_kernels.py (at least its docstring) in the same commit.
 
 Profile arrays (one period of the texture, see texture.Profile):
     xs (k+1,), zs (k+1,)  nodes, xs[0] = 0, xs[k] = L
@@ -59,7 +61,9 @@ def seg_geom(J, xs, zs):
     q = (J - j) // k
     off = q * L
     xl = xs[j] + off
-    xr = xs[j + 1] + off
+    # the last segment's right end is the next period's first node, computed as that
+    # node is (xs[0] = 0): a tip on a node is on both of its segments' ends exactly
+    xr = xs[j + 1] + off if j + 1 < k else (q + 1) * L
     zl = zs[j]
     zr = zs[j + 1]
     g = (zr - zl) / (xs[j + 1] - xs[j])
@@ -248,7 +252,9 @@ def update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_res
                 mode = FREE
                 continue
             if xn > xr:
-                f = (xr - xt) / (xn - xt)
+                # the share of the slip up to the node (a tip already on it: none)
+                f = (xr - xt) / (xn - xt) if xn > xt else 0.0
+                f = min(max(f, 0.0), 1.0)
                 dy_tr = dy_tr + f * (dyn - dy_tr)
                 xt = xr
                 J = J + 1
@@ -256,7 +262,8 @@ def update_tip(mode, J, xt, dy_tr, bx, xs, zs, seg_mu, seg_loaded, kn, kf, z_res
                 came = 1
                 continue
             if xn < xl:
-                f = (xl - xt) / (xn - xt)
+                f = (xl - xt) / (xn - xt) if xn < xt else 0.0
+                f = min(max(f, 0.0), 1.0)
                 dy_tr = dy_tr + f * (dyn - dy_tr)
                 xt = xl
                 mode = NODE

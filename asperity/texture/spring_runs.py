@@ -64,6 +64,16 @@ class Plan:
         return self.springs * self.steps
 
 
+def _faces(st: _Setup):
+    """(g, mu, where): slope and friction of each face of the profile (alpha, beta, flat
+    gap; a Gaussian texture's wedges share them up to rounding, so a face's first segment
+    stands for it) and the face of every segment, for the work done per face."""
+    if st.seg_face.size <= 64:                  # a few segments: each its own face
+        return st.seg_g, st.seg_mu, np.arange(st.seg_face.size)
+    _, first, where = np.unique(st.seg_face, return_index=True, return_inverse=True)
+    return st.seg_g[first], st.seg_mu[first], where.ravel()
+
+
 def plan(st: _Setup, psi, model: SpringModel) -> Plan:
     """The plan of every direction psi (n,) for the texture of ``st`` (any direction's set-up).
 
@@ -89,8 +99,8 @@ def plan(st: _Setup, psi, model: SpringModel) -> Plan:
         ds = np.where(across, W / (m * np.where(across, ac, 1.0)), pitch)
     if model.rigid:
         return Plan(N, m, ds, m.astype(float))
-    g_mu = np.unique(np.column_stack([st.seg_g, st.seg_mu]), axis=0)
-    px, py, lock = _face_points(g_mu[None, :, 0], g_mu[None, :, 1], c[:, None], sn[:, None])
+    g, mu, _ = _faces(st)
+    px, py, lock = _face_points(g[None, :], mu[None, :], c[:, None], sn[:, None])
     pf = np.where(lock, -np.inf, np.hypot(px, py))
     pmax = np.where(lock.all(axis=1), 1.0, pf.max(axis=1))
     z_rest = st.z_rest / st.zref
@@ -110,22 +120,22 @@ def check_resolution(st: _Setup, psi, pl: Plan, model: SpringModel) -> None:
     dx = np.diff(st.xs)
     a, b = st.zs[:-1] - st.z_rest, st.zs[1:] - st.z_rest
     hi, lo = np.maximum(a, b), np.minimum(a, b)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        area = np.where(lo >= 0.0, 0.5 * dx * (a + b),
-                        np.where(hi > 0.0, 0.5 * dx * hi * hi / (hi - lo), 0.0))
-    pairs, where = np.unique(np.column_stack([st.seg_g, st.seg_mu]), axis=0, return_inverse=True)
-    area = np.bincount(where.ravel(), area, pairs.shape[0]) * st.n_pitch / float(st.xs[-1])
+    cut = lo < 0.0                              # the rest level crosses the segment
+    area = 0.5 * dx * np.where(cut, np.maximum(hi, 0.0) ** 2 / np.where(hi > lo, hi - lo, 1.0),
+                               a + b)
+    g, mu, where = _faces(st)
+    area = np.bincount(where, area, g.size) * st.n_pitch / float(st.xs[-1])
     psi = np.asarray(psi, dtype=float)
-    px, py, lock = _face_points(pairs[None, :, 0], pairs[None, :, 1], np.cos(psi)[:, None],
+    px, py, lock = _face_points(g[None, :], mu[None, :], np.cos(psi)[:, None],
                                 np.sin(psi)[:, None])
     p = np.where(lock | (area <= 0.0), 0.0, np.hypot(px, py))
     total = p @ area
     samples = pl.springs * pl.window / st.n_pitch
-    with np.errstate(divide="ignore", invalid="ignore"):
-        share = np.where(total > 0.0, (st.zs.max() - st.z_rest) * p.max(axis=1)
-                         / (samples * total), 0.0)
+    some = total > 0.0                          # else every face locks: nothing to sample
+    share = np.where(some, (st.zs.max() - st.z_rest) * p.max(axis=1)
+                     / (samples * np.where(some, total, 1.0)), 0.0)
     k = int(np.argmax(share))
-    if share[k] <= MAX_SAMPLE_SHARE:
+    if share[k] <= MAX_SAMPLE_SHARE:            # (never NaN: that would be refused)
         return
     need = math.ceil(model.steps_per_period * share[k] / MAX_SAMPLE_SHARE)
     fix = (f"raise steps_per_period (--steps-per-period) to {need} or more" if need <= 1e8
@@ -206,8 +216,12 @@ class _Scaled:
 
 def _scaled(st: _Setup, model: SpringModel) -> _Scaled:
     z_rest = st.z_rest / st.zref
-    return _Scaled(np.ascontiguousarray(st.xs / st.zref), np.ascontiguousarray(st.zs / st.zref),
-                   z_rest, model.k_f / model.k_n, LOCK_FORCE_RATIO * (1.0 - z_rest))
+    xs = np.ascontiguousarray(st.xs / st.zref)
+    if not np.all(xs[1:] > xs[:-1]):
+        raise InputError("texture profile nodes closer than the rounding of their positions "
+                         "(a wedge a billionth of the others' height?)")
+    return _Scaled(xs, np.ascontiguousarray(st.zs / st.zref), z_rest, model.k_f / model.k_n,
+                   LOCK_FORCE_RATIO * (1.0 - z_rest))
 
 
 def _blocks(N: int, n_steps: int, kind: str):
@@ -228,6 +242,8 @@ class _Outcome:
         self.lock_seg = -1      # segment of the first locked spring
 
     def collect(self, status: np.ndarray, lock_seg: np.ndarray) -> None:
+        if not status.any():
+            return
         bad = status[(status != 0) & (status != 1)]
         if bad.size and not self.code:
             self.code = int(bad[0])
