@@ -6,8 +6,15 @@ are imported only when first used.  Public names are resolved lazily.
 from __future__ import annotations
 
 import importlib
+import os
 
 __version__ = "0.1.0"
+
+# numba's OpenMP threads sleep between parallel regions rather than spin: the kernels run in
+# pieces (Ctrl-C, progress), and on a loaded machine a spinning thread takes the core from
+# the main thread, ~8 ms per piece (measured on 2 cores; a scan in tiles has thousands of
+# pieces).  Set before numba loads OpenMP; a value in the environment is kept.
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 _LAZY = {
     "WedgeTexture": "asperity.texture.wedges",
@@ -25,6 +32,7 @@ _LAZY = {
     "read_surface": "asperity.surface.readers",
     "compute_facet_reservoir": "asperity.friction.facet_reservoir",
     "derive": "asperity.friction.derive",
+    "derive_scan": "asperity.friction.tiled",
     "fit_derivation": "asperity.laws.fitting",
     "WalkerLeineLaw": "asperity.laws.walker_leine",
     "TruncatedEllipse": "asperity.laws.sets",

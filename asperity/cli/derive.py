@@ -115,6 +115,7 @@ def _scan(args):
 
 def _derive_tiles(args, src, rows, workers):
     """derive_scan with the command's flags: in this process, or on a Dask cluster."""
+    from ..errors import InputError
     from ..friction.tiled import derive_scan
     opts = surface_options(args)
     other = ("windward" if args.contact == "all-faces" else "all-faces") if args.plot else None
@@ -128,9 +129,16 @@ def _derive_tiles(args, src, rows, workers):
         d = go(None)
         d.texture.tiling.update(where="in-process", workers=0)
         return d
+    if not src.streams:
+        raise InputError(f"{src.source}: this file is read whole (gzip, .npz, instrument "
+                         f"formats); tiles on Dask workers need .npy, .x3p or a text matrix")
+    import warnings
+
     from ..study.engine import cluster
-    with cluster(args.scheduler, workers or None) as (client, where, nw):
-        d = go(client)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")     # e.g. distributed's note on a busy dashboard port
+        with cluster(args.scheduler, workers or None) as (client, where, nw):
+            d = go(client)
     d.texture.tiling.update(where=where, workers=nw)
     return d
 
