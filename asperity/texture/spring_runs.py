@@ -54,6 +54,7 @@ class Plan:
     window: np.ndarray      # (n,) int, m
     ds: np.ndarray          # (n,) float, step along s
     steps: np.ndarray       # (n,) float (may be astronomical before check_cost)
+    face_p: np.ndarray      # (n, faces) |p_f| of each face (_faces), 0 where it locks
 
     def take(self, k: int) -> tuple[int, int, float, int]:
         return (int(self.springs[k]), int(self.window[k]), float(self.ds[k]),
@@ -97,16 +98,16 @@ def plan(st: _Setup, psi, model: SpringModel) -> Plan:
     across = ac * pitch * m > W
     with np.errstate(divide="ignore"):
         ds = np.where(across, W / (m * np.where(across, ac, 1.0)), pitch)
-    if model.rigid:
-        return Plan(N, m, ds, m.astype(float))
     g, mu, _ = _faces(st)
     px, py, lock = _face_points(g[None, :], mu[None, :], c[:, None], sn[:, None])
-    pf = np.where(lock, -np.inf, np.hypot(px, py))
-    pmax = np.where(lock.all(axis=1), 1.0, pf.max(axis=1))
+    face_p = np.where(lock, 0.0, np.hypot(px, py))
+    if model.rigid:
+        return Plan(N, m, ds, m.astype(float), face_p)
+    pmax = np.where(lock.all(axis=1), 1.0, face_p.max(axis=1))
     z_rest = st.z_rest / st.zref
     slip = (1.0 + pmax + float(st.seg_mu.max())) * (1.0 - z_rest) / (model.k_f / model.k_n)
     run_in = RUN_IN_SLIP_LENGTHS * slip + m * ds
-    return Plan(N, m, ds, np.ceil(run_in / ds) + m + 1)
+    return Plan(N, m, ds, np.ceil(run_in / ds) + m + 1, face_p)
 
 
 def check_resolution(st: _Setup, psi, pl: Plan, model: SpringModel) -> None:
@@ -123,12 +124,9 @@ def check_resolution(st: _Setup, psi, pl: Plan, model: SpringModel) -> None:
     cut = lo < 0.0                              # the rest level crosses the segment
     area = 0.5 * dx * np.where(cut, np.maximum(hi, 0.0) ** 2 / np.where(hi > lo, hi - lo, 1.0),
                                a + b)
-    g, mu, where = _faces(st)
-    area = np.bincount(where, area, g.size) * st.n_pitch / float(st.xs[-1])
-    psi = np.asarray(psi, dtype=float)
-    px, py, lock = _face_points(g[None, :], mu[None, :], np.cos(psi)[:, None],
-                                np.sin(psi)[:, None])
-    p = np.where(lock | (area <= 0.0), 0.0, np.hypot(px, py))
+    where = _faces(st)[2]
+    area = np.bincount(where, area, pl.face_p.shape[1]) * st.n_pitch / float(st.xs[-1])
+    p = np.where(area > 0.0, pl.face_p, 0.0)
     total = p @ area
     samples = pl.springs * pl.window / st.n_pitch
     some = total > 0.0                          # else every face locks: nothing to sample

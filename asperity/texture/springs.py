@@ -261,4 +261,4 @@ def simulate_loading_curve(texture, psi: float, model: SpringModel, distance: fl
 def _loading_plan(N: int, n_steps: int):
     from .spring_runs import Plan
     one = np.ones(1)
-    return Plan(np.array([N]), one.astype(int), one, np.array([n_steps + 1.0]))
+    return Plan(np.array([N]), one.astype(int), one, np.array([n_steps + 1.0]), one[:, None])
