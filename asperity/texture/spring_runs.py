@@ -216,18 +216,18 @@ def _scaled(st: _Setup, model: SpringModel) -> _Scaled:
     z_rest = st.z_rest / st.zref
     xs = np.ascontiguousarray(st.xs / st.zref)
     if not np.all(xs[1:] > xs[:-1]):
-        raise InputError("texture profile nodes closer than the rounding of their positions "
-                         "(a wedge a billionth of the others' height?)")
+        raise InputError("texture profile nodes closer together than the rounding of their "
+                         "positions (a wedge far smaller than the tallest one?)")
     return _Scaled(xs, np.ascontiguousarray(st.zs / st.zref), z_rest, model.k_f / model.k_n,
                    LOCK_FORCE_RATIO * (1.0 - z_rest))
 
 
 def _blocks(N: int, n_steps: int, kind: str):
-    """(i0, i1, pieces): spring blocks, each with its (s0, s1) step pieces."""
+    """(i0, i1, pieces): spring blocks, each with its (s0, s1) step pieces (a generator)."""
     b = min(N, SPRINGS_PER_PIECE)
     q = max(1, UPDATES_PER_PIECE[kind] // b)
     for i0 in range(0, N, b):
-        yield i0, min(N, i0 + b), [(s0, min(n_steps, s0 + q)) for s0 in range(0, n_steps, q)]
+        yield i0, min(N, i0 + b), ((s0, min(n_steps, s0 + q)) for s0 in range(0, n_steps, q))
 
 
 class _Outcome:
