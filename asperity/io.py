@@ -293,20 +293,25 @@ def read_toml(path: str | Path, what: str, allowed: set[str], error) -> dict:
     """The top-level table of a TOML input file.  ``what`` names the file kind in the
     messages ("texture file"); a missing or unreadable file, invalid TOML or a top-level
     key outside ``allowed`` raises ``error`` (an InputError subclass) with one line."""
-    import tomllib
     p = Path(path)
-    text = read_text_file(p, what, error)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise error(f"{p}: not valid TOML ({str(exc).splitlines()[0]})") from None
-    except RecursionError:
-        raise error(f"{p}: not a usable TOML file (arrays or tables nested too deeply)") from None
+    data = parse_toml(read_text_file(p, what, error), p, error)
     unknown = sorted(set(data) - allowed)
     if unknown:
         raise error(f"{p}: unknown key {unknown[0]!r}; allowed top-level keys: "
                     f"{', '.join(sorted(allowed))}")
     return data
+
+
+def parse_toml(text: str, path, error) -> dict:
+    """The TOML document ``text`` of file ``path``, or ``error`` with one line."""
+    import tomllib
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise error(f"{path}: not valid TOML ({str(exc).splitlines()[0]})") from None
+    except RecursionError:
+        raise error(f"{path}: not a usable TOML file (arrays or tables nested too deeply)") \
+            from None
 
 
 def read_json(path: str | Path, what: str, error=InputError, parse_constant=None):

@@ -120,18 +120,12 @@ def _size(path: str) -> int:
 
 def load_study(path) -> Study:
     """Read and check a study file; one-line StudyFileError naming the field."""
-    from ..io import read_text_file
+    from ..io import parse_toml, read_text_file
     if not isinstance(path, (str, os.PathLike)) or not str(path):
         raise StudyFileError(f"a study file must be a path, got {path!r}")
     p = Path(path)
     text = read_text_file(p, "study file", StudyFileError)
-    import tomllib
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise StudyFileError(f"{p}: not valid TOML ({str(exc).splitlines()[0]})") from None
-    except RecursionError:
-        raise StudyFileError(f"{p}: not a usable TOML file (nested too deeply)") from None
+    data = parse_toml(text, p, StudyFileError)
     try:
         return study_from_dict(data, p, text)
     except StudyFileError:
