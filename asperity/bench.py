@@ -286,3 +286,16 @@ def format_moreau(out: dict) -> str:
     return "\n".join(f"moreau, {k:38s}: {v['steps_per_second']:.3e} steps/s "
                      f"(mean {v['mean_iterations']:.2f} iterations/step, max "
                      f"{v['max_iterations_used']}, {v['status']})" for k, v in out.items())
+
+
+def bench_big_scan(sizes=(2048, 4096, 8192), directions: int = 360, repeats: int = 1,
+                   folder=None) -> dict:
+    """Time and peak memory of ``asperity derive`` in tiles on n x n float32 maps on disk,
+    against the facet kernel in memory (:mod:`asperity.friction.scan_bench`)."""
+    from .friction.scan_bench import bench_big_scan as run
+    return run(sizes, directions, repeats, folder)
+
+
+def format_big_scan(out: dict) -> str:
+    from .friction.scan_bench import format_big_scan as fmt
+    return fmt(out)

@@ -2,9 +2,11 @@
 streamed facet reservoir."""
 from __future__ import annotations
 
+import os
+
 from . import json_text
 
-PARTS = ("closed-form", "springs", "facets", "microslip", "moreau", "study")
+PARTS = ("closed-form", "springs", "facets", "microslip", "moreau", "study", "big-scan")
 #: largest --facets: the benchmark then takes 4.4 GB (peak RSS measured; estimated 7.5 GB)
 MAX_FACETS_GRID = 8192
 
@@ -18,7 +20,9 @@ def add_parser(sub) -> None:
                                    "Moreau time steps per second of one sliding body with "
                                    "each friction law (compilation excluded); --only study: "
                                    "study cases per second, a serial loop against 2 local "
-                                   "Dask workers.")
+                                   "Dask workers; --only big-scan: time and peak memory of "
+                                   "derive in tiles on synthetic float32 maps written to disk "
+                                   "(--scan-sizes, deleted afterwards).")
     p.add_argument("--seconds", type=float, default=1.0, help="time per measurement (s)")
     p.add_argument("--only", choices=PARTS, default=None,
                    help="run one benchmark only (default: closed-form and springs)")
@@ -32,6 +36,13 @@ def add_parser(sub) -> None:
                    help="directions timed for the NumPy baseline (default 8)")
     p.add_argument("--workers", type=int, default=2,
                    help="local workers of the study benchmark (1 to 64)")
+    p.add_argument("--scan-sizes", type=int, nargs="+", default=[2048, 4096, 8192],
+                   metavar="N", help="--only big-scan: N x N maps (64 to 32768; 16384 "
+                                     "writes 1 GB and takes minutes)")
+    p.add_argument("--repeats", type=int, default=1, metavar="R",
+                   help="--only big-scan: runs per size (1 to 20), to see the spread")
+    p.add_argument("--scan-dir", metavar="DIR", default=None,
+                   help="--only big-scan: folder for the maps (default: a temporary folder)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=main)
 
@@ -51,6 +62,13 @@ def main(args) -> int:
         bench.check_facets_request(n_grid, n_dir, n_np)
     if "study" in parts:
         workers = int(check_range("--workers", args.workers, 1, 64))
+    if "big-scan" in parts:
+        sizes = [int(check_range("--scan-sizes", n, 64, 32768)) for n in args.scan_sizes]
+        repeats = int(check_range("--repeats", args.repeats, 1, 20))
+        n_dir = int(check_range("--directions", args.directions, 8, 100_000))
+        if args.scan_dir is not None and not os.path.isdir(args.scan_dir):
+            from ..errors import InputError
+            raise InputError(f"--scan-dir {args.scan_dir!r} is not a folder")
     out = {}
     if "closed-form" in parts:
         out["closed_form"] = bench.bench_closed_form(seconds)
@@ -65,6 +83,8 @@ def main(args) -> int:
     if "study" in parts:
         from ..study.bench import bench_study
         out["study"] = bench_study(workers=workers)
+    if "big-scan" in parts:
+        out["big_scan"] = bench.bench_big_scan(sizes, n_dir, repeats, args.scan_dir)
     if args.json:
         print(json_text(out))
         return 0
@@ -81,4 +101,6 @@ def main(args) -> int:
     if "study" in out:
         from ..study.bench import format_study
         print(format_study(out["study"]))
+    if "big_scan" in out:
+        print(bench.format_big_scan(out["big_scan"]))
     return 0
