@@ -450,3 +450,26 @@ def test_ctrl_c_stops_a_tiled_derive_within_a_second(tmp_path):
                                   "100", after=5.0)
     assert status == 130 and "interrupted" in err and "Traceback" not in err, err
     assert err.count("\n") == 1 and took < 1.0, (took, err)
+
+
+BENCH_FLAGS = [(["--scan-sizes", "10"], "--scan-sizes must be in [64, 32768], got 10"),
+               (["--repeats", "0"], "--repeats must be in [1, 20], got 0"),
+               (["--scan-dir", "/no/such/folder"], "--scan-dir '/no/such/folder' is not a folder")]
+
+
+@pytest.mark.parametrize("flags,msg", BENCH_FLAGS)
+def test_big_scan_benchmark_flags_refused(capsys, flags, msg):
+    code, out, err = run(capsys, "bench", "--only", "big-scan", *flags)
+    assert code == 1 and out == "" and msg in err and err.count("\n") == 1, err
+
+
+@pytest.mark.slow
+def test_big_scan_benchmark_runs_and_cleans_up(tmp_path, capsys):
+    code, out, err = run(capsys, "bench", "--only", "big-scan", "--scan-sizes", "64", "96",
+                         "--directions", "8", "--scan-dir", tmp_path, "--json")
+    assert code == 0, err
+    b = json.loads(out)["big_scan"]
+    assert [r["n"] for r in b["sizes"]] == [64, 96] and list(tmp_path.iterdir()) == []
+    for r in b["sizes"]:
+        assert r["tiling"]["tiles"] >= 1 and r["runs"][0]["peak_rss_bytes"] > 0
+        assert r["in_memory"]["mu_a_plus"] == pytest.approx(r["mu_a_plus"], rel=1e-12)

@@ -91,6 +91,13 @@ class _Runner:
                     raise InputError(f"the Dask workers cannot run asperity ({type(exc).__name__}"
                                      f": {exc}); install the same asperity on every worker") \
                         from None
+                except Exception as exc:
+                    if type(exc).__name__ != "KilledWorker":
+                        raise
+                    from ..errors import ResourceError
+                    raise ResourceError("a Dask worker died running the tiles (out of memory?); "
+                                        "lower --tile-rows or give the workers more memory") \
+                        from None
                 report(done / len(futs), label)
         finally:
             for f in futs:

@@ -218,7 +218,7 @@ class TileFacets:
     n_ok: int                     # defined facets
     n_unloaded: int
     stats: SlopeStats
-    zc_max: float | None = None   # highest centroid that could carry load (rest level)
+    zc_max: float | None = None   # highest defined centroid (with a rest level)
 
 
 def tile_facets(plan: TilePlan, t: int, z: np.ndarray, m: np.ndarray | None) -> TileFacets:
@@ -248,9 +248,8 @@ def tile_facets(plan: TilePlan, t: int, z: np.ndarray, m: np.ndarray | None) -> 
     np.compress(keep, g[1], out=gk[1])
     mu = plan.mu if m is None else grid.facet_mu(m)[keep]
     zc_max = None
-    if zc is not None:
-        cand = ok if steep is None else ok & ~steep
-        zc_max = float(zc[cand].max()) if cand.any() else None
+    if zc is not None and ok.any():
+        zc_max = float(zc[ok].max())
     return TileFacets(gk, mu, w[keep], counts, row0, int(np.count_nonzero(ok)), n_unloaded,
                       stats, zc_max)
 

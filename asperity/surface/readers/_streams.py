@@ -52,6 +52,7 @@ class NpyLines(LineSource):
         if dtype.kind == "b":
             raise TextureFileError(f"{name}: the array holds booleans (a mask?), not heights")
         super().__init__(path, shape, dx, dy, Path(name).name)
+        self.name = str(name)
         self.axis = 1 if fortran and min(shape) > 1 else 0
         self.dtype, self.offset = dtype, offset
         self.factor, self.height_scale = float(factor), float(height_scale)
@@ -64,7 +65,7 @@ class NpyLines(LineSource):
         z = mm.astype(np.float64)
         del mm                               # unmapped: the tile's pages leave the RSS
         if self.dx is not None:
-            check_finite_heights(z, self.path)
+            check_finite_heights(z, self.name)
         if self.factor != 1.0:
             z *= self.factor
         if self.height_scale != 1.0:
