@@ -30,9 +30,9 @@ _PEAK = ("import sys\nfrom asperity.cli.main import main\ncode = main(sys.argv[1
 _BLOCK_BYTES = 64 << 20
 
 
-def write_map(path: Path, n: int, seed: int = 0, rms_slope: float = 0.3) -> None:
-    """An n x n float32 height map (um) on disk: 24 random plane waves (wavelengths 8 to
-    n pixels) and white noise, written in row blocks; rms slope about ``rms_slope``."""
+def _waves(n: int, seed: int, rms_slope: float):
+    """The rows of an n x n synthetic map (um): 24 random plane waves (wavelengths 8 to n
+    pixels, rms slope about ``rms_slope``) and white noise; ``rows(a, b)`` -> (b-a, n)."""
     rng = np.random.default_rng(seed)
     k = 24
     lam = np.exp(rng.uniform(math.log(8), math.log(max(n, 16)), k))
@@ -42,14 +42,23 @@ def write_map(path: Path, n: int, seed: int = 0, rms_slope: float = 0.3) -> None
     phase = rng.uniform(0, 2 * math.pi, k)
     j = np.arange(n)
     cy, sy = np.cos(np.outer(ky, j)), np.sin(np.outer(ky, j))          # (k, n)
-    out = np.lib.format.open_memmap(path, mode="w+", dtype=np.float32, shape=(n, n))
-    rows = max(1, _BLOCK_BYTES // (8 * n))
-    for a in range(0, n, rows):
-        i = np.arange(a, min(n, a + rows))
-        arg = np.outer(i, kx) + phase                                  # (rows, k)
+
+    def rows(a, b):
+        arg = np.outer(np.arange(a, b), kx) + phase                    # (rows, k)
         z = (np.sin(arg) * amp) @ cy + (np.cos(arg) * amp) @ sy
         z += rng.normal(scale=0.02 * rms_slope, size=z.shape)
-        out[a:a + i.size] = z
+        return z
+    return rows
+
+
+def write_map(path: Path, n: int, seed: int = 0, rms_slope: float = 0.3) -> None:
+    """An n x n float32 height map (um, :func:`_waves`) on disk, written in row blocks."""
+    rows = _waves(n, seed, rms_slope)
+    out = np.lib.format.open_memmap(path, mode="w+", dtype=np.float32, shape=(n, n))
+    step = max(1, _BLOCK_BYTES // (8 * n))
+    for a in range(0, n, step):
+        b = min(n, a + step)
+        out[a:b] = rows(a, b)
     out.flush()
     del out
 
@@ -70,11 +79,15 @@ def run_derive(path: Path, directions: int, *flags) -> dict:
 
 
 def kernel_rate(directions: int = 360) -> float:
-    """Facet-directions per second of the facet kernel on the facets of a 2048 x 2048 map
-    held in memory (what ``derive`` runs before tiles existed)."""
-    from ..bench import rough_surface_facets
+    """Facet-directions per second of the facet kernel on the facets of a 2048 x 2048
+    synthetic map held in memory (what ``derive`` runs on a map in memory)."""
+    from ..surface.facets import heightmap_facets
+    from ..surface.topography import HeightMap
     from .facet_reservoir import compute_facet_reservoir
-    gx, gy, w = rough_surface_facets(2048, 0.3)
+    z = _waves(2048, 0, 0.3)(0, 2048).astype(np.float32).astype(np.float64) * 1e-6
+    f = heightmap_facets(HeightMap(z, 1e-6, 1e-6, "synthetic"), mu=0.2, level_slope=True)
+    gx, gy, w = f.gx, f.gy, f.weight
+    del z
     psi = np.linspace(0, 2 * np.pi, directions, endpoint=False)
     compute_facet_reservoir(gx[:20000], gy[:20000], 0.2, w[:20000], psi[:4])
     took = []
