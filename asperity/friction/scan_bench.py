@@ -4,7 +4,8 @@ the facet kernel in memory.
 
 Each map is written to disk in row blocks (bounded memory), derived by a child process
 (``asperity derive MAP --unit um --pixel-size 1 --mu 0.2 --directions D --json`` in tiles
-of the default size, also below the automatic threshold), whose peak resident memory (VmHWM) it reports itself, then deleted.
+of the default size, also below the automatic threshold) that reports its own peak
+resident memory (VmHWM), then deleted.
 The facet-directions of a tiled run are its facets x 3 D (the sweep evaluates psi and
 psi +- h for dT/dpsi); their rate over the whole run (reading, passes, everything) is
 compared with the numba kernel's rate on the facets of a 2048 x 2048 map in memory.
@@ -72,8 +73,8 @@ def run_derive(path: Path, directions: int, *flags) -> dict:
     seconds = time.perf_counter() - t0
     if r.returncode != 0:
         from ..errors import AsperityError
-        raise AsperityError(f"the benchmark's derive of {path.name} failed: "
-                            f"{r.stderr.strip().splitlines()[-1] if r.stderr.strip() else r.returncode}")
+        last = r.stderr.strip().splitlines()[-1] if r.stderr.strip() else r.returncode
+        raise AsperityError(f"the benchmark's derive of {path.name} failed: {last}")
     peak = int(r.stderr.strip().splitlines()[-1].split()[1])
     return {"seconds": seconds, "peak_rss_bytes": peak, "result": json.loads(r.stdout)}
 
