@@ -57,3 +57,13 @@ def written_lines(outputs, stream=None) -> None:
         where = "standard output" if str(path) == "-" else path
         on_commit(lambda what=what, where=where: print(f"{what} written to {where}",
                                                        file=stream))
+
+
+def add_cluster_arguments(parser, workers: str, scheduler: str) -> None:
+    """``--workers N | --scheduler ADDRESS`` (mutually exclusive): where the Dask work of
+    a command runs (see asperity.study.engine); the help texts say what runs there."""
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--workers", metavar="N", default=None, help=workers)
+    where.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                       help=f"{scheduler} (scheduler address tcp://HOST:PORT or scheduler "
+                            f"file)")

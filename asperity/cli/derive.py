@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 
 from ..progress import progress_bar
-from . import emit
+from . import add_cluster_arguments, emit
 from .sources import (
     add_source_arguments,
     flag_names,
@@ -50,14 +50,10 @@ def add_parser(sub) -> None:
     t.add_argument("--tile-rows", metavar="N", default=None,
                    help="file lines per tile (1 to 1e9); 0: never tile (the whole map in "
                         "memory); default: automatic, about 256 MB of work per tile")
-    where = t.add_mutually_exclusive_group()
-    where.add_argument("--workers", metavar="N", default=None,
-                       help="run the tiles on a local Dask cluster of N worker processes "
-                            "(1 to 4096; 0: in this process, the default)")
-    where.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                       help="run the tiles on an existing Dask cluster (scheduler address "
-                            "tcp://HOST:PORT or scheduler file); the workers read the tiles "
-                            "from the file's path")
+    add_cluster_arguments(t, "run the tiles on a local Dask cluster of N worker processes (1 "
+                             "to 4096; 0: in this process, the default)",
+                          "run the tiles on an existing Dask cluster; the workers read the "
+                          "tiles from the file's path")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
                                                       "(surfaces: and a height-map preview)")

@@ -11,7 +11,7 @@ import argparse
 from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS
 from ..microslip.risk_text import format_map, format_text
-from . import emit
+from . import add_cluster_arguments, emit
 from .sources import WEDGE_FLAGS, add_source_arguments, texture_from_args
 
 
@@ -56,13 +56,9 @@ def add_parser(sub) -> None:
     p.add_argument("--map", nargs=2, metavar="P=LO:HI:N", default=None,
                    help="risk map over two wedge parameters, e.g. alpha=5:40:8 beta=5:40:8 "
                         "(the others from the texture or wedge flags)")
-    where = p.add_mutually_exclusive_group()
-    where.add_argument("--workers", metavar="N", default=None,
-                       help="--map: run the grid on a local Dask cluster of N worker "
-                            "processes (default: in this process)")
-    where.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                       help="--map: run the grid on an existing Dask cluster (scheduler "
-                            "address tcp://HOST:PORT or scheduler file)")
+    add_cluster_arguments(p, "--map: run the grid on a local Dask cluster of N worker "
+                             "processes (default: in this process)",
+                          "--map: run the grid on an existing Dask cluster")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png",
                    help="node displacement against cycles (and the strip's profiles), or the "

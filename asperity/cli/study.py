@@ -6,7 +6,7 @@ import argparse
 import os
 
 from ..errors import InputError
-from . import emit
+from . import add_cluster_arguments, emit
 
 
 def add_parser(sub) -> None:
@@ -28,14 +28,10 @@ def add_parser(sub) -> None:
     p.add_argument("-o", "--output", metavar="DIR", default=None,
                    help="study folder (store, summary.md, figures); default: "
                         "STUDY-study in the current folder")
-    where = p.add_mutually_exclusive_group()
-    where.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                       help="run on an existing Dask cluster: its scheduler address "
-                            "(tcp://HOST:PORT) or scheduler file; default: "
-                            "$ASPERITY_SCHEDULER, else a local cluster")
-    where.add_argument("--workers", metavar="N", default=None,
-                       help="local worker processes (default: one per core; 0 runs in this "
-                            "process, without a cluster)")
+    add_cluster_arguments(p, "local worker processes (default: one per core; 0 runs in this "
+                             "process, without a cluster)",
+                          "run on an existing Dask cluster instead of a local one (default: "
+                          "$ASPERITY_SCHEDULER if set)")
     p.add_argument("--batch-size", metavar="N", default=None,
                    help="cases per task (default: sized to about 1 s of work per task)")
     p.add_argument("--retry-failed", action="store_true",

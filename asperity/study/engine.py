@@ -120,9 +120,10 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
     def inputs_of(cid):
         return (files[cid],) if files is not None else tuple(float(v) for v in matrix[cid])
 
-    scheduler = resolve_scheduler(scheduler)
     if workers is not None:
         workers = check_int("--workers", workers, 0, 4096)
+    if not (workers == 0 and scheduler is None):     # --workers 0: in this process, always
+        scheduler = resolve_scheduler(scheduler)
     if batch_size is None:
         batch_size = study.batch_size
     first = FIRST_BATCH["files" if files is not None else "default"]
@@ -168,13 +169,16 @@ def _connect(scheduler, workers):
     logging.getLogger("distributed").setLevel(logging.ERROR)
     if scheduler is None:
         nw = workers or os.cpu_count() or 1
+        import warnings
         try:
             # one core per worker: the numba kernels must not start a thread per core in
             # every worker (oversubscription)
-            cluster = distributed.LocalCluster(
-                n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
-                dashboard_address=None, silence_logs=logging.ERROR,
-                env={"NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
+            with warnings.catch_warnings():     # e.g. a note on a busy port: not the user's
+                warnings.simplefilter("ignore")
+                cluster = distributed.LocalCluster(
+                    n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                    dashboard_address=None, silence_logs=logging.ERROR,
+                    env={"NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
         except OSError as exc:
             raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
         return distributed.Client(cluster), cluster, f"LocalCluster ({nw} workers)", nw
