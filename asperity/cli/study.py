@@ -17,12 +17,12 @@ def add_parser(sub) -> None:
                     "file of a scan library -- in batches on an embedded local Dask cluster "
                     "(one worker per core) or an existing one (--scheduler), into a SQLite "
                     "store in DIR, and print the summary: counts per verdict, probability of "
-                    "ratchet with its 95 %% interval, quantiles of the drift and of the cycles "
+                    "ratchet with its 95 % interval, quantiles of the drift and of the cycles "
                     "to tolerance, Sobol indices or rank correlations, a ranked table for "
                     "scan libraries.  Running the same command again resumes (only missing "
                     "cases run); `asperity study DIR` prints the summary of a finished or "
                     "interrupted study.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("target", metavar="STUDY.toml|DIR",
                    help="a study file to run (or resume), or a study folder to summarise")
     p.add_argument("-o", "--output", metavar="DIR", default=None,

@@ -33,6 +33,9 @@ def lines(s: dict) -> list[str]:
         out.append("  (interrupted: run the same command again to resume)")
     for f in s.get("failures", [])[:3]:
         out.append(f"  failed x{f['cases']} (first: case {f['first_case']}): {f['message']}")
+    answer = _answer(s)
+    if answer:
+        out.insert(1, answer)
     if "risk" in s["stages"]:
         v = s["verdicts"]
         out.append("verdicts: " + (", ".join(f"{k} {n} ({_pct(n, s['completed'])})"
@@ -75,6 +78,28 @@ def lines(s: dict) -> list[str]:
             out.append(f"  ... {len(s['ranking']) - 20} more (summary.md, --export)")
     out.append(f"store: {s['store']}")
     return out
+
+
+def _answer(s: dict) -> str:
+    """One sentence for the design engineer: how likely, how far, what matters most."""
+    p = s.get("p_ratchet")
+    if not p or "risk" not in s["stages"]:
+        return ""
+    words = [f"answer: {100 * p['estimate']:.1f} % of the cases ratchet (95 % interval "
+             f"{100 * p['low']:.1f}-{100 * p['high']:.1f} %)"]
+    c = s.get("creep_per_cycle_m")
+    if c and c.get("p95"):
+        words.append(f"the 95th percentile creeps {_um_abs(c['p95'])} per cycle")
+    t = s.get("cycles_to_tolerance")
+    if t and t.get("p05") is not None and s.get("tolerance_m") is not None:
+        words.append(f"5 % reach the {_mm(s['tolerance_m'])} tolerance within "
+                     f"{_cycles(t['p05'])} cycles")
+    from .summary import most_influential
+    top = most_influential(s)
+    if top:
+        how = "Sobol ST" if s.get("sobol") else "rank correlation"
+        words.append(f"{top[0]} matters most ({how})")
+    return "; ".join(words)
 
 
 def _g(x) -> str:
