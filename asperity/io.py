@@ -240,6 +240,18 @@ def output_transaction():
             fn()
 
 
+@contextlib.contextmanager
+def outside_transaction():
+    """Files written atomically inside the block replace theirs at once, even within an
+    :func:`output_transaction` (a working store's files, such as a study's summary, which
+    must not wait for the command's other outputs)."""
+    token = _pending.set(None)
+    try:
+        yield
+    finally:
+        _pending.reset(token)
+
+
 def write_text_atomic(path: str | Path, text: str) -> None:
     """Write ``text`` (UTF-8) to ``path`` atomically."""
     with atomic_path(path) as tmp:

@@ -14,24 +14,25 @@ COLOURS = {"shakedown": "tab:green", "alternating-slip": "tab:olive", "ratchet":
 MAX_POINTS = 20_000
 
 
-def figures(store, summary: dict, folder) -> list[str]:
-    """Write the figures that apply into ``folder``; their file names."""
+def figures(store, summary: dict, folder, prefix: str = "") -> list[str]:
+    """Write the figures that apply into ``folder`` (names prefixed by ``prefix``); their
+    file names."""
     folder = Path(folder)
     out = []
     ok = store.column("status", dtype=object) == "ok"
     if "risk" in summary["stages"] and ok.any():
-        _drift(store, ok, folder / "drift.png")
-        out.append("drift.png")
+        _drift(store, ok, folder / f"{prefix}drift.png")
+        out.append(f"{prefix}drift.png")
         top = most_influential(summary)
         if len(top) >= 2:
-            _verdict_map(store, ok, top[:2], summary, folder / "verdicts.png")
-            out.append("verdicts.png")
+            _verdict_map(store, ok, top[:2], summary, folder / f"{prefix}verdicts.png")
+            out.append(f"{prefix}verdicts.png")
     if summary.get("sobol"):
-        _sobol(summary, folder / "sobol.png")
-        out.append("sobol.png")
+        _sobol(summary, folder / f"{prefix}sobol.png")
+        out.append(f"{prefix}sobol.png")
     if summary.get("ranking"):
-        _ranking(summary["ranking"], folder / "ranking.png")
-        out.append("ranking.png")
+        _ranking(summary["ranking"], folder / f"{prefix}ranking.png")
+        out.append(f"{prefix}ranking.png")
     return out
 
 

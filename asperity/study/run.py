@@ -52,16 +52,18 @@ def finish(store, plot: bool = False) -> dict:
     from ..io import write_text_atomic
     from .summary import summarise
     from .text import finite_json, markdown
+    from ..io import outside_transaction
     summary = finite_json(summarise(store))
     figs = []
-    if plot:
-        from .plot import figures
-        figs = figures(store, summary, store.folder)
-    summary["figures"] = [str(store.folder / f) for f in figs]
-    if _writable(store.folder):
-        write_text_atomic(store.folder / "summary.json",
-                          json.dumps(summary, indent=2, allow_nan=False) + "\n")
-        write_text_atomic(store.folder / "summary.md", markdown(summary, figs))
+    with outside_transaction():        # the study folder is a working store: written now
+        if plot:
+            from .plot import figures
+            figs = figures(store, summary, store.folder)
+        summary["figures"] = [str(store.folder / f) for f in figs]
+        if _writable(store.folder):
+            write_text_atomic(store.folder / "summary.json",
+                              json.dumps(summary, indent=2, allow_nan=False) + "\n")
+            write_text_atomic(store.folder / "summary.md", markdown(summary, figs))
     return summary
 
 
