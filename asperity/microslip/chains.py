@@ -167,7 +167,27 @@ def _check_chain(c: Chain) -> None:
     object.__setattr__(c, "mu_plus", check_mu("chain.mu_plus", c.mu_plus))
     object.__setattr__(c, "mu_minus", check_mu("chain.mu_minus", c.mu_minus))
     check_instance("chain.params", c.params, dict)
-    kb, kt = arrays["kb"], arrays["kt"]
+    _check_resolvable(c)
+
+
+def _built(kind, x, kb, le, kt, mp, mm, N, w, alpha_T, params) -> Chain:
+    """A chain built here from checked scalars (two_node_chain, strip_chain): its arrays
+    are float64, contiguous, finite and positive by construction, so only what depends on
+    their combination (resolvable stiffness ratios and asymmetry) is checked -- the array
+    checks of a user's Chain cost more than a two-node case's solution."""
+    c = object.__new__(Chain)
+    for name, v in (("kind", kind), ("x", x), ("kb", kb), ("le", le), ("kt", kt),
+                    ("cp", mp * N), ("cm", mm * N), ("fw", w), ("weight", w.copy()),
+                    ("alpha_T", alpha_T), ("mu_plus", mp), ("mu_minus", mm),
+                    ("params", params)):
+        object.__setattr__(c, name, v)
+    _check_resolvable(c)
+    return c
+
+
+def _check_resolvable(c: Chain) -> None:
+    """Stiffness ratios and friction asymmetry within what double precision resolves."""
+    kb, kt = c.kb, c.kt
     for ratio, what, fix in ((kb.max() / kt.min(), "elements are", "fewer nodes"),
                              (kt.max() / kb.min(), "contacts are", "more nodes")):
         if ratio > STIFFNESS_RATIO:
@@ -210,11 +230,10 @@ def two_node_chain(k, l0, alpha_T, k_t, N, mu_plus, mu_minus) -> Chain:
     alpha_T = check_alpha_T("alpha_T", alpha_T)
     mp, mm = check_mu("mu_plus", mu_plus), check_mu("mu_minus", mu_minus)
     Nn = np.array([N, N])
-    return Chain("two-node", np.array([0.0, l0]), np.array([k]), np.array([l0]),
-                 np.array([k_t, k_t]), mp * Nn, mm * Nn, np.array([0.5, 0.5]),
-                 np.array([0.5, 0.5]), alpha_T, mp, mm,
-                 {"k": k, "l0": l0, "alpha_T": alpha_T, "k_t": k_t, "N": N,
-                  "normal_loads": Nn})
+    return _built("two-node", np.array([0.0, l0]), np.array([k]), np.array([l0]),
+                  np.array([k_t, k_t]), mp, mm, Nn, np.array([0.5, 0.5]), alpha_T,
+                  {"k": k, "l0": l0, "alpha_T": alpha_T, "k_t": k_t, "N": N,
+                   "normal_loads": Nn})
 
 
 def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
@@ -231,10 +250,10 @@ def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
     trib = np.full(n, dx)
     trib[0] = trib[-1] = 0.5 * dx
     Nn = p * trib
-    return Chain("strip", np.linspace(0.0, l, n), np.full(n - 1, E * h / dx), np.full(n - 1, dx),
-                 k_t * trib, mp * Nn, mm * Nn, trib / l, trib / l, alpha_T, mp, mm,
-                 {"h": h, "E": E, "p": p, "l": l, "k_t": k_t, "alpha_T": alpha_T, "n": n,
-                  "normal_loads": Nn})
+    return _built("strip", np.linspace(0.0, l, n), np.full(n - 1, E * h / dx),
+                  np.full(n - 1, dx), k_t * trib, mp, mm, Nn, trib / l, alpha_T,
+                  {"h": h, "E": E, "p": p, "l": l, "k_t": k_t, "alpha_T": alpha_T, "n": n,
+                   "normal_loads": Nn})
 
 
 def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
@@ -245,6 +264,9 @@ def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     check_instance("chain", chain, Chain)
     if isinstance(sign, bool) or sign not in (1, -1, 1.0, -1.0):
         raise InputError(f"sign must be 1 (heating) or -1 (cooling), got {sign!r}")
+    memo = chain.__dict__.setdefault("_elastic_limit", {})   # a chain is immutable
+    if float(sign) in memo:
+        return memo[float(sign)]
     n = chain.n
     rhs = np.zeros(n)
     e = chain.kb * chain.alpha_T * chain.le * sign
@@ -256,4 +278,5 @@ def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     with np.errstate(divide="ignore", over="ignore"):
         lim = np.where(q > 0, chain.cp / np.where(q > 0, q, 1.0),
                        np.where(q < 0, chain.cm / np.where(q < 0, -q, 1.0), np.inf))
-    return float(lim.min())
+    memo[float(sign)] = float(lim.min())
+    return memo[float(sign)]
