@@ -295,6 +295,10 @@ BAD = [
      "derive and fit need a texture"),
     ("[study]\nkind = \"monte-carlo\"\nsamples = 10\nbatch = 5\n", "unknown key study.batch"),
     ("[study\nkind = 1\n", "not valid TOML"),
+    ("[study]\nkind = \"files\"\nfiles = [\"SURF/wedge-30-10.stl\"]\nunit = \"furlong\"\n",
+     "study.unit must be one of"),
+    ("[study]\nkind = \"files\"\nfiles = [\"SURF/wedge-30-10.stl\"]\nunit = \"um\"\n"
+     "max_slope = 95\n", "study.max_slope must be in (0, 90)"),
     ("[study]\nkind = \"grid\"\nassembly = \"SURF/two-node-spec.toml\"\n[parameters]\n"
      "\"loading.dT_max\" = { low = 1.0, high = 2.0, n = 100000 }\n"
      "\"assembly.N\" = { low = 1.0, high = 2.0, n = 100000 }\n", "at most 1e+07"),

@@ -126,7 +126,9 @@ def _load_file(path: str, opts: dict):
     return load_surface(path, unit=opts.get("unit"),
                         pixel_size=tuple(px) if isinstance(px, list) else px,
                         height_scale=opts.get("height_scale", 1.0),
-                        detrend=opts.get("detrend", "slope"), mu=opts.get("mu"))
+                        detrend=opts.get("detrend", "slope"), mu=opts.get("mu"),
+                        max_slope=opts.get("max_slope"), despike=opts.get("despike"),
+                        despike_window=opts.get("despike_window"))
 
 
 def _finite(x):

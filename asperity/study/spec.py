@@ -13,7 +13,8 @@
     texture = "wedge-asymmetric.toml"   # or a [texture] table; optional when the assembly
     assembly = "bushing-strip.toml"     #   names one (paths relative to the study file)
     # files = ["scans/*.x3p"]           # kind = "files": one case per file
-    # unit, pixel_size, height_scale, detrend, mu: how to read the files (as derive's flags)
+    # unit, pixel_size, height_scale, detrend, mu, max_slope, despike, despike_window:
+    #                                   # how to read the files (as derive's flags)
     # contact = "all-faces"             # contact regime (default: the assembly's, else all-faces)
     # directions = 72                   # sliding directions of derive / fit
     # law = "star"                      # fit: star or ellipse
@@ -47,7 +48,8 @@ STAGES = ("derive", "fit", "risk")
 TABLES = ("texture", "assembly", "friction", "loading")
 _TOP = {"name", "description", "study", "texture", "parameters"}
 _STUDY = {"kind", "samples", "seed", "stages", "texture", "assembly", "files", "unit",
-          "pixel_size", "height_scale", "detrend", "mu", "contact", "directions", "law",
+          "pixel_size", "height_scale", "detrend", "mu", "max_slope", "despike",
+          "despike_window", "contact", "directions", "law",
           "cycles", "tolerance", "output", "batch_size"}
 #: most files of a scan library
 MAX_FILES = 1_000_000
@@ -327,12 +329,43 @@ def _output(st: dict, stages: list) -> str:
 
 
 def _surface_options(st: dict, kind: str) -> dict:
-    keys = ("unit", "pixel_size", "height_scale", "detrend", "mu")
+    keys = ("unit", "pixel_size", "height_scale", "detrend", "mu", "max_slope", "despike",
+            "despike_window")
     given = {k: st[k] for k in keys if k in st}
     if given and kind != "files":
         raise InputError(f"study.{next(iter(given))} reads scan files: it belongs to kind = "
                          f"\"files\"")
+    _check_surface_options(given)
     return given
+
+
+def _check_surface_options(o: dict) -> None:
+    """The scan-reading keys checked once, here, with the readers' own checks (not in
+    every case of the study)."""
+    from ..surface import quality, topography
+    from ..surface.facets import DETREND
+    from ..surface.friction_map import MAX_MU
+    try:
+        f = topography.unit_factor(o["unit"]) if "unit" in o else 1.0
+        if "pixel_size" in o:
+            if "unit" not in o:
+                raise InputError("pixel_size needs unit (the unit of the pixel size)")
+            topography.pixel_pair(o["pixel_size"], f)
+        if "height_scale" in o:
+            topography.check_height_scale(o["height_scale"])
+        if "detrend" in o:
+            check_choice("detrend", o["detrend"], tuple(DETREND))
+        if "mu" in o:
+            check_range("mu", o["mu"], 0.0, MAX_MU)
+        if "max_slope" in o:
+            quality.check_max_slope(o["max_slope"])
+        if "despike" in o or "despike_window" in o:
+            if "despike" not in o:
+                raise InputError("despike_window needs despike (the threshold K)")
+            quality.check_despike(o["despike"], o.get("despike_window"))
+    except InputError as exc:
+        msg = str(exc)
+        raise InputError(msg if msg.startswith("study.") else f"study.{msg}") from None
 
 
 def _check_one_case(study: Study) -> None:
