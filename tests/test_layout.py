@@ -17,7 +17,8 @@ import pytest
 import asperity
 
 PACKAGE = Path(asperity.__file__).resolve().parent
-ROOMS = ("texture", "surface", "friction", "laws", "dynamics", "microslip", "report", "cli")
+ROOMS = ("texture", "surface", "friction", "laws", "dynamics", "microslip", "report", "cli",
+         "web")
 MAX_LINES = 400
 
 #: asperity.__all__ as the public API was fixed (issue 10): names may be added, never lost
@@ -127,6 +128,32 @@ def test_only_the_report_command_imports_the_report():
            if b.startswith("asperity.report") and not a.startswith("asperity.report")
            and a != "asperity.cli.report"]
     assert not bad, f"modules other than cli/report.py import the report: {bad}"
+
+
+def test_only_the_serve_command_imports_the_web_page():
+    """asperity/web/ sits on top like cli/ and report/: nothing but ``asperity serve``
+    imports it, and it imports neither the command line nor the report."""
+    bad = [(a, b) for a, deps in GRAPH.items() for b in deps
+           if b.startswith("asperity.web") and not a.startswith("asperity.web")
+           and a != "asperity.cli.serve"]
+    assert not bad, f"modules other than cli/serve.py import the web page: {bad}"
+    up = [(a, b) for a, deps in GRAPH.items() if a.startswith("asperity.web") for b in deps
+          if b.startswith(("asperity.cli", "asperity.report"))]
+    assert not up, f"the web page imports the command line or the report: {up}"
+
+
+def test_the_web_stack_loads_only_for_asperity_serve():
+    """``import asperity`` and the command line's parser leave FastAPI, uvicorn, Jinja2
+    and Starlette out (``asperity serve --help`` too)."""
+    code = ("import sys, asperity\n"
+            "from asperity.cli.main import build_parser\n"
+            "build_parser()\n"
+            "web = [m for m in ('fastapi', 'uvicorn', 'jinja2', 'starlette', 'plotly')\n"
+            "       if m in sys.modules]\n"
+            "print(web)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=60)
+    assert out.stdout.strip() == "[]", out.stdout + out.stderr
 
 
 def test_modules_are_small():

@@ -26,6 +26,7 @@ COMMANDS = {
     "slide": "slide",
     "risk": "risk",
     "study": "study",
+    "serve": "serve",
 }
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130

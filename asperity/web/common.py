@@ -1,0 +1,119 @@
+"""What every form of ``asperity serve`` shares: reading it, saving its uploads,
+submitting its job and showing it again, filled in, with a one-line message when the job
+fails (each page registers its form in ``web.renderers``)."""
+from __future__ import annotations
+
+import os
+
+from fastapi import Request
+from fastapi.responses import HTMLResponse, RedirectResponse
+
+from .forms import Form, FormError
+from .security import TooLarge
+from .store import JOB_ID, UploadError, display_name
+
+#: form fields of a wedge -> label in messages
+WEDGE = {"alpha_deg": "alpha (deg)", "beta_deg": "beta (deg)", "mu_alpha": "mu_alpha",
+         "mu_beta": "mu_beta"}
+MAX_FIELDS = 200
+MAX_FILES = 200
+
+
+async def read_form(request: Request) -> Form:
+    """The submitted form; a body that holds no field at all is refused (400)."""
+    form = await request.form(max_files=MAX_FILES, max_fields=MAX_FIELDS)
+    if not form and request.headers.get("content-length", "0") not in ("", "0"):
+        raise FormError("the form arrived empty or malformed; send it again from the page")
+    return Form(form)
+
+
+async def save_upload(web, upload) -> dict:
+    """Store an uploaded file under a generated name (its client name only shown); its
+    metadata.  UploadError for a name without a format suffix, an empty file; TooLarge
+    past the limit."""
+    uid, path = web.store.new_upload_path(upload.filename)
+    tmp = path.with_name(path.name + ".part")
+    size = 0
+    try:
+        with open(tmp, "wb") as fh:
+            while True:
+                chunk = await upload.read(1 << 20)
+                if not chunk:
+                    break
+                size += len(chunk)
+                if size > web.settings.max_upload:
+                    raise TooLarge(f"{display_name(upload.filename)!r} is larger than the "
+                                   f"server's limit of {web.settings.max_upload / 2**20:.4g} MB "
+                                   f"(asperity serve --max-upload MB)")
+                fh.write(chunk)
+        if size == 0:
+            raise UploadError(f"{display_name(upload.filename)!r} is empty")
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return web.store.finish_upload(uid, upload.filename, size)
+
+
+async def upload_or_kept(web, form: Form, field: str, kept_field: str) -> dict | None:
+    """The file of ``field`` (saved now), else the one uploaded before (``kept_field``)."""
+    up = form.file(field)
+    if up is not None:
+        return await save_upload(web, up)
+    uid = form.text(kept_field)
+    return web.store.upload_meta(uid) if uid else None
+
+
+async def submit(web, request: Request, kind: str, params: dict, title: str):
+    """Create the job, hand it to the runner, wait up to ``quick_wait`` s: a failure is
+    shown at once on the form (4xx), anything else goes to the job's page."""
+    rec = web.store.new_job(kind, params, title)
+    web.runner.submit(rec["id"])
+    rec = await web.runner.wait(rec["id"], web.settings.quick_wait)
+    if rec is not None and rec["status"] == "failed":
+        return await form_again(web, request, rec)
+    return RedirectResponse(f"/jobs/{rec['id'] if rec else ''}", status_code=303)
+
+
+async def form_again(web, request: Request, rec: dict) -> HTMLResponse:
+    """The form that made job ``rec``, filled in again, with its error (or its note)."""
+    params = rec.get("params", {})
+    ctx = dict(values=params.get("form", {}), kept=params.get("kept", {}),
+               need_units=bool(rec.get("needs_units")))
+    if rec["status"] == "cancelled":
+        ctx["notice"] = f"result {rec['id']} was stopped ({rec.get('error') or 'stopped'})"
+        status = 200
+    else:
+        ctx["error"] = rec.get("error") or "the computation failed"
+        status = int(rec.get("error_status") or 422)
+    render = web.renderers.get(rec["kind"]) or web.renderers["derive"]
+    return render(web, request, status=status, **ctx)
+
+
+def done_jobs(web, kinds) -> list[dict]:
+    return web.store.jobs(kinds=kinds, status=("done",), limit=30)
+
+
+def wedge_source(form: Form, prefix: str = "") -> dict:
+    return {"kind": "wedge", **{k: form.number(prefix + k, label=label)
+                                for k, label in WEDGE.items()}}
+
+
+def wedge_title(src: dict) -> str:
+    return (f"wedge {src['alpha_deg']:g}/{src['beta_deg']:g} deg, mu "
+            f"{src['mu_alpha']:g}/{src['mu_beta']:g}")
+
+
+def done_job(web, jid: str, kinds, what: str) -> dict:
+    rec = web.store.read(jid) if JOB_ID.match(jid or "") else None
+    if rec is None or rec["kind"] not in kinds:
+        raise FormError(f"no {what} {jid[:40]!r}; pick one from the list")
+    if rec["status"] != "done":
+        raise FormError(f"{what} {jid} is {rec['status']}; pick a finished one")
+    return rec
+
+
+def status_of(exc: BaseException) -> int:
+    if isinstance(exc, TooLarge):
+        return 413
+    return 400 if isinstance(exc, (FormError, UploadError)) else 422

@@ -1,0 +1,206 @@
+"""Plotly figures of the pages, as plain dictionaries (``{"data": [...], "layout": {...}}``)
+drawn in the browser by ``plotly.min.js``.  They are built in the worker process from the
+library's results (the Python ``plotly`` package is not needed for them)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+HOVER_P = ("psi = %{customdata[0]:.2f} deg<br>p = (%{x:.5f}, %{y:.5f})<br>"
+           "T = p.s = %{customdata[1]:.5f}<br>L = p.s_perp = %{customdata[2]:.5f}<extra></extra>")
+
+
+def _layout(title: str, xlabel: str, ylabel: str, *, equal: bool = False, **extra) -> dict:
+    lay = {"title": {"text": title, "font": {"size": 14}},
+           "margin": {"l": 60, "r": 20, "t": 40, "b": 50},
+           "xaxis": {"title": {"text": xlabel}, "zeroline": True, "zerolinecolor": "#bbb"},
+           "yaxis": {"title": {"text": ylabel}, "zeroline": True, "zerolinecolor": "#bbb"},
+           "legend": {"orientation": "h", "y": -0.18}, "hovermode": "closest",
+           "plot_bgcolor": "#fff", "paper_bgcolor": "#fff"}
+    if equal:
+        lay["yaxis"].update(scaleanchor="x", scaleratio=1)
+    lay.update(extra)
+    return lay
+
+
+def _r(x, digits: int = 6):
+    """Rounded copy for the page (NaN -> None)."""
+    a = np.asarray(x, dtype=float)
+    out = np.round(a, digits).tolist()
+    if np.isnan(a).any():
+        return _none(out)
+    return out
+
+
+def _none(v):
+    if isinstance(v, list):
+        return [_none(x) for x in v]
+    return None if isinstance(v, float) and math.isnan(v) else v
+
+
+def reservoir_figures(obj: dict) -> dict:
+    """The force-plane plot p(psi) (hover: psi, p, T, L) and T, L against psi, from the
+    JSON of :func:`asperity.friction.derive.to_json`."""
+    dirs = obj["directions"]
+    surface = "data_quality" in obj
+    xs, ys, cd = [], [], []
+    for d in dirs + dirs[:1]:                       # closed curve
+        p = d["p"]
+        xs.append(None if p is None else round(p[0], 7))
+        ys.append(None if p is None else round(p[1], 7))
+        cd.append([round(d["psi_deg"], 4)] + [None if v is None else round(v, 7)
+                                               for v in (d["tangential"], d["lateral"])])
+    locked = [d["psi_deg"] for d in dirs if d["self_locking"]]
+    traces = [{"type": "scatter", "mode": "lines+markers", "x": xs, "y": ys, "customdata": cd,
+               "name": "p(psi): friction force per unit normal load", "hovertemplate": HOVER_P,
+               "marker": {"size": 4}, "line": {"width": 2}}]
+    theta = math.radians(obj.get("principal_direction_deg") or 0.0)
+    mags = [math.hypot(x, y) for x, y in zip(xs, ys) if x is not None]
+    r = 1.15 * max(mags) if mags else 1.0
+    traces.append({"type": "scatter", "mode": "lines", "name": "t_a (principal direction)",
+                   "x": [-r * math.cos(theta), r * math.cos(theta)],
+                   "y": [-r * math.sin(theta), r * math.sin(theta)],
+                   "line": {"dash": "dash", "width": 1, "color": "#e67e22"}, "hoverinfo": "skip"})
+    a, b = ("p_x", "p_y") if surface else ("p_a (along t_a)", "p_b (along t_b)")
+    polar = {"data": traces, "layout": _layout("friction force p(psi) for every sliding "
+                                               "direction (hover a point)", a, b, equal=True)}
+    psi = [d["psi_deg"] for d in dirs]
+    tl = {"data": [
+        {"type": "scatter", "mode": "lines", "x": psi, "y": [d["tangential"] for d in dirs],
+         "name": "T = p.s (resists the motion)", "hovertemplate":
+         "psi = %{x:.2f} deg<br>T = %{y:.5f}<extra></extra>"},
+        {"type": "scatter", "mode": "lines", "x": psi, "y": [d["lateral"] for d in dirs],
+         "name": "L = p.s_perp (pushes sideways)", "hovertemplate":
+         "psi = %{x:.2f} deg<br>L = %{y:.5f}<extra></extra>"}],
+        "layout": _layout("tangential and lateral parts against the sliding direction",
+                          "sliding direction psi (deg" + (", from +x)" if surface else
+                                                          ", from t_a)"), "force / normal load",
+                          xaxis={"title": {"text": "sliding direction psi (deg)"},
+                                 "tickvals": list(range(0, 361, 45))})}
+    if locked:
+        tl["layout"]["title"]["text"] += f" -- self-locking at {len(locked)} directions"
+    return {"polar": polar, "tl": tl}
+
+
+def height_figure(surface, principal_deg: float) -> dict | None:
+    """The height-map preview (um, about 256 x 256 points) with t_a drawn through it."""
+    z = getattr(surface, "preview", None)
+    ext = getattr(surface, "extent", None)
+    if z is None or ext is None:
+        return None
+    z = np.asarray(z, dtype=float)
+    if z.size == 0 or not np.isfinite(z).any():
+        return None
+    lx, ly = (float(v) * 1e3 for v in ext)
+    nx, ny = z.shape
+    zz = (z - np.nanmean(z)).T * 1e6
+    x = (np.arange(nx) + 0.5) * lx / nx
+    y = (np.arange(ny) + 0.5) * ly / ny
+    t = math.radians(principal_deg)
+    cx, cy, r = 0.5 * lx, 0.5 * ly, 0.4 * min(lx, ly)
+    return {"data": [
+        {"type": "heatmap", "x": _r(x, 6), "y": _r(y, 6), "z": _r(zz, 4),
+         "colorscale": "Viridis", "colorbar": {"title": {"text": "height (um)"}},
+         "hovertemplate": "x = %{x:.4g} mm<br>y = %{y:.4g} mm<br>z = %{z:.4g} um<extra></extra>"},
+        {"type": "scatter", "mode": "lines+text", "x": [cx - r * math.cos(t), cx + r * math.cos(t)],
+         "y": [cy - r * math.sin(t), cy + r * math.sin(t)], "text": ["", f"t_a {principal_deg:.1f} deg"],
+         "textposition": "top center", "line": {"color": "#e67e22", "width": 3},
+         "textfont": {"color": "#e67e22"}, "name": "t_a", "hoverinfo": "skip", "showlegend": False}],
+        "layout": _layout("height map (mean removed) and the principal direction t_a",
+                          "x (mm)", "y (mm)", equal=True)}
+
+
+def law_figures(gl) -> dict:
+    """C, D, the data and the sliding rule in the force plane; T and L of the law (lines)
+    against the data (dots)."""
+    law, data = gl.law, gl.data
+    step = max(1, data.psi.size // 360)
+    dp = data.p[::step]
+    psi_d = np.degrees(data.psi[::step])
+    traces = [{"type": "scatter", "mode": "markers", "x": _r(dp[:, 0]), "y": _r(dp[:, 1]),
+               "customdata": _r(psi_d, 3), "name": "data p(psi) (fitted)",
+               "marker": {"size": 5, "color": "black", "symbol": "circle-open"},
+               "hovertemplate": "data<br>psi = %{customdata:.2f} deg<br>"
+                                "p = (%{x:.5f}, %{y:.5f})<extra></extra>"}]
+    if gl.kind == "star":
+        c = np.vstack([law.C.points, law.C.points[:1]])
+        dset = np.vstack([law.D.boundary.points, law.D.boundary.points[:1]])
+    else:
+        phi = np.linspace(0.0, 2.0 * np.pi, 721)
+        c = law.C.radial(phi)[:, None] * np.column_stack([np.cos(phi), np.sin(phi)])
+        dset = None
+    traces.append({"type": "scatter", "mode": "lines", "x": _r(c[:, 0]), "y": _r(c[:, 1]),
+                   "name": "C: friction reservoir (every force the contact can carry)",
+                   "line": {"width": 2.5, "color": "#1f77b4"}, "hoverinfo": "skip"})
+    if dset is not None:
+        traces.append({"type": "scatter", "mode": "lines", "x": _r(dset[:, 0]),
+                       "y": _r(dset[:, 1]), "name": "D: sliding set (its normals give the "
+                       "sliding direction; scale arbitrary)",
+                       "line": {"dash": "dash", "color": "#e67e22"}, "hoverinfo": "skip"})
+    n = 24
+    psi = math.radians(gl.principal_direction_deg) + 2 * np.pi * np.arange(n) / n
+    f = gl.force(psi)
+    mag = np.hypot(f.p[:, 0], f.p[:, 1])
+    s = np.column_stack([np.cos(psi), np.sin(psi)])
+    ax, ay = [], []
+    for k in range(n):
+        ax += [mag[k] * s[k, 0], f.p[k, 0], None]
+        ay += [mag[k] * s[k, 1], f.p[k, 1], None]
+    traces.append({"type": "scatter", "mode": "lines", "x": _r(ax), "y": _r(ay),
+                   "name": "sliding rule: |p| s -> p (how far the force turns from s)",
+                   "line": {"color": "#2ca02c", "width": 1.5}, "hoverinfo": "skip"})
+    frame = ("p_a", "p_b") if gl.principal_direction_deg == 0 else ("p_x", "p_y")
+    plane = {"data": traces, "layout": _layout(f"{gl.kind} law: C, D and the data", *frame,
+                                               equal=True)}
+    grid = np.linspace(0.0, 2.0 * np.pi, 721)
+    fl = gl.force(grid)
+    T = np.where(fl.set_valued, np.nan, fl.tangential)
+    L = np.where(fl.set_valued, np.nan, fl.lateral)
+    ok = data.limit == 0
+    sd = np.column_stack([np.cos(data.psi[ok]), np.sin(data.psi[ok])])
+    sp = np.column_stack([-np.sin(data.psi[ok]), np.cos(data.psi[ok])])
+    dT = np.einsum("ij,ij->i", data.p[ok], sd)
+    dL = np.einsum("ij,ij->i", data.p[ok], sp)
+    k = max(1, int(ok.sum()) // 120)
+    deg = np.degrees(data.psi[ok])
+    tl = {"data": [
+        {"type": "scatter", "mode": "lines", "x": _r(np.degrees(grid), 3), "y": _r(T),
+         "name": "law T = p.s", "line": {"color": "black"}},
+        {"type": "scatter", "mode": "lines", "x": _r(np.degrees(grid), 3), "y": _r(L),
+         "name": "law L = p.s_perp", "line": {"color": "#2ca02c"}},
+        {"type": "scatter", "mode": "markers", "x": _r(deg[::k], 3), "y": _r(dT[::k]),
+         "name": "data T", "marker": {"symbol": "circle-open", "color": "black", "size": 5}},
+        {"type": "scatter", "mode": "markers", "x": _r(deg[::k], 3), "y": _r(dL[::k]),
+         "name": "data L", "marker": {"symbol": "circle-open", "color": "#2ca02c", "size": 5}}],
+        "layout": _layout("the law against the data, for every sliding direction",
+                          "sliding direction psi (deg)", "force / normal load",
+                          xaxis={"title": {"text": "sliding direction psi (deg)"},
+                                 "tickvals": list(range(0, 361, 45))})}
+    return {"plane": plane, "tl": tl}
+
+
+def path_figure(res, angle_deg: float) -> dict:
+    """The path of a sliding body (hover: time, position, speed), start and rest."""
+    q, u, t = np.asarray(res.q), np.asarray(res.u), np.asarray(res.t)
+    step = max(1, q.shape[0] // 2000)
+    idx = np.unique(np.r_[np.arange(0, q.shape[0], step), q.shape[0] - 1])
+    speed = np.hypot(u[idx, 0], u[idx, 1])
+    x, y = (float(v) for v in res.q_final)
+    d = math.hypot(x, y) or 1.0
+    a = math.radians(angle_deg)
+    traces = [
+        {"type": "scatter", "mode": "lines", "x": [0.0, d * math.cos(a)], "y": [0.0, d * math.sin(a)],
+         "name": "launch direction", "line": {"dash": "dot", "color": "#999"}, "hoverinfo": "skip"},
+        {"type": "scatter", "mode": "lines", "x": _r(q[idx, 0], 9), "y": _r(q[idx, 1], 9),
+         "customdata": np.column_stack([np.round(t[idx], 6), np.round(speed, 6)]).tolist(),
+         "name": "path", "line": {"width": 3, "color": "#1f77b4"},
+         "hovertemplate": "t = %{customdata[0]:.4f} s<br>x = %{x:.5g} m<br>y = %{y:.5g} m<br>"
+                          "speed = %{customdata[1]:.4g} m/s<extra></extra>"},
+        {"type": "scatter", "mode": "markers", "x": [0.0], "y": [0.0], "name": "start",
+         "marker": {"size": 10, "color": "#2ca02c"}},
+        {"type": "scatter", "mode": "markers", "x": [x], "y": [y],
+         "name": "rest point" if res.stop_step is not None else "end (still moving)",
+         "marker": {"size": 12, "color": "#d62728", "symbol": "x"}}]
+    return {"data": traces, "layout": _layout("path of the sliding body", "x (m, along t_a)",
+                                              "y (m, along t_b)", equal=True)}

@@ -1,0 +1,152 @@
+"""The Surface page (a wedge or a file -> its friction) and the Law page (a law fitted to
+it, or a gauge file opened)."""
+from __future__ import annotations
+
+from fastapi import Request
+from fastapi.responses import HTMLResponse
+
+from ..errors import AsperityError, check_choice
+from .common import (
+    done_job,
+    done_jobs,
+    read_form,
+    status_of,
+    submit,
+    upload_or_kept,
+    wedge_source,
+    wedge_title,
+)
+from .forms import Form, FormError
+from .security import TooLarge
+
+CONTACTS = ("all-faces", "windward")
+DETREND = ("slope", "none", "mean", "plane", "poly2", "poly3")
+
+
+def render_surface(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
+    return web.page(request, "surface.html", status, page="surface",
+                    jobs=web.store.jobs(kinds=("derive",), limit=20), **ctx)
+
+
+def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
+    surfaces = done_jobs(web, ("derive",))
+    sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {j['title']}")
+                                                for j in surfaces]
+    wanted = request.query_params.get("source", "")
+    default = wanted if any(s == wanted for s, _ in sources) else \
+        (surfaces[0]["id"] if surfaces else "wedge")
+    return web.page(request, "law.html", status, page="law", sources=sources,
+                    default_source=default,
+                    jobs=web.store.jobs(kinds=("fit", "gauge"), limit=20), **ctx)
+
+
+def pixel_size(text: str):
+    """'0.5' -> 0.5; '0.5 0.25' or '0.5, 0.25' -> (0.5, 0.25); '' -> None."""
+    parts = text.replace(",", " ").split()
+    if not parts:
+        return None
+    if len(parts) > 2:
+        raise FormError(f"pixel size takes one number or two (dx dy), got {text[:40]!r}")
+    form = Form({f"p{i}": p for i, p in enumerate(parts)})
+    vals = [form.number(f"p{i}", label="pixel size") for i in range(len(parts))]
+    return vals[0] if len(vals) == 1 else tuple(vals)
+
+
+def surface_source(form: Form, meta: dict, fmap: dict | None) -> dict:
+    opts = {"unit": form.text("unit") or None, "pixel_size": pixel_size(form.text("pixel_size")),
+            "mu": None if fmap else form.optional("mu", label="local friction mu"),
+            "detrend": form.choice("detrend", DETREND, "slope", label="form removal"),
+            "height_scale": form.number("height_scale", 1.0, label="height scale"),
+            "max_slope": form.optional("max_slope", label="max slope (deg)"),
+            "despike": form.optional("despike", label="spike filter K"),
+            "despike_window": form.whole("despike_window", None, low=-10**9,
+                                         label="spike filter window"),
+            "rest_level": form.optional("rest_level", label="rest level (m)"),
+            "bearing_fraction": form.optional("bearing_fraction", label="bearing fraction")}
+    src = {"kind": "file", "upload": meta["id"], "name": meta["name"], "options": opts}
+    if fmap:
+        src["options"]["friction_map"] = fmap["id"]
+        src["map_name"] = fmap["name"]
+    return src
+
+
+def register(app, web) -> None:
+    web.renderers.update(derive=render_surface, fit=render_law, gauge=render_law)
+
+    @app.get("/surface", response_class=HTMLResponse)
+    async def surface(request: Request):
+        return render_surface(web, request)
+
+    @app.post("/surface")
+    async def surface_post(request: Request):
+        form = await read_form(request)
+        values, kept = form.values(), {}
+        try:
+            source = form.choice("source", ("wedge", "file"), "wedge")
+            params = {"contact": form.choice("contact", CONTACTS, "all-faces"),
+                      "directions": form.whole("directions", 360, low=8, high=100_000,
+                                               label="sliding directions"),
+                      "method": form.choice("method", ("closed-form", "springs"),
+                                            "closed-form")}
+            if source == "wedge":
+                src = wedge_source(form)
+                title = wedge_title(src)
+            else:
+                meta = await upload_or_kept(web, form, "file", "upload")
+                if meta is None:
+                    raise FormError("choose a file to upload (or enter a wedge in the other "
+                                    "form)")
+                kept["file"] = meta
+                fmap = await upload_or_kept(web, form, "friction_map", "map_upload")
+                src = surface_source(form, meta, fmap)
+                title = f"{'texture file' if meta['id'].endswith('.toml') else 'surface'} " \
+                        f"{meta['name']}"
+            params.update(source=src, form=values, kept=kept)
+        except (AsperityError, TooLarge) as exc:
+            return render_surface(web, request, status=status_of(exc), values=values, kept=kept,
+                                  error=str(exc))
+        return await submit(web, request, "derive", params, f"friction of {title}")
+
+    @app.get("/law", response_class=HTMLResponse)
+    async def law(request: Request):
+        return render_law(web, request)
+
+    @app.post("/law")
+    async def law_post(request: Request):
+        form = await read_form(request)
+        values = form.values()
+        try:
+            choice = form.text("source") or "wedge"
+            contact = form.text("contact")
+            if choice == "wedge":
+                src = wedge_source(form)
+                what = wedge_title(src)
+            else:
+                rec = done_job(web, choice, ("derive",), "surface result")
+                src = {"kind": "job", "job": choice}
+                what = f"result {choice}"
+                contact = contact or rec["params"].get("contact", "all-faces")
+            kind = form.choice("law", ("star", "ellipse"), "star")
+            params = {"source": src, "law": "star" if kind == "star" else "truncated-ellipse",
+                      "contact": check_choice("contact", contact or "all-faces", CONTACTS),
+                      "directions": form.whole("directions", 720, low=8, high=100_000,
+                                               label="sliding directions fitted"),
+                      "form": values}
+        except AsperityError as exc:
+            return render_law(web, request, status=status_of(exc), values=values, error=str(exc))
+        name = "star" if kind == "star" else "truncated-ellipse"
+        return await submit(web, request, "fit", params, f"{name} law of {what}")
+
+    @app.post("/law/open")
+    async def law_open(request: Request):
+        form = await read_form(request)
+        try:
+            meta = await upload_or_kept(web, form, "gauge", "gauge_upload")
+            if meta is None:
+                raise FormError("choose a gauge file (.json) to open")
+        except (AsperityError, TooLarge) as exc:
+            return render_law(web, request, status=status_of(exc), error=str(exc))
+        return await submit(web, request, "gauge", {"upload": meta["id"], "name": meta["name"],
+                                                    "form": {}}, f"gauge file {meta['name']}")
+
+

@@ -1,0 +1,251 @@
+"""The Motion and risk page (slide a body, assess an assembly) and the Studies page."""
+from __future__ import annotations
+
+from fastapi import Request
+from fastapi.responses import HTMLResponse
+
+from ..errors import AsperityError
+from .forms import Form, FormError
+from .common import (
+    done_job,
+    done_jobs,
+    read_form,
+    save_upload,
+    status_of,
+    submit,
+    upload_or_kept,
+    wedge_source,
+    wedge_title,
+)
+from .security import TooLarge
+from .store import UploadError, check_plain_name
+
+BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a, mu2 along t_b)"),
+           ("coulomb", "built in: coulomb (isotropic, mu1)"),
+           ("collinear", "built in: collinear (force along the sliding direction)"),
+           ("star", "built in: star (windward wedge reservoir, mu1 / mu2)"),
+           ("upload", "a gauge file (upload below)"))
+STRIP = {"h": "h (m)", "E": "E (Pa)", "p": "p (Pa)", "l": "l (m)", "k_t": "k_t (Pa/m)",
+         "alpha_T": "alpha_T (1/K)"}
+TWO_NODE = {"k": "k (N/m)", "l0": "l0 (m)", "alpha_T": "alpha_T (1/K)", "k_t": "k_t (N/m)",
+            "N": "N (N)"}
+MAX_TOML = 1 << 20
+
+
+def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
+    laws_done = done_jobs(web, ("fit", "gauge"))
+    surfaces = done_jobs(web, ("derive",))
+    q = request.query_params
+    laws = [(f"job:{j['id']}", f"{j['id']}: {j['title']}") for j in laws_done] + list(BUILTIN)
+    default_law = f"job:{q['law']}" if q.get("law") and any(
+        j["id"] == q["law"] for j in laws_done) else (laws[0][0] if laws else "ellipse")
+    frictions = [("wedge", "a wedge texture (below)")]
+    frictions += [(f"job:{j['id']}", f"surface {j['id']}: {j['title']}") for j in surfaces]
+    frictions += [(f"law:{j['id']}", f"law {j['id']}: {j['title']}") for j in laws_done]
+    frictions += [("file", "a texture or surface file (upload below)"),
+                  ("mu", "two coefficients mu+ and mu- (below)"),
+                  ("assembly", "the assembly file's own [friction] (mu_plus, mu_minus)")]
+    default_friction = "wedge"
+    if q.get("texture") and any(j["id"] == q["texture"] for j in surfaces):
+        default_friction = f"job:{q['texture']}"
+    elif q.get("law") and any(j["id"] == q["law"] for j in laws_done):
+        default_friction = f"law:{q['law']}"
+    return web.page(request, "motion.html", status, page="motion", laws=laws,
+                    default_law=default_law, frictions=frictions,
+                    default_friction=default_friction,
+                    jobs=web.store.jobs(kinds=("slide", "risk"), limit=20), **ctx)
+
+
+def render_studies(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
+    return web.page(request, "studies.html", status, page="studies",
+                    jobs=web.store.jobs(kinds=("study",), limit=20), **ctx)
+
+
+async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
+    choice = form.text("law") or "ellipse"
+    if choice.startswith("job:"):
+        jid = choice[4:]
+        done_job(web, jid, ("fit", "gauge"), "law")
+        spec, what = {"kind": "job", "job": jid}, f"the law of result {jid}"
+    elif choice == "upload":
+        meta = await upload_or_kept(web, form, "gauge", "gauge_upload")
+        if meta is None:
+            raise FormError("choose a gauge file (.json) to upload, or another law")
+        kept["gauge"] = meta
+        spec, what = {"kind": "upload", "upload": meta["id"], "name": meta["name"]}, meta["name"]
+    elif choice in ("coulomb", "ellipse", "collinear", "star"):
+        mu1 = form.number("mu1", label="mu1")
+        mu2 = form.optional("mu2", label="mu2") if choice == "coulomb" else \
+            form.number("mu2", label="mu2")
+        spec = {"kind": "builtin", "law": choice, "mu1": mu1, "mu2": mu2}
+        what = f"a {choice} law, mu1 = {mu1:g}" + ("" if mu2 is None else f", mu2 = {mu2:g}")
+    else:
+        raise FormError(f"unknown friction law {choice[:40]!r}; pick one from the list")
+    params = {"law": spec, "u0": form.number("u0", label="u0 (m/s)"),
+              "angle_deg": form.number("angle_deg", label="direction (deg)"),
+              "mass": form.number("mass", 1.0, label="mass (kg)"),
+              "g": form.number("g", 9.81, label="g (m/s^2)"),
+              "dt": form.number("dt", 1e-4, label="time step (s)")}
+    return params, f"slide on {what}"
+
+
+def _assembly_from_form(form: Form) -> dict:
+    model = form.choice("model", ("strip", "two-node"), "strip")
+    if model == "strip":
+        a = {k: form.number(f"strip_{k}", label=label) for k, label in STRIP.items()}
+        a["n"] = form.whole("strip_n", 201, low=-10 ** 9, label="nodes")
+    else:
+        a = {k: form.number(f"two_{k}", label=label) for k, label in TWO_NODE.items()}
+    loading = {"dT_min": form.number("dT_min", 0.0, label="dT min (K)"),
+               "dT_max": form.number("dT_max", label="dT max (K)"),
+               "force": form.number("force", 0.0, label="tangential force"),
+               "cycles": 1e6, "tolerance": 1e-4}
+    return {"name": f"{model} assembly (form)", "assembly": {"model": model, **a},
+            "loading": loading}
+
+
+def _toml(data: dict) -> str:
+    """A flat assembly table as TOML (numbers and strings only)."""
+    import json
+    out = []
+    for key, value in data.items():
+        if not isinstance(value, dict):
+            out.append(f"{key} = {json.dumps(value)}")
+    for key, table in data.items():
+        if isinstance(table, dict):
+            out.append(f"\n[{key}]")
+            out += [f"{k} = {json.dumps(v) if isinstance(v, str) else repr(float(v)) if isinstance(v, float) else v}"
+                    for k, v in table.items()]
+    return "\n".join(out) + "\n"
+
+
+async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
+    from ..io import parse_toml
+    meta = await upload_or_kept(web, form, "assembly_file", "assembly_upload")
+    if meta is not None:
+        kept["assembly"] = meta
+        path = web.store.upload_path(meta["id"])
+        if path.stat().st_size > MAX_TOML:
+            raise UploadError(f"{meta['name']!r} is too large for an assembly file (1 MB)")
+        text = path.read_text(encoding="utf-8", errors="replace")
+        data = parse_toml(text, meta["name"], UploadError)
+        what = meta["name"]
+    else:
+        data = _assembly_from_form(form)
+        text = _toml(data)
+        what = data["name"]
+    choice = form.text("friction") or "wedge"
+    if choice == "wedge":
+        spec = wedge_source(form, "r_")
+        src_what = wedge_title(spec)
+    elif choice.startswith("job:"):
+        done_job(web, choice[4:], ("derive",), "surface result")
+        spec, src_what = {"kind": "job", "job": choice[4:]}, f"result {choice[4:]}"
+    elif choice.startswith("law:"):
+        done_job(web, choice[4:], ("fit", "gauge"), "law")
+        spec, src_what = {"kind": "law", "job": choice[4:]}, f"the law of {choice[4:]}"
+    elif choice == "file":
+        tex = await upload_or_kept(web, form, "texture_file", "texture_upload")
+        if tex is None:
+            raise FormError("choose the texture or surface file to upload (or another source "
+                            "of friction)")
+        kept["texture"] = tex
+        spec = {"kind": "file", "upload": tex["id"], "name": tex["name"],
+                "options": {"unit": form.text("r_unit") or None,
+                            "mu": form.optional("r_mu", label="local friction mu")}}
+        src_what = tex["name"]
+    elif choice == "mu":
+        spec = {"kind": "mu", "mu_plus": form.number("mu_plus", label="mu+"),
+                "mu_minus": form.number("mu_minus", label="mu-")}
+        src_what = f"mu+ = {spec['mu_plus']:g}, mu- = {spec['mu_minus']:g}"
+    elif choice == "assembly":
+        if meta is None:
+            raise FormError("the assembly file's own friction needs an assembly file")
+        spec, src_what = {"kind": "assembly"}, "its own friction"
+    else:
+        raise FormError(f"unknown friction source {choice[:40]!r}; pick one from the list")
+    tol = form.optional("tolerance_mm", label="tolerance (mm)")
+    params = {"assembly": data, "friction": spec, "assembly_toml": text, "assembly_name": what,
+              "slip_axis_deg": form.optional("slip_axis_deg", label="slip axis (deg)"),
+              "textured": form.choice("textured", ("", "support", "part"), "") or None,
+              "contact": form.choice("r_contact", ("", "all-faces", "windward"), "") or None,
+              "cycles": form.optional("cycles", label="cycles"),
+              "tolerance": None if tol is None else tol * 1e-3}
+    return params, f"risk of {what} on {src_what}"
+
+
+def register(app, web) -> None:
+    web.renderers.update(slide=render_motion, risk=render_motion, study=render_studies)
+
+    @app.get("/motion", response_class=HTMLResponse)
+    async def motion(request: Request):
+        return render_motion(web, request)
+
+    async def post(request: Request, kind: str, build):
+        form = await read_form(request)
+        values, kept = form.values(), {}
+        try:
+            params, title = await build(web, form, kept)
+        except (AsperityError, TooLarge) as exc:
+            return render_motion(web, request, status=status_of(exc), values=values, kept=kept,
+                                 error=str(exc))
+        params.update(form=values, kept=kept)
+        return await submit(web, request, kind, params, title)
+
+    @app.post("/motion/slide")
+    async def slide_post(request: Request):
+        return await post(request, "slide", _slide_params)
+
+    @app.post("/motion/risk")
+    async def risk_post(request: Request):
+        return await post(request, "risk", _risk_params)
+
+    @app.get("/studies", response_class=HTMLResponse)
+    async def studies(request: Request):
+        return render_studies(web, request)
+
+    @app.post("/studies")
+    async def studies_post(request: Request):
+        form = await read_form(request)
+        values = form.values()
+        try:
+            params, title = await _study_params(web, form)
+        except (AsperityError, TooLarge) as exc:
+            return render_studies(web, request, status=status_of(exc), values=values,
+                                  error=str(exc))
+        params["form"] = values
+        return await submit(web, request, "study", params, title)
+
+
+async def _study_params(web, form: Form) -> tuple[dict, str]:
+    from .tasks_study import check_references
+    up = form.file("study")
+    if up is None:
+        raise FormError("choose the study file (.toml) to upload")
+    name = check_plain_name(up.filename, "study file name")
+    if not name.lower().endswith(".toml"):
+        raise UploadError(f"the study file must be a .toml file, got {name!r}")
+    files = form.files("companions")
+    names = [check_plain_name(f.filename) for f in files]
+    if len(set(names) | {name}) != len(names) + 1:
+        raise UploadError("two files with the same name; each file once, please")
+    workers = form.whole("workers", 0, low=0, high=64, label="local worker processes")
+    texts = {n: (await _toml_text(f, n)) if n.lower().endswith(".toml") else None
+             for f, n in zip(files, names)}
+    check_references(await _toml_text(up, name), texts)      # before anything is stored
+    study = await save_upload(web, up)
+    companions = []
+    for f, n in zip(files, names):
+        meta = await save_upload(web, f)
+        companions.append({"upload": meta["id"], "name": n})
+    return ({"study": {"upload": study["id"], "name": name}, "companions": companions,
+             "workers": workers}, f"study {name}")
+
+
+async def _toml_text(upload, name: str) -> str:
+    """The text of an uploaded TOML file (at most 1 MB), the file rewound for saving."""
+    data = await upload.read(MAX_TOML + 1)
+    await upload.seek(0)
+    if len(data) > MAX_TOML:
+        raise UploadError(f"{name!r} is too large for a study, texture or assembly file (1 MB)")
+    return data.decode("utf-8", errors="replace")

@@ -1,0 +1,44 @@
+"""Results made fit for a page and a JSON file: plain values, finite numbers, and the
+names the user gave the files instead of where they are stored."""
+from __future__ import annotations
+
+import math
+
+
+def clean(x):
+    """JSON-ready: NumPy scalars and arrays as Python values, NaN and infinities as None."""
+    import numpy as np
+    if isinstance(x, dict):
+        return {str(k): clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [clean(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return clean(x.tolist())
+    if isinstance(x, (bool, np.bool_)):
+        return bool(x)
+    if isinstance(x, (int, np.integer)):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        return float(x) if math.isfinite(x) else None
+    if x is None or isinstance(x, str):
+        return x
+    return str(x)
+
+
+def rename(x, names: dict):
+    """``x`` with every stored path in its strings replaced by the file's shown name
+    (``names``: path text -> shown name; the longest paths first)."""
+    if isinstance(x, dict):
+        return {k: rename(v, names) for k, v in x.items()}
+    if isinstance(x, list):
+        return [rename(v, names) for v in x]
+    if isinstance(x, str):
+        for path, shown in sorted(names.items(), key=lambda kv: -len(kv[0])):
+            x = x.replace(path, shown)
+    return x
+
+
+def one_line(exc: BaseException, names: dict | None = None, limit: int = 400) -> str:
+    """The message of ``exc`` in one line, stored paths replaced by shown names."""
+    text = rename(" ".join(str(exc).split()), names or {})
+    return text if len(text) <= limit else text[: limit - 3] + "..."

@@ -1,0 +1,86 @@
+// asperity serve: draws the Plotly figures of a page, polls a running job, and shows the
+// fields that apply to the choices made in a form.  Hand-written, no build step.
+(function () {
+  "use strict";
+
+  function drawFigures() {
+    if (typeof Plotly === "undefined") { return; }
+    document.querySelectorAll("[data-figure]").forEach(function (el) {
+      var src = document.getElementById(el.getAttribute("data-figure"));
+      if (!src) { return; }
+      var fig = JSON.parse(src.textContent);
+      Plotly.newPlot(el, fig.data, fig.layout, {responsive: true, displaylogo: false});
+      el.setAttribute("data-drawn", "1");
+    });
+  }
+
+  function pollJob() {
+    var box = document.getElementById("progress");
+    if (!box) { return; }
+    var id = box.getAttribute("data-job");
+    var bar = document.getElementById("progress-bar");
+    var pct = document.getElementById("progress-pct");
+    var status = document.getElementById("progress-status");
+    var clock = document.getElementById("progress-time");
+    var t0 = Date.now();
+    function tick() {
+      fetch("/api/jobs/" + id, {headers: {"Accept": "application/json"}})
+        .then(function (r) { return r.json(); })
+        .then(function (j) {
+          if (j.status === "done" || j.status === "failed" || j.status === "cancelled") {
+            window.location.reload();
+            return;
+          }
+          var f = j.fraction || 0;
+          bar.value = f;
+          pct.textContent = Math.round(100 * f) + " %";
+          status.textContent = (j.status === "queued" ? "waiting for a free worker" : "computing") +
+            (j.label ? ": " + j.label : "");
+          clock.textContent = Math.round((Date.now() - t0) / 1000) + " s";
+          setTimeout(tick, 400);
+        })
+        .catch(function () { setTimeout(tick, 2000); });
+    }
+    tick();
+  }
+
+  function dependentFields() {
+    document.querySelectorAll("[data-when]").forEach(function (el) {
+      var form = el.closest("form");
+      var select = form && form.querySelector("[name='" + el.getAttribute("data-when") + "']");
+      if (!select) { return; }
+      var wanted = el.getAttribute("data-values").split(" ");
+      function update() { el.hidden = wanted.indexOf(select.value) < 0; }
+      select.addEventListener("change", update);
+      update();
+    });
+  }
+
+  function unitHint() {
+    var input = document.getElementById("f-file");
+    var box = document.getElementById("units");
+    if (!input || !box) { return; }
+    input.addEventListener("change", function () {
+      var name = (input.files[0] && input.files[0].name || "").toLowerCase().replace(/\.gz$/, "");
+      var none = /\.(stl|obj|ply|npy|npz)$/.test(name);
+      box.classList.toggle("attention", none);
+    });
+  }
+
+  function busyButtons() {
+    document.querySelectorAll("form").forEach(function (form) {
+      form.addEventListener("submit", function () {
+        var b = form.querySelector("button[type=submit]");
+        if (b) { b.classList.add("busy"); b.textContent = "working..."; }
+      });
+    });
+  }
+
+  document.addEventListener("DOMContentLoaded", function () {
+    drawFigures();
+    pollJob();
+    dependentFields();
+    unitHint();
+    busyButtons();
+  });
+})();

@@ -1,0 +1,142 @@
+"""Jobs of the Motion and risk page: a body sliding on a law (``slide``) and the ratchet
+verdict of an assembly under load cycles (``risk``).
+
+A *law* for ``slide``: ``{"kind": "job", "job": ID}`` (the gauge file of a Law result),
+``{"kind": "upload", "upload": ID, "name": ...}`` (a gauge file) or ``{"kind": "builtin",
+"law": coulomb|ellipse|collinear|star, "mu1", "mu2"}``.  The *friction* of ``risk``:
+``{"kind": "wedge", ...}``, ``{"kind": "job", "job": ID}`` (a Surface result's source),
+``{"kind": "file", ...}`` (an uploaded texture or surface), ``{"kind": "law", "job": ID}``
+(a Law result's gauge file), ``{"kind": "mu", "mu_plus", "mu_minus"}`` or ``{"kind":
+"assembly"}`` (the assembly's own ``[friction]``: explicit coefficients only).
+"""
+from __future__ import annotations
+
+import math
+import shutil
+
+from ..errors import InputError
+from .results import clean, rename
+from .store import JOB_ID
+from .tasks_surface import load_source, upload_file
+
+#: points of a path kept for the page and the CSV table at most
+MAX_POINTS = 4000
+
+
+def _gauge_of_job(ctx: dict, jid) -> "object":
+    if not isinstance(jid, str) or not JOB_ID.match(jid):
+        raise InputError("no such law; pick one from the list")
+    p = ctx["jobs"] / jid / "gauge.json"
+    if not p.is_file():
+        raise InputError(f"result {jid} holds no fitted law (gauge file)")
+    ctx["names"][str(p)] = f"the law of result {jid}"
+    return p
+
+
+def build_law(spec: dict, ctx: dict):
+    """The PlanarLaw of a law description (see the module docstring)."""
+    from .. import coulomb_law, collinear_law, ellipse_law, law_from_gauge, read_gauge, star_law
+    kind = spec.get("kind")
+    if kind == "job":
+        return law_from_gauge(read_gauge(_gauge_of_job(ctx, spec.get("job"))))
+    if kind == "upload":
+        return law_from_gauge(read_gauge(upload_file(ctx, spec.get("upload"),
+                                                     str(spec.get("name")))))
+    name, mu1, mu2 = spec.get("law"), spec.get("mu1"), spec.get("mu2")
+    if name == "coulomb":
+        return coulomb_law(mu1)
+    if name == "ellipse":
+        return ellipse_law(mu1, mu2)
+    if name == "collinear":
+        return collinear_law(mu1=mu1, mu2=mu2)
+    if name == "star":
+        return star_law(mu1, mu2)
+    raise InputError("law must be one of coulomb, ellipse, collinear, star")
+
+
+def slide_task(params: dict, ctx: dict, bar) -> dict:
+    from .. import slide
+    from ..dynamics.moreau import Settings
+    from ..dynamics.summary import path_csv, slide_summary
+    from ..errors import check_range
+    from ..io import write_text_atomic
+    from .figures import path_figure
+    law = build_law(params["law"], ctx)
+    u0 = check_range("u0", params["u0"], 0.0, 1e4, unit="m/s")
+    g = check_range("g", params["g"], 1e-6, 1e6, unit="m/s^2")
+    dt = check_range("dt", params["dt"], 1e-9, 1.0, unit="s")
+    low = law.min_tangential()
+    steps = 1.5 * u0 / (g * low) / dt if low > 0 else MAX_POINTS
+    every = max(1, int(steps // MAX_POINTS)) if math.isfinite(steps) else 1
+    bar(0.05, "sliding")
+    res = slide(law, u0, params["angle_deg"], mass=params["mass"], g=g, dt=dt,
+                record_every=every)
+    obj = slide_summary(law, res, u0=u0, angle_deg=params["angle_deg"], mass=params["mass"],
+                        g=g, dt=dt, t_end=None, tol=Settings().tol)
+    write_text_atomic(ctx["job_dir"] / "path.csv", path_csv(res))
+    return {"slide": obj, "figure": path_figure(res, params["angle_deg"]),
+            "files": ["path.csv"]}
+
+
+def _friction_table(asm: dict, spec: dict, ctx: dict, extra: dict) -> dict:
+    """The assembly's [friction] table for a friction source that the file names."""
+    kind = spec.get("kind")
+    if kind == "mu":
+        return {"mu_plus": spec["mu_plus"], "mu_minus": spec["mu_minus"]}
+    if kind == "law":
+        shutil.copyfile(_gauge_of_job(ctx, spec.get("job")), ctx["job_dir"] / "gauge.json")
+        return {"gauge": "gauge.json", **extra}
+    fr = asm.get("friction", {})
+    if not isinstance(fr, dict) or any(k in fr for k in ("texture", "gauge")):
+        raise InputError("the assembly file names its texture or gauge file; choose that "
+                         "texture (or law) as the friction source on this form")
+    return fr
+
+
+def risk_task(params: dict, ctx: dict, bar) -> dict:
+    from .. import assembly_friction, assess_assembly
+    from ..microslip.assembly import assembly_from_dict
+    from ..microslip.plot import plot_assembly_history
+    from ..microslip.risk_text import format_text
+    data = dict(params["assembly"])
+    spec = params["friction"]
+    opts = {k: params[k] for k in ("slip_axis_deg", "textured") if params.get(k) is not None}
+    texture, name = None, ""
+    if spec.get("kind") in ("wedge", "job", "file"):
+        texture, _, _ = load_source(spec, ctx)       # replaces the file's friction source
+        name = {"wedge": "wedge {alpha_deg:g}/{beta_deg:g} deg, mu {mu_alpha:g}/{mu_beta:g}",
+                "job": "the surface of result {job}", "file": "{name}"}[spec["kind"]]
+        name = name.format(**spec)
+    else:
+        data["friction"] = _friction_table(data, spec, ctx, opts)
+        opts = {}
+    if texture is not None:
+        fr = data.get("friction") if isinstance(data.get("friction"), dict) else {}
+        opts["contact"] = params.get("contact") or fr.get("contact") or "all-faces"
+    ctx["names"][str(ctx["job_dir"] / "assembly.toml")] = params.get("assembly_name") or \
+        "the assembly"
+    asm = assembly_from_dict(data, ctx["job_dir"] / "assembly.toml")
+    bar(0.1, "friction along the slip axis")
+    friction = assembly_friction(asm, texture, texture_name=name, **opts)
+    bar(0.3, "load cycles")
+    out = assess_assembly(asm, friction, cycles=params.get("cycles"),
+                          tolerance=params.get("tolerance"))
+    bar(0.8, "plot")
+    plot_assembly_history(out["_chain"], asm.loading, ctx["job_dir"] / "risk.png",
+                          title=asm.name)
+    text = format_text(out)
+    public = {k: v for k, v in out.items() if not k.startswith("_")}
+    public = rename(public, {str(ctx["job_dir"]) + "/": "", **ctx["names"]})
+    import json
+
+    from ..io import write_text_atomic
+    write_text_atomic(ctx["job_dir"] / "risk.json", json.dumps(clean(public), indent=1))
+    files = ["risk.png", "risk.json"]
+    if params.get("assembly_toml"):
+        write_text_atomic(ctx["job_dir"] / "assembly.toml", params["assembly_toml"])
+        files.append("assembly.toml")
+    return {"risk": public, "text": rename(text, {str(ctx["job_dir"]) + "/": "",
+                                                  **ctx["names"]}), "files": files}
+
+
+TASKS = {"slide": slide_task, "risk": risk_task}

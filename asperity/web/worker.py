@@ -1,0 +1,137 @@
+"""What a worker process of ``asperity serve`` runs: one job at a time, through the library.
+
+The server starts a few worker processes (:mod:`.runner`) and sends each a job: its kind,
+its folder and its parameters.  The worker runs the task of that kind (in
+:mod:`.tasks_surface`, :mod:`.tasks_motion`, :mod:`.tasks_study`) inside a
+:class:`JobProgress` -- the library's progress bar (:mod:`asperity.progress`) pointed at
+the job's ``progress.json`` instead of a terminal -- writes ``result.json`` and answers
+with a short status.  A user error is one line (the upload's name instead of its stored
+path), a bug is one line too (the traceback goes to ``traceback.txt`` in the job folder).
+"""
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+from ..io import write_text_atomic
+from ..progress import progress_bar
+from .results import clean, one_line
+
+#: seconds between two writes of progress.json
+PROGRESS_EVERY = 0.2
+
+
+class JobProgress(progress_bar):
+    """A progress bar that writes ``{"fraction", "label", "updated"}`` to a file (at most
+    every :data:`PROGRESS_EVERY` s) for the job page to poll; library code reports to
+    it through :func:`asperity.progress.report` or a ``progress`` callable."""
+
+    def __init__(self, path: Path):
+        import io
+        super().__init__("job", stream=io.StringIO())
+        self.path = Path(path)
+        self.last = 0.0
+        self.fraction = 0.0
+
+    def __call__(self, fraction: float, label: str | None = None) -> None:
+        try:
+            f = min(max(float(fraction), 0.0), 1.0)
+        except (TypeError, ValueError):
+            return
+        if label is not None:
+            self.phase = str(label)
+        now = time.monotonic()
+        if now - self.last < PROGRESS_EVERY and f < 1.0:
+            self.fraction = f
+            return
+        self.last, self.fraction = now, f
+        self.write(f, self.phase)
+
+    def write(self, fraction: float, label: str) -> None:
+        try:
+            write_text_atomic(self.path, json.dumps({"fraction": fraction, "label": label,
+                                                     "updated": time.time()}))
+        except Exception:                     # progress must never stop the work
+            pass
+
+
+def needs_units(message: str) -> bool:
+    """Does the message ask for the length unit or the pixel size of a file?"""
+    m = message.lower()
+    return ("pass unit" in m or "pass pixel_size" in m or "no length unit" in m
+            or "states no height unit" in m)
+
+
+def tasks() -> dict:
+    from . import tasks_motion, tasks_study, tasks_surface
+    return {**tasks_surface.TASKS, **tasks_motion.TASKS, **tasks_study.TASKS}
+
+
+def run_job(kind: str, job_dir: str, params: dict, uploads: str) -> dict:
+    """Run one job; its answer: ``{"ok": True, "files": [...]}`` or ``{"ok": False,
+    "status": 422 | 500, "error": one line, "needs_units": bool}``."""
+    from ..errors import AsperityError
+    folder = Path(job_dir)
+    ctx = {"job_dir": folder, "uploads": Path(uploads), "jobs": folder.parent, "names": {}}
+    bar = JobProgress(folder / "progress.json")
+    try:
+        task = tasks().get(kind)
+        if task is None:
+            raise AsperityError(f"unknown job kind {kind!r}")
+        with bar:
+            bar.write(0.0, "starting")
+            result = task(params, ctx, bar)
+        result = clean(result)
+        write_text_atomic(folder / "result.json", json.dumps(result, allow_nan=False))
+        bar.write(1.0, "done")
+        return {"ok": True, "files": result.get("files", [])}
+    except AsperityError as exc:
+        msg = one_line(exc, ctx["names"])
+        return {"ok": False, "status": 422, "error": msg, "needs_units": needs_units(msg)}
+    except MemoryError:
+        return {"ok": False, "status": 422, "error": "out of memory: ask for less (fewer "
+                "directions, a smaller scan, fewer cases)", "needs_units": False}
+    except RecursionError:
+        return {"ok": False, "status": 422, "error": "input nested too deeply to be "
+                "processed", "needs_units": False}
+    except Exception as exc:                       # a bug: one line, traceback to a file
+        import traceback
+        try:
+            write_text_atomic(folder / "traceback.txt", traceback.format_exc())
+        except Exception:
+            pass
+        return {"ok": False, "status": 500, "needs_units": False,
+                "error": f"internal error: {type(exc).__name__}: {one_line(exc, ctx['names'])} "
+                         f"(please report it; the traceback is in the job's folder)"}
+
+
+def warm_up() -> None:
+    """Load the compiled kernels once, so that the first job does not wait for them."""
+    try:
+        from .. import WedgeTexture, derive
+        derive(WedgeTexture(alpha_deg=30.0, beta_deg=10.0, mu_alpha=0.1, mu_beta=0.2),
+               n_directions=8)
+    except Exception:                              # pragma: no cover - never fatal
+        pass
+
+
+def main(conn, warm: bool = True) -> None:
+    """A worker process: jobs from ``conn`` until it closes (or None arrives)."""
+    import os
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)   # the server stops its workers itself
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    if warm:
+        warm_up()
+    while True:
+        try:
+            msg = conn.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
+            return
+        if msg is None:
+            return
+        try:
+            conn.send(run_job(*msg))
+        except (BrokenPipeError, OSError):
+            return
