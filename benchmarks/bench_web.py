@@ -98,7 +98,8 @@ def run(clients: int, size: int, directions: int, workers: int | None) -> dict:
             for th in threads:
                 th.join(TIMEOUT + 60)
             wall = time.perf_counter() - t0
-            jobs = [json.loads(p.read_text()) for p in (folder / "data" / "jobs").glob("*/job.json")]
+            jobs = [json.loads(p.read_text())
+                    for p in (folder / "data" / "jobs").glob("*/job.json")]
         finally:
             proc.send_signal(signal.SIGINT)
             try:
@@ -111,7 +112,8 @@ def run(clients: int, size: int, directions: int, workers: int | None) -> dict:
             "server_workers": workers or os.cpu_count(), "scan_bytes": len(scan),
             "warm_up_s": warm_s, "warm_up_ok": bool(warm[0] and warm[0]["ok"]),
             "errors": [r["error"] for r in out if r is None or not r["ok"]],
-            "latency_s": {"p50": float(np.percentile(lat, 50)), "p95": float(np.percentile(lat, 95)),
+            "latency_s": {"p50": float(np.percentile(lat, 50)),
+                          "p95": float(np.percentile(lat, 95)),
                           "min": float(lat.min()), "max": float(lat.max())},
             "job_seconds_p50": float(np.median(work)) if work.size else None,
             "wall_s": wall, "jobs_per_s": clients / wall}

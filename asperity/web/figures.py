@@ -103,10 +103,12 @@ def height_figure(surface, principal_deg: float) -> dict | None:
         {"type": "heatmap", "x": _r(x, 6), "y": _r(y, 6), "z": _r(zz, 4),
          "colorscale": "Viridis", "colorbar": {"title": {"text": "height (um)"}},
          "hovertemplate": "x = %{x:.4g} mm<br>y = %{y:.4g} mm<br>z = %{z:.4g} um<extra></extra>"},
-        {"type": "scatter", "mode": "lines+text", "x": [cx - r * math.cos(t), cx + r * math.cos(t)],
-         "y": [cy - r * math.sin(t), cy + r * math.sin(t)], "text": ["", f"t_a {principal_deg:.1f} deg"],
-         "textposition": "top center", "line": {"color": "#e67e22", "width": 3},
-         "textfont": {"color": "#e67e22"}, "name": "t_a", "hoverinfo": "skip", "showlegend": False}],
+        {"type": "scatter", "mode": "lines+text",
+         "x": [cx - r * math.cos(t), cx + r * math.cos(t)],
+         "y": [cy - r * math.sin(t), cy + r * math.sin(t)],
+         "text": ["", f"t_a {principal_deg:.1f} deg"], "textposition": "top center",
+         "line": {"color": "#e67e22", "width": 3}, "textfont": {"color": "#e67e22"},
+         "name": "t_a", "hoverinfo": "skip", "showlegend": False}],
         "layout": _layout("height map (mean removed) and the principal direction t_a",
                           "x (mm)", "y (mm)", equal=True)}
 
@@ -190,8 +192,9 @@ def path_figure(res, angle_deg: float) -> dict:
     d = math.hypot(x, y) or 1.0
     a = math.radians(angle_deg)
     traces = [
-        {"type": "scatter", "mode": "lines", "x": [0.0, d * math.cos(a)], "y": [0.0, d * math.sin(a)],
-         "name": "launch direction", "line": {"dash": "dot", "color": "#999"}, "hoverinfo": "skip"},
+        {"type": "scatter", "mode": "lines", "x": [0.0, d * math.cos(a)],
+         "y": [0.0, d * math.sin(a)], "name": "launch direction",
+         "line": {"dash": "dot", "color": "#999"}, "hoverinfo": "skip"},
         {"type": "scatter", "mode": "lines", "x": _r(q[idx, 0], 9), "y": _r(q[idx, 1], 9),
          "customdata": np.column_stack([np.round(t[idx], 6), np.round(speed, 6)]).tolist(),
          "name": "path", "line": {"width": 3, "color": "#1f77b4"},

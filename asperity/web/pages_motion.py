@@ -114,9 +114,16 @@ def _toml(data: dict) -> str:
     for key, table in data.items():
         if isinstance(table, dict):
             out.append(f"\n[{key}]")
-            out += [f"{k} = {json.dumps(v) if isinstance(v, str) else repr(float(v)) if isinstance(v, float) else v}"
-                    for k, v in table.items()]
+            out += [f"{k} = {_value(v)}" for k, v in table.items()]
     return "\n".join(out) + "\n"
+
+
+def _value(v) -> str:
+    """A TOML value: a string quoted, a float as Python writes it (1e-05, inf), an int."""
+    import json
+    if isinstance(v, str):
+        return json.dumps(v)
+    return repr(float(v)) if isinstance(v, float) else str(v)
 
 
 async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
