@@ -1,8 +1,9 @@
 """Who may talk to the server, and how much: an ASGI middleware in front of the app.
 
 * **Token** (``--allow-remote``): every request carries the access token printed at
-  start, as Jupyter does: ``?token=...`` once (it sets an HttpOnly cookie and redirects to
-  the same page without it), then the cookie; or a header ``Authorization: token ...``.
+  start, as Jupyter does: ``?token=...`` once (it sets an HttpOnly cookie for the port
+  and redirects to the same page without it), then the cookie; or a header
+  ``Authorization: token ...``.
   Without it: 401, one line.
 * **Host** (a loopback server without a token): the ``Host`` header must name a loopback
   address or ``localhost``; a page of another site cannot reach the server through a DNS
@@ -34,6 +35,13 @@ def _host_name(value: str) -> str:
     return v.rsplit(":", 1)[0] if v.count(":") == 1 else v
 
 
+def _cookie_name(scope) -> str:
+    """The token's cookie, one per port (browsers share cookies between the ports of a
+    host, and two servers have two tokens)."""
+    server = scope.get("server") or ("", 0)
+    return f"{COOKIE}_{server[1] or 0}"
+
+
 class Guard:
     """The ASGI middleware (see the module docstring).  ``render(status, message)`` gives
     the (content type, body) of the one-line error page."""
@@ -60,11 +68,13 @@ class Guard:
         if self.token is not None:
             query = dict(parse_qsl(scope.get("query_string", b"").decode("latin-1")))
             given = query.get("token")
+            cookie = _cookie_name(scope)
             if given is not None and secrets.compare_digest(given, self.token):
                 rest = urlencode([(k, v) for k, v in parse_qsl(
                     scope.get("query_string", b"").decode("latin-1")) if k != "token"])
-                return await self._redirect(send, scope["path"] + ("?" + rest if rest else ""))
-            if not self._has_token(headers):
+                return await self._redirect(send, scope["path"] + ("?" + rest if rest else ""),
+                                            cookie)
+            if not self._has_token(headers, cookie):
                 return await self._error(send, 401, "this server needs its access token: "
                                                     "open the link that asperity serve "
                                                     "printed at start (...?token=...)")
@@ -83,7 +93,7 @@ class Guard:
         return (f"the upload is larger than the server's limit of "
                 f"{self.limit / 2**20:.4g} MB (asperity serve --max-upload MB)")
 
-    def _has_token(self, headers: dict) -> bool:
+    def _has_token(self, headers: dict, cookie: str) -> bool:
         auth = headers.get("authorization", "")
         for prefix in ("token ", "bearer "):
             if auth.lower().startswith(prefix) and secrets.compare_digest(
@@ -91,7 +101,7 @@ class Guard:
                 return True
         for part in headers.get("cookie", "").split(";"):
             name, _, value = part.strip().partition("=")
-            if name == COOKIE and secrets.compare_digest(value, self.token):
+            if name == cookie and secrets.compare_digest(value, self.token):
                 return True
         return False
 
@@ -127,8 +137,8 @@ class Guard:
                                 (b"content-length", str(len(body)).encode())]})
         await send({"type": "http.response.body", "body": body})
 
-    async def _redirect(self, send, location: str):
-        cookie = f"{COOKIE}={self.token}; HttpOnly; SameSite=Strict; Path=/"
+    async def _redirect(self, send, location: str, name: str):
+        cookie = f"{name}={self.token}; HttpOnly; SameSite=Strict; Path=/"
         await send({"type": "http.response.start", "status": 303,
                     "headers": [(b"location", location.encode("latin-1")),
                                 (b"set-cookie", cookie.encode("latin-1")),
