@@ -1,12 +1,16 @@
 """``asperity serve`` in a real browser: headless Chromium (the distribution's, driven by
 Playwright) goes through the pages as a newcomer would -- the SPEC wedge, a shipped scan,
 a law fitted and downloaded, a body slid, the shipped bushing's verdict, a study -- and a
-screenshot of each page goes into reports/.  One server and one browser for the module."""
+screenshot of each page is taken (into reports/ with ASPERITY_SCREENSHOTS=1, which is how
+the committed reports/web-*.png are refreshed; else into a scratch folder, so that a test
+run leaves the tree as it was).  One server and one browser for the module."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -16,7 +20,8 @@ playwright = pytest.importorskip("playwright.sync_api")
 if not Path(CHROMIUM).is_file() and not shutil.which("chromium"):
     pytest.skip("chromium is not installed (.ci/run installs it)", allow_module_level=True)
 
-REPORTS = ROOT / "reports"
+REPORTS = ROOT / "reports" if os.environ.get("ASPERITY_SCREENSHOTS") else \
+    Path(tempfile.mkdtemp(prefix="asperity-shots-"))
 SURFACES = ROOT / "surfaces"
 TIMEOUT = 90_000            # ms a result may take on a loaded 2-core machine
 
@@ -53,6 +58,7 @@ def page(browser):
 def shot(pg, name: str) -> None:
     pg.wait_for_timeout(300)                      # let Plotly finish its transitions
     pg.screenshot(path=str(REPORTS / name), full_page=True)
+    assert (REPORTS / name).stat().st_size > 20_000, name
 
 
 def result_page(pg):
