@@ -341,3 +341,26 @@ def read_json(path: str | Path, what: str, error=InputError, parse_constant=None
         raise error(f"{p}: not a usable {what} (nested too deeply)") from None
     except ValueError as exc:                       # e.g. an integer of thousands of digits
         raise error(f"{p}: not a usable {what} ({str(exc).splitlines()[0][:120]})") from None
+
+
+def json_ready(x):
+    """Plain JSON values: NumPy scalars and arrays as Python values, NaN and infinities as
+    None (JSON has neither), keys as text, anything else as its text."""
+    import math
+
+    import numpy as np
+    if isinstance(x, dict):
+        return {str(k): json_ready(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [json_ready(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return json_ready(x.tolist())
+    if isinstance(x, (bool, np.bool_)):
+        return bool(x)
+    if isinstance(x, (int, np.integer)):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        return float(x) if math.isfinite(x) else None
+    if x is None or isinstance(x, str):
+        return x
+    return str(x)

@@ -371,19 +371,6 @@ def source_of(d) -> dict:
 
 
 def _json_ready(x):
-    """Plain JSON values: numpy scalars/arrays converted, non-finite floats -> None."""
-    if isinstance(x, dict):
-        return {str(k): _json_ready(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_json_ready(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return _json_ready(x.tolist())
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, np.integer)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        return float(x) if math.isfinite(x) else None
-    if x is None or isinstance(x, str):
-        return x
-    return str(x)
+    """Plain JSON values (see :func:`asperity.io.json_ready`)."""
+    from ..io import json_ready
+    return json_ready(x)

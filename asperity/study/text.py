@@ -1,8 +1,6 @@
 """A study's summary as terminal text and as ``summary.md`` (what a person reads)."""
 from __future__ import annotations
 
-import math
-
 
 def _um(x) -> str:
     return "n/a" if x is None else f"{x * 1e6:+.4g} um"
@@ -178,10 +176,5 @@ def markdown(s: dict, figures: list[str]) -> str:
 
 def finite_json(x):
     """A copy of x with every non-finite float as None (JSON has no NaN)."""
-    if isinstance(x, dict):
-        return {k: finite_json(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [finite_json(v) for v in x]
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
+    from ..io import json_ready
+    return json_ready(x)

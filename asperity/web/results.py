@@ -2,27 +2,11 @@
 names the user gave the files instead of where they are stored."""
 from __future__ import annotations
 
-import math
-
 
 def clean(x):
     """JSON-ready: NumPy scalars and arrays as Python values, NaN and infinities as None."""
-    import numpy as np
-    if isinstance(x, dict):
-        return {str(k): clean(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [clean(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return clean(x.tolist())
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, np.integer)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        return float(x) if math.isfinite(x) else None
-    if x is None or isinstance(x, str):
-        return x
-    return str(x)
+    from ..io import json_ready
+    return json_ready(x)
 
 
 def rename(x, names: dict):
