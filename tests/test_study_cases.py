@@ -23,7 +23,6 @@ from asperity import (
 )
 from asperity.study import sampling
 from asperity.study.run import run_study_file
-from asperity.study.spec import load_study
 from asperity.study.summary import sobol_indices, wilson
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -45,10 +45,6 @@ def output_columns(stages) -> list[tuple[str, str]]:
     return [c for s in ("derive", "fit", "risk") if s in run for c in OUTPUTS[s]]
 
 
-def _put(table: dict, key: str, value) -> None:
-    table[key] = value
-
-
 def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None = None):
     """(texture or surface or None, Assembly or None) of one case.
 
@@ -77,7 +73,7 @@ def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None 
                     cache[("assembly",)] = _assembly(spec, {})
                 lo = dict(spec["assembly"].get("loading") or {})
                 for k, v in varied.items():
-                    _put(lo, k.split(".", 1)[1], float(v))
+                    lo[k.split(".", 1)[1]] = float(v)
                 cache[key] = with_loading(cache[("assembly",)], lo, spec["assembly_path"])
             else:
                 cache[key] = _assembly(spec, values)
@@ -98,7 +94,7 @@ def _texture(spec: dict, values: dict):
     table = dict(spec["texture"])
     for k, v in values.items():
         if k.startswith("texture."):
-            _put(table, k.split(".", 1)[1], float(v))
+            table[k.split(".", 1)[1]] = float(v)
     return texture_from_dict(table)
 
 
@@ -112,7 +108,7 @@ def _assembly(spec: dict, values: dict):
             if not isinstance(t, dict):
                 raise InputError(f"{table} of the assembly file is not a table")
             data[table] = t = dict(t) if t is spec["assembly"].get(table) else t
-            _put(t, key, float(v))
+            t[key] = float(v)
     return assembly_from_dict(data, spec["assembly_path"])
 
 

@@ -74,10 +74,10 @@ class Batcher:
     def left(self) -> int:
         return self.todo.size - self.pos
 
-    def next(self, size: int | None = None) -> np.ndarray | None:
+    def next(self) -> np.ndarray | None:
         if self.pos >= self.todo.size:
             return None
-        n = size or self.size
+        n = self.size
         if not self.fixed:            # keep every worker busy until the end
             n = min(n, max(1, self.left() // (2 * self.workers)))
         ids = self.todo[self.pos:self.pos + n]
@@ -258,23 +258,25 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
     timing["startup"] = time.perf_counter() - t0
     batcher = Batcher(todo, batch_size, first, nw)
     ac = as_completed()
-    meta = {}
+    in_flight = {}                    # future key -> (case ids, future)
     quarantine = []
 
     def submit(ids):
         fut = client.submit(task, *task_args(ids), pure=False)
-        meta[fut.key] = (ids, time.perf_counter())
+        in_flight[fut.key] = (ids, fut)
         ac.add(fut)
+
+    def refill():
+        ids = batcher.next()
+        if ids is not None:
+            submit(ids)
 
     try:
         for _ in range(IN_FLIGHT_PER_WORKER * nw):
-            ids = batcher.next()
-            if ids is None:
-                break
-            submit(ids)
+            refill()
         while not ac.is_empty():
             fut = next(ac)
-            ids, _ = meta.pop(fut.key)
+            ids, _ = in_flight.pop(fut.key)
             try:
                 res = fut.result()
             except KilledWorker:
@@ -284,9 +286,7 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
                     submit(ids[half:])
                 else:                                 # it may only have shared a worker
                     quarantine.append(ids)            # with the culprit: rerun it alone
-                nxt = batcher.next()
-                if nxt is not None:
-                    submit(nxt)
+                refill()
                 continue
             except FutureCancelledError:
                 raise EngineError("the cluster cancelled the study's tasks") from None
@@ -296,9 +296,7 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
             batcher.learn(len(res), sum(r[3] for r in res))
             finished(res)
             fut.release()
-            nxt = batcher.next()
-            if nxt is not None:
-                submit(nxt)
+            refill()
         for ids in quarantine:        # each alone on the cluster: only a culprit dies now
             fut = client.submit(task, *task_args(ids), pure=False)
             try:
@@ -308,7 +306,7 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
                         "when it ran alone (out of memory or a crash)", 0.0, {})]
             finished(res)
     finally:
-        for f in list(ac.futures) if hasattr(ac, "futures") else []:
+        for _, f in in_flight.values():
             f.cancel()
         _close(client, cluster)
     return where, nw

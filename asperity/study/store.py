@@ -84,17 +84,17 @@ class Store:
             cur = self.con.execute("DELETE FROM cases WHERE status != 'ok'")
         return cur.rowcount
 
-    def column(self, name: str, where: str = "", dtype=float):
+    def column(self, name: str, dtype=float):
         """One column over the stored cases, in case order (None -> NaN for floats)."""
         import numpy as np
-        cur = self.con.execute(f"SELECT {_q(name)} FROM cases {where} ORDER BY case_id")
+        cur = self.con.execute(f"SELECT {_q(name)} FROM cases ORDER BY case_id")
         if dtype is float:
             return np.array([np.nan if r[0] is None else r[0] for r in cur], dtype=float)
         return np.array([r[0] for r in cur], dtype=object)
 
-    def rows(self, where: str = ""):
+    def rows(self):
         """Cursor over whole rows in case order."""
-        return self.con.execute(f"SELECT * FROM cases {where} ORDER BY case_id")
+        return self.con.execute("SELECT * FROM cases ORDER BY case_id")
 
     def close(self) -> None:
         self.con.close()
