@@ -11,8 +11,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError, check_instance, check_int
-from .chains import TOL, Chain, MicroslipTolerances, SlideOffError, SolverError
-from .limits import check_cycles
+from .chains import (
+    TOL,
+    Chain,
+    MicroslipTolerances,
+    SlideOffError,
+    SolverError,
+    check_asymmetry,
+    elastic_limit,
+    stiffness_ratio,
+)
+from .limits import ASYMMETRY_RESOLVED, MARGIN, check_cycles
 from .loading import Loading
 from .pacing import Pacer
 
@@ -119,14 +128,10 @@ def check_inputs(chain, loading, tol=TOL) -> None:
 def check_margin(chain: Chain, loading: Loading) -> None:
     """Refuse a temperature range so far beyond the elastic limit that the friction forces
     drown in the rounding of the thermal ones (margin above :data:`limits.MARGIN`)."""
-    from .chains import elastic_limit
-    from .limits import MARGIN
     dT_c = elastic_limit(chain)
     margin = loading.dT_range / (2.0 * dT_c) if math.isfinite(dT_c) else 0.0
     # the asymmetry must stand out of the rounding of the thermal forces (margin) in the
     # stiffness-ratio-conditioned solves (fuzzed: below this, wrong sides and stalls)
-    from .chains import check_asymmetry, stiffness_ratio
-    from .limits import ASYMMETRY_RESOLVED
     check_asymmetry(chain.mu_plus, chain.mu_minus,
                     max(ASYMMETRY_RESOLVED, 10.0 * max(margin, 1.0) * stiffness_ratio(chain)
                         * 2.2e-16))
