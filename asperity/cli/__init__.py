@@ -67,3 +67,10 @@ def add_cluster_arguments(parser, workers: str, scheduler: str) -> None:
     where.add_argument("--scheduler", metavar="ADDRESS", default=None,
                        help=f"{scheduler} (scheduler address tcp://HOST:PORT or scheduler "
                             f"file)")
+
+
+def whole_flag(flag: str, text, low: int, high: int) -> int | None:
+    """A whole number typed on the command line ('200', '1e7') in [low, high]; None stays
+    None (a flag not given)."""
+    from ..errors import check_int, number_from_text
+    return None if text is None else check_int(flag, number_from_text(flag, text), low, high)

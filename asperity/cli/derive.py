@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 
 from ..progress import progress_bar
-from . import add_cluster_arguments, emit
+from . import add_cluster_arguments, emit, whole_flag
 from .sources import (
     add_source_arguments,
     flag_names,
@@ -75,17 +75,12 @@ def run(args) -> dict:
     return d, to_json(d)
 
 
-def _whole(flag, text, low, high):
-    from ..errors import check_int, number_from_text
-    return None if text is None else check_int(flag, number_from_text(flag, text), low, high)
-
-
 def _scan(args):
     """(lines of the height map, tile lines, workers) when it is derived in tiles, else None."""
     from ..errors import InputError
     from ..friction.sources import is_texture_file
-    rows = _whole("--tile-rows", args.tile_rows, 0, 10 ** 9)
-    workers = _whole("--workers", args.workers, 0, 4096)
+    rows = whole_flag("--tile-rows", args.tile_rows, 0, 10 ** 9)
+    workers = whole_flag("--workers", args.workers, 0, 4096)
     distributed = bool(workers) or args.scheduler is not None
     if args.texture is None or is_texture_file(args.texture):
         if rows is not None or distributed:

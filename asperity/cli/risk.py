@@ -11,7 +11,7 @@ import argparse
 from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS
 from ..microslip.risk_text import format_map, format_text
-from . import add_cluster_arguments, emit
+from . import add_cluster_arguments, emit, whole_flag
 from .sources import WEDGE_FLAGS, add_source_arguments, texture_from_args
 
 
@@ -67,12 +67,6 @@ def add_parser(sub) -> None:
                    inputs=["texture", "assembly", "friction_map"])
 
 
-def _whole(flag: str, text, low: int, high: int) -> int:
-    """A whole number typed on the command line ('200', '1e7'), in [low, high]."""
-    from ..errors import check_int, number_from_text
-    return check_int(flag, number_from_text(flag, text), low, high)
-
-
 def _settings(args, asm):
     """(cycles, tolerance in m, max marched, dynamic steps) from the flags, checked with
     the flags' names before any work."""
@@ -84,10 +78,10 @@ def _settings(args, asm):
         tol = check_tolerance("--tolerance", args.tolerance, scale=1e-3, unit="mm")
     else:
         tol = asm.tolerance
-    mm = _whole("--max-marched", args.max_marched, 2, 1_000_000)
+    mm = whole_flag("--max-marched", args.max_marched, 2, 1_000_000)
     if args.slip_axis is not None:
         check_range("--slip-axis", args.slip_axis, -360.0, 360.0, unit="deg")
-    dyn = None if args.dynamic is None else _whole("--dynamic", args.dynamic, 100, 10_000_000)
+    dyn = whole_flag("--dynamic", args.dynamic, 100, 10_000_000)
     return cycles, tol, mm, dyn
 
 
@@ -108,7 +102,7 @@ def run(args) -> dict:
         if x[0] == y[0]:
             raise InputError(f"--map needs two different parameters, got {x[0]} twice")
         from ..study.maps import risk_map
-        workers = None if args.workers is None else _whole("--workers", args.workers, 0, 4096)
+        workers = whole_flag("--workers", args.workers, 0, 4096)
         return risk_map(asm, x, y, texture, contact=args.contact if texture else None,
                         slip_axis_deg=args.slip_axis, textured=args.textured, cycles=cycles,
                         max_marched=mm, workers=0 if workers is None and not args.scheduler

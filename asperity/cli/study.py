@@ -6,7 +6,7 @@ import argparse
 import os
 
 from ..errors import InputError
-from . import add_cluster_arguments, emit
+from . import add_cluster_arguments, emit, whole_flag
 
 
 def add_parser(sub) -> None:
@@ -45,11 +45,6 @@ def add_parser(sub) -> None:
     p.set_defaults(func=main, outputs=[("--export", "export", False)], inputs=["target"])
 
 
-def _whole(flag, text, low, high):
-    from ..errors import check_int, number_from_text
-    return None if text is None else check_int(flag, number_from_text(flag, text), low, high)
-
-
 def run(args) -> dict:
     """Python API of the command: the summary (the JSON object printed with --json)."""
     from ..study.run import export_folder, run_study_file, summarise_folder
@@ -57,8 +52,8 @@ def run(args) -> dict:
     if args.export is not None and os.path.splitext(str(args.export))[1].lower() not in (
             ".parquet", ".csv"):
         raise InputError(f"--export writes .parquet or .csv, got {os.path.basename(args.export)!r}")
-    workers = _whole("--workers", args.workers, 0, 4096)
-    batch = _whole("--batch-size", args.batch_size, 1, 1_000_000)
+    workers = whole_flag("--workers", args.workers, 0, 4096)
+    batch = whole_flag("--batch-size", args.batch_size, 1, 1_000_000)
     if os.path.isdir(target):
         if args.output is not None or args.scheduler or workers is not None or batch \
                 or args.retry_failed:

@@ -47,11 +47,9 @@ def prepare(run, plan, path, detrend, friction_map, height_scale):
     if plan.mu_map is not None:
         bad = [r["bad_mu"] for r in res if r["bad_mu"][0]]
         if bad:
-            from ..surface.friction_map import MAX_MU
+            from ..surface.friction_map import bad_mu_error
             where = f"{friction_map}: " if isinstance(friction_map, str) else ""
-            raise InputError(f"{where}friction map values must be finite and >= 0 (at most "
-                             f"{MAX_MU:g}); found {bad[0][1]:g} ({sum(b[0] for b in bad)} bad "
-                             f"values)")
+            raise bad_mu_error(sum(b[0] for b in bad), bad[0][1], where)
         mu_max = max(r["mu_max"] for r in res)
     plan = plan.with_(spikes=spikes, form=form, slope=slope,
                       limit_deg=locking_limit_deg(mu_max))
@@ -147,12 +145,13 @@ def global_first(results, k, axis_rows: int) -> np.ndarray:
         c, row0 = r["counts"], r["row0"]
         sel = np.flatnonzero(cand >= 0)
         if sel.size:
-            low_total = int(c[0].sum())
+            cums = (np.cumsum(c[0]), np.cumsum(c[1]))          # per tile, not per direction
+            low_total = int(cums[0][-1]) if cums[0].size else 0
             for j in sel:
                 loc = int(cand[j])
                 h = int(loc >= low_total)
                 loc -= h * low_total
-                cum = np.cumsum(c[h])
+                cum = cums[h]
                 row = int(np.searchsorted(cum, loc, side="right"))
                 pos = loc - (int(cum[row - 1]) if row else 0)
                 i = row0 + row
@@ -163,7 +162,7 @@ def global_first(results, k, axis_rows: int) -> np.ndarray:
     return best
 
 
-def assemble(run, plan, info, prep, contact, n, other_contact, client):
+def assemble(run, plan, info, prep, contact, n, other_contact):
     """Sweeps -> the Derivation (same steps as :func:`asperity.friction.derive.derive`)."""
     from ..surface.quality import SlopeStats, quality_stats
     from ..surface.tiles import ScanSurface, preview_step

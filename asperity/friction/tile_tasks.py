@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..surface import tiles as T
+from ..surface.friction_map import bad_mu
 
 #: accumulators of a tile's kernel calls (the threads share them out)
 TILE_WORKERS = 32
@@ -57,10 +58,10 @@ def prep_tile(plan, t, degree, want_slope, tick=None) -> dict:
     r["n_ok"] = int(np.count_nonzero(ok))
     if want_slope:
         r["sum_g"] = (float(g[0][ok].sum()), float(g[1][ok].sum()))
-    m = T.mu_block(plan, t, z.shape)
+    m = T.mu_block(plan, t)
     if m is not None:
         from ..surface.grid_facets import facet_mu
-        r["bad_mu"] = T.bad_mu(m)
+        r["bad_mu"] = bad_mu(m)
         fm = facet_mu(m)[ok]
         r["mu_max"] = float(fm.max()) if fm.size else 0.0
     return r
@@ -114,7 +115,7 @@ def sweep_tile(plan, t, jobs, figures=False, tick=None) -> dict:
     ("lockw", windward, psi) -> (m, 2) locked and loaded weights."""
     r = T.read_tile(plan, t)
     z = r["z"]
-    tf = T.tile_facets(plan, t, z, T.mu_block(plan, t, z.shape))
+    tf = T.tile_facets(plan, t, z, T.mu_block(plan, t))
     out = {"n": tf.w.size, "counts": tf.counts, "row0": tf.row0}
     if figures:
         out.update(n_ok=tf.n_ok, n_unloaded=tf.n_unloaded, stats=tf.stats,

@@ -40,9 +40,6 @@ TILE_BYTES_PER_PIXEL = 200
 MAX_SCAN_WORK = 2e13
 #: Dask tasks per worker (each a run of consecutive tiles)
 TASKS_PER_WORKER = 4
-#: bins of a histogram pass and values collected, when placing a bearing fraction's level
-BEARING_BINS = 1 << 16
-BEARING_COLLECT = 1 << 22
 
 
 def default_tile_lines(src) -> int:
@@ -163,7 +160,7 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
         info["bearing_fraction"] = float(bearing_fraction)
     elif rest_level is not None:
         plan = plan.with_(rest_level=float(rest_level), need_z=True)
-    return assemble(run, plan, info, prep, contact, n, other_contact, client)
+    return assemble(run, plan, info, prep, contact, n, other_contact)
 
 
 def _check_tile_memory(src, lines) -> None:

@@ -6,8 +6,14 @@ import math
 import numpy as np
 
 
+def preview_step(shape, size: int = 256) -> int:
+    """Every how many pixels a preview of a map of ``shape`` keeps one (at most ``size``
+    per side): the in-memory and the tiled previews use the same."""
+    return max(1, int(math.ceil(max(shape) / size)))
+
+
 def height_preview(z: np.ndarray, size: int = 256) -> np.ndarray:
-    step = max(1, int(math.ceil(max(z.shape) / size)))
+    step = preview_step(z.shape, size)
     return np.array(z[::step, ::step], dtype=float)
 
 

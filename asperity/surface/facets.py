@@ -273,7 +273,7 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     info = dict(info or {})
     info.update(kind="heightmap", source=hm.source, grid=[int(z.shape[0]), int(z.shape[1])],
                 pixel_size_m=[dx, dy], physical_size_m=[dx * z.shape[0], dy * z.shape[1]],
-                n_undefined=int(getattr(hm, "n_undefined", np.count_nonzero(~np.isfinite(z)))),
+                n_undefined=int(hm.n_undefined),
                 n_skipped_undefined=int(ok.size - n_ok),
                 mu=None if not np.isscalar(fmu) else float(fmu))
     xy = None
@@ -383,8 +383,8 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
     info = {"file": str(path), "detrend": detrend, "height_scale": float(height_scale)}
     if isinstance(friction_map, (str, bytes)) or hasattr(friction_map, "__fspath__"):
         info["friction_map"] = str(friction_map)
-        fm = read_friction_map(friction_map, s)
-    if fm is not None:
+        fm = read_friction_map(friction_map, s)        # checked as it is read
+    elif fm is not None:
         fm = check_friction_map(fm)
     out = surface_facets(s, mu=mu, friction_map=fm, rest_level=rest_level,
                          bearing_fraction=bearing_fraction, level_slope=detrend == "slope",

@@ -74,20 +74,29 @@ def read_friction_map(path, surface: Surface) -> np.ndarray:
                     if surface.n_degenerate and surface.kept_faces is not None else "")
             raise InputError(f"{p}: friction map has {m.size} values, expected {nf}{also}, one "
                              f"per triangle of {surface.source or 'the mesh'}")
-    bad = ~np.isfinite(m) | (m < 0) | (m > MAX_MU)
-    if bad.any():
-        k = int(np.flatnonzero(bad.ravel())[0])
-        raise InputError(f"{p}: friction map values must be finite and >= 0 (at most "
-                         f"{MAX_MU:g}); found {m.ravel()[k]:g} ({int(bad.sum())} bad values)")
+    n, first = bad_mu(m)
+    if n:
+        raise bad_mu_error(n, first, f"{p}: ")
     return np.array(m, dtype=np.float64)
+
+
+def bad_mu(m: np.ndarray) -> tuple[int, float]:
+    """(number of friction values that are not finite in [0, MAX_MU], the first one)."""
+    bad = ~np.isfinite(m) | (m < 0) | (m > MAX_MU)
+    n = int(np.count_nonzero(bad))
+    return n, (float(m.ravel()[np.flatnonzero(bad.ravel())[0]]) if n else 0.0)
+
+
+def bad_mu_error(n: int, first: float, where: str = "") -> InputError:
+    """The one-line error of a friction map with ``n`` bad values, the first ``first``."""
+    return InputError(f"{where}friction map values must be finite and >= 0 (at most "
+                      f"{MAX_MU:g}); found {first:g} ({n} bad values)")
 
 
 def check_friction_map(friction_map) -> np.ndarray:
     """An array of local friction coefficients: finite, in [0, MAX_MU]."""
     m = check_array("friction map", friction_map, finite=False)
-    bad = ~np.isfinite(m) | (m < 0) | (m > MAX_MU)
-    if bad.any():
-        k = int(np.flatnonzero(bad.ravel())[0])
-        raise InputError(f"friction map values must be finite and >= 0 (at most {MAX_MU:g}); found "
-                         f"{m.ravel()[k]:g} ({int(bad.sum())} bad values)")
+    n, first = bad_mu(m)
+    if n:
+        raise bad_mu_error(n, first)
     return m

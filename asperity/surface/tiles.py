@@ -16,14 +16,12 @@ global index of a facet follows.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import InputError
 from . import grid_facets as grid
-from .friction_map import MAX_MU
 from .quality import SlopeStats, add_slopes, find_spikes, steep_facets
 from .readers._lines import LineSource
 from .readers._streams import open_lines
@@ -118,7 +116,8 @@ def read_tile(plan: TilePlan, t: int, judge: bool = False) -> dict:
     the filter; else from ``plan.spikes``), form removed when the plan has one.
 
     Returns {"z": block in the heights' orientation, "lo", "hi" (raw heights of the
-    tile's own lines), "undefined" (as read), "spikes" (flat indices found), "defined"}."""
+    tile's own lines; with ``judge`` only), "undefined" (as read; with ``judge``), "spikes"
+    (flat indices found)}."""
     src = plan.heights
     axis, n = src.axis, src.n_lines
     l0, l1 = plan.bounds(t)
@@ -126,11 +125,12 @@ def read_tile(plan: TilePlan, t: int, judge: bool = False) -> dict:
     r = plan.despike[1] // 2 if (plan.despike is not None and judge) else 0
     a, b = max(0, l0 - r), min(n, e + r)
     z = src.lines(a, b)
-    own = _lines_view(z, axis)[l0 - a:l1 - a]
-    with np.errstate(invalid="ignore"):
-        lo, hi = (float(np.nanmin(own)), float(np.nanmax(own))) if np.isfinite(own).any() \
-            else (math.nan, math.nan)
-    out = {"lo": lo, "hi": hi, "undefined": int(np.count_nonzero(np.isnan(own)))}
+    out = {}
+    if judge:                                   # the first pass's figures, read once
+        from .topography import nan_range
+        own = _lines_view(z, axis)[l0 - a:l1 - a]
+        out["lo"], out["hi"] = nan_range(own)
+        out["undefined"] = int(np.count_nonzero(np.isnan(own)))
     length = src.shape[1 - axis]
     found = np.empty(0, dtype=np.int64)
     if plan.despike is not None:
@@ -149,7 +149,6 @@ def read_tile(plan: TilePlan, t: int, judge: bool = False) -> dict:
         zl[flat // length - a, flat % length] = np.nan
     block = np.ascontiguousarray(_lines_view(_lines_view(z, axis)[l0 - a:e - a], axis))
     out["spikes"] = found
-    out["defined"] = int(np.count_nonzero(np.isfinite(_lines_view(block, axis)[:l1 - l0])))
     if plan.form is not None:
         i0, j0 = (l0, 0) if axis == 0 else (0, l0)
         block -= plan.form.form(i0, j0, *block.shape)
@@ -162,7 +161,7 @@ def tile_origin(plan: TilePlan, t: int) -> tuple[int, int]:
     return (l0, 0) if plan.heights.axis == 0 else (0, l0)
 
 
-def mu_block(plan: TilePlan, t: int, shape) -> np.ndarray | None:
+def mu_block(plan: TilePlan, t: int) -> np.ndarray | None:
     """The friction map's values at the tile's pixels (lines and halo), or None."""
     if plan.mu_map is None:
         return None
@@ -170,13 +169,6 @@ def mu_block(plan: TilePlan, t: int, shape) -> np.ndarray | None:
     e = min(l1 + 1, plan.heights.n_lines)
     m = plan.mu_map.block(plan.heights.axis, l0, e)
     return m
-
-
-def bad_mu(m: np.ndarray) -> tuple[int, float]:
-    """(number of friction values that are not finite in [0, MAX_MU], the first one)."""
-    bad = ~np.isfinite(m) | (m < 0) | (m > MAX_MU)
-    n = int(np.count_nonzero(bad))
-    return n, (float(m.ravel()[np.flatnonzero(bad.ravel())[0]]) if n else 0.0)
 
 
 def gradients(plan: TilePlan, z: np.ndarray):
@@ -256,7 +248,8 @@ def tile_facets(plan: TilePlan, t: int, z: np.ndarray, m: np.ndarray | None) -> 
 
 def preview_step(src: LineSource, size: int = 256) -> int:
     """The step of :func:`asperity.surface._previews.height_preview` for this map."""
-    return max(1, int(math.ceil(max(src.shape) / size)))
+    from ._previews import preview_step as step
+    return step(src.shape, size)
 
 
 def preview_part(plan: TilePlan, t: int, z: np.ndarray) -> tuple[int, np.ndarray]:
