@@ -34,6 +34,12 @@ class ResourceError(InputError):
     """A request needs more memory (or work) than this machine can give."""
 
 
+def one_line(text, limit: int = 400) -> str:
+    """``text`` (a message or an exception) on one line, at most ``limit`` characters."""
+    t = " ".join(str(text).split())
+    return t if len(t) <= limit else t[: limit - 3] + "..."
+
+
 def _kind(value) -> str:
     if isinstance(value, bool):
         return "a boolean"
@@ -94,16 +100,7 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
         raise InputError(f"{name} must be in {rng}{u}, got NaN")
     if math.isinf(x) and not allow_inf:
         raise InputError(f"{name} must be a finite number in {rng}{u}, got {_fmt(x)}")
-    bad = False
-    if low is not None and (x < low or (low_open and x == low)):
-        bad = True
-    if high is not None and (x > high or (high_open and x == high)):
-        bad = True
-    if math.isinf(x) and ((x > 0 and high is not None) or (x < 0 and low is not None)):
-        bad = True
-    if bad:
-        raise InputError(f"{name} must be in {rng}{u}, got {_fmt(x)}")
-    return x
+    raise InputError(f"{name} must be in {rng}{u}, got {_fmt(x)}")
 
 
 def check_int(name: str, value, low: int | None = None, high: int | None = None) -> int:

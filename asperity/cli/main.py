@@ -64,7 +64,7 @@ def check_declared_outputs(args) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from ..errors import AsperityError
+    from ..errors import AsperityError, one_line
     from ..io import output_transaction
     from ..progress import progress_bar
     parser = build_parser()
@@ -77,10 +77,10 @@ def main(argv: list[str] | None = None) -> int:
         sys.stdout.flush()
         return code
     except AsperityError as exc:
-        _say(f"{name}: error: {_one_line(exc)}")
+        _say(f"{name}: error: {one_line(exc)}")
         return 1
     except KeyboardInterrupt as exc:
-        _say(f"{name}: interrupted ({_one_line(exc) or 'no output written'})")
+        _say(f"{name}: interrupted ({one_line(exc) or 'no output written'})")
         return EXIT_INTERRUPTED
     except BrokenPipeError:
         _quiet_stdout()
@@ -99,14 +99,9 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as exc:                         # a bug: still one line, never a traceback
         if os.environ.get("ASPERITY_DEBUG"):
             raise
-        _say(f"{name}: internal error: {type(exc).__name__}: {_one_line(exc)} (please report "
+        _say(f"{name}: internal error: {type(exc).__name__}: {one_line(exc)} (please report "
              "it; ASPERITY_DEBUG=1 shows the traceback)")
         return EXIT_INTERNAL
-
-
-def _one_line(exc: BaseException, limit: int = 400) -> str:
-    text = " ".join(str(exc).split())
-    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _say(line: str) -> None:

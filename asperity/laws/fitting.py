@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..io import json_ready
 from ..friction.reservoir import Reservoir
 from .convex_set import ConvexSet
 from .geometry import (
@@ -366,11 +367,5 @@ def source_of(d) -> dict:
         tdict = tex.to_dict()
     except Exception:                                   # pragma: no cover - defensive
         tdict = {"kind": str(getattr(tex, "kind", "unknown"))}
-    return {"texture": _json_ready(tdict), "contact": d.contact, "method": d.method,
+    return {"texture": json_ready(tdict), "contact": d.contact, "method": d.method,
             "n_directions": int(d.reservoir.psi.size)}
-
-
-def _json_ready(x):
-    """Plain JSON values (see :func:`asperity.io.json_ready`)."""
-    from ..io import json_ready
-    return json_ready(x)

@@ -17,7 +17,7 @@ import math
 import time
 from pathlib import Path
 
-from ..errors import AsperityError, InputError
+from ..errors import AsperityError, InputError, one_line
 
 #: output columns of each stage: (name, SQLite type)
 OUTPUTS = {
@@ -185,19 +185,14 @@ def run_case(spec: dict, values: dict, file: str | None = None,
         out = evaluate(spec, values, file, cache)
         status, msg = "ok", ""
     except AsperityError as exc:
-        out, status, msg = {}, "failed", _one_line(str(exc))
+        out, status, msg = {}, "failed", one_line(exc, 500)
     except (KeyboardInterrupt, SystemExit):
         raise
     except MemoryError:
         out, status, msg = {}, "failed", "out of memory for this case"
     except Exception as exc:        # noqa: BLE001 - a case must not stop the study
-        out, status, msg = {}, "error", _one_line(f"{type(exc).__name__}: {exc}")
+        out, status, msg = {}, "error", one_line(f"{type(exc).__name__}: {exc}", 500)
     return status, msg, time.perf_counter() - t0, out
-
-
-def _one_line(text: str) -> str:
-    line = " ".join(str(text).split())
-    return line if len(line) <= 500 else line[:497] + "..."
 
 
 def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple]:

@@ -51,9 +51,10 @@ def finish(store, plot: bool = False) -> dict:
     """Summarise ``store`` and write summary.json, summary.md (and the figures)."""
     from ..io import write_text_atomic
     from .summary import summarise
-    from .text import finite_json, markdown
+    from ..io import json_ready
+    from .text import markdown
     from ..io import outside_transaction
-    summary = finite_json(summarise(store))
+    summary = json_ready(summarise(store))
     figs = []
     with outside_transaction():        # the study folder is a working store: written now
         if plot:

@@ -172,9 +172,3 @@ def markdown(s: dict, figures: list[str]) -> str:
     if figures:
         md += ["## Figures", ""] + [f"![{f}]({f})" for f in figures] + [""]
     return "\n".join(md)
-
-
-def finite_json(x):
-    """A copy of x with every non-finite float as None (JSON has no NaN)."""
-    from ..io import json_ready
-    return json_ready(x)

@@ -20,12 +20,11 @@ from fastapi.templating import Jinja2Templates
 from starlette.exceptions import HTTPException
 
 from .. import __version__
-from ..errors import AsperityError, InputError
-from .common import form_again
-from .forms import FormError
+from ..errors import AsperityError, InputError, one_line
+from .common import form_again, status_of
 from .runner import Runner
 from .security import Guard, TooLarge
-from .store import Store, UploadError
+from .store import Store
 
 HERE = Path(__file__).resolve().parent
 STATIC = {"app.js": "text/javascript", "style.css": "text/css"}
@@ -45,11 +44,6 @@ def plotly_js() -> Path:
     if not path.is_file():
         raise InputError(f"plotly.min.js is missing from the plotly package ({path})")
     return path
-
-
-def one_line(text, limit: int = 400) -> str:
-    t = " ".join(str(text).split())
-    return t if len(t) <= limit else t[: limit - 3] + "..."
 
 
 class Web:
@@ -129,14 +123,11 @@ def _errors(app: FastAPI, web: Web) -> None:
         where = ".".join(str(x) for x in first.get("loc", ()) if x not in ("body", "query"))
         return web.error_page(request, 422, f"{where}: {first.get('msg', 'invalid input')}")
 
-    @app.exception_handler(TooLarge)
-    async def too_large(request: Request, exc: TooLarge):
-        return web.error_page(request, 413, str(exc))
+    async def refused(request: Request, exc: Exception):
+        return web.error_page(request, status_of(exc), str(exc))
 
-    @app.exception_handler(AsperityError)
-    async def refused(request: Request, exc: AsperityError):
-        status = 400 if isinstance(exc, (FormError, UploadError)) else 422
-        return web.error_page(request, status, str(exc))
+    app.add_exception_handler(TooLarge, refused)
+    app.add_exception_handler(AsperityError, refused)
 
     @app.exception_handler(Exception)
     async def bug(request: Request, exc: Exception):

@@ -3,12 +3,6 @@ names the user gave the files instead of where they are stored."""
 from __future__ import annotations
 
 
-def clean(x):
-    """JSON-ready: NumPy scalars and arrays as Python values, NaN and infinities as None."""
-    from ..io import json_ready
-    return json_ready(x)
-
-
 def rename(x, names: dict):
     """``x`` with every stored path in its strings replaced by the file's shown name
     (``names``: path text -> shown name; the longest paths first)."""
@@ -24,5 +18,5 @@ def rename(x, names: dict):
 
 def one_line(exc: BaseException, names: dict | None = None, limit: int = 400) -> str:
     """The message of ``exc`` in one line, stored paths replaced by shown names."""
-    text = rename(" ".join(str(exc).split()), names or {})
-    return text if len(text) <= limit else text[: limit - 3] + "..."
+    from ..errors import one_line as line
+    return line(rename(" ".join(str(exc).split()), names or {}), limit)

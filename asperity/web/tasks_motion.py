@@ -15,7 +15,8 @@ import math
 import shutil
 
 from ..errors import InputError
-from .results import clean, rename
+from ..io import json_ready
+from .results import rename
 from .store import JOB_ID
 from .tasks_surface import load_source, upload_file
 
@@ -130,7 +131,7 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     import json
 
     from ..io import write_text_atomic
-    write_text_atomic(ctx["job_dir"] / "risk.json", json.dumps(clean(public), indent=1))
+    write_text_atomic(ctx["job_dir"] / "risk.json", json.dumps(json_ready(public), indent=1))
     files = ["risk.png", "risk.json"]
     if params.get("assembly_toml"):
         write_text_atomic(ctx["job_dir"] / "assembly.toml", params["assembly_toml"])

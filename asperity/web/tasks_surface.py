@@ -15,7 +15,8 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import InputError
-from .results import clean, rename
+from ..io import json_ready
+from .results import rename
 from .store import UPLOAD_ID
 
 #: options of a surface file the pages send (keyword arguments of load_surface)
@@ -129,7 +130,7 @@ def derive_task(params: dict, ctx: dict, bar) -> dict:
     import json
 
     from ..io import write_text_atomic
-    write_text_atomic(ctx["job_dir"] / "derive.json", json.dumps(clean(obj), indent=1))
+    write_text_atomic(ctx["job_dir"] / "derive.json", json.dumps(json_ready(obj), indent=1))
     return {"derive": obj, "text": rename(format_text(d), ctx["names"]),
             "source": describe(real, d.texture), "figures": figs, "files": ["derive.json"]}
 

@@ -14,9 +14,9 @@ import json
 import time
 from pathlib import Path
 
-from ..io import write_text_atomic
+from ..io import json_ready, write_text_atomic
 from ..progress import progress_bar
-from .results import clean, one_line
+from .results import one_line
 
 #: seconds between two writes of progress.json
 PROGRESS_EVERY = 0.2
@@ -82,7 +82,7 @@ def run_job(kind: str, job_dir: str, params: dict, uploads: str) -> dict:
         with bar:
             bar.write(0.0, "starting")
             result = task(params, ctx, bar)
-        result = clean(result)
+        result = json_ready(result)
         write_text_atomic(folder / "result.json", json.dumps(result, allow_nan=False))
         bar.write(1.0, "done")
         return {"ok": True, "files": result.get("files", [])}
