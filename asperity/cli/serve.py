@@ -38,10 +38,9 @@ def add_parser(sub) -> None:
 
 
 def main(args) -> int:
-    from ..errors import check_int, number_from_text
+    from ..errors import number_from_text
     from ..web.settings import make_settings
-    workers = None if args.workers is None else check_int(
-        "--workers", number_from_text("--workers", args.workers), 1, 64)
+    workers = None if args.workers is None else number_from_text("--workers", args.workers)
     settings = make_settings(args.host, args.port, args.data_dir, args.allow_remote,
                              args.max_upload, workers)
     from ..web.server import serve

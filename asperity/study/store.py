@@ -112,15 +112,10 @@ def _connect(path: Path) -> sqlite3.Connection:
 
 def _lock(folder: Path):
     """An exclusive lock on the folder: two runs on one store would race."""
-    import fcntl
-    fh = open(folder / ".lock", "a+")       # noqa: SIM115 - held while the store is open
-    try:
-        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
-        fh.close()
-        raise StoreError(f"{folder}: another asperity study is running on this folder; wait "
-                         f"for it or stop it") from None
-    return fh
+    from ..io import lock_file
+    return lock_file(folder / ".lock", StoreError(
+        f"{folder}: another asperity study is running on this folder; wait for it or stop "
+        f"it"))
 
 
 def open_store(folder, study) -> Store:

@@ -49,10 +49,10 @@ def plotly_js() -> Path:
 class Web:
     """What the routes share: settings, store, runner, templates."""
 
-    def __init__(self, settings, runner: Runner | None = None):
+    def __init__(self, settings):
         self.settings = settings
         self.store = Store(settings.data_dir)
-        self.runner = runner or Runner(self.store, settings.workers)
+        self.runner = Runner(self.store, settings.workers)
         self.templates = Jinja2Templates(directory=str(HERE / "templates"))
         self.templates.env.globals.update(version=__version__, data_dir=str(settings.data_dir))
         self.templates.env.filters["abs"] = abs
@@ -78,10 +78,10 @@ class Web:
         return "text/html; charset=utf-8", html.encode("utf-8")
 
 
-def create_app(settings, runner: Runner | None = None):
+def create_app(settings):
     """The ASGI application of ``settings`` (a :class:`~asperity.web.settings.Settings`)."""
     from . import pages, pages_motion
-    web = Web(settings, runner)
+    web = Web(settings)
 
     @contextlib.asynccontextmanager
     async def lifespan(app):
@@ -160,10 +160,7 @@ def _jobs(app: FastAPI, web: Web) -> None:
     store = web.store
 
     def job_or_404(jid: str) -> dict:
-        try:
-            rec = store.read(jid)
-        except KeyError:
-            rec = None
+        rec = store.read(jid)
         if rec is None:
             raise HTTPException(404, f"no result {jid[:40]!r} (it may have been deleted)")
         return rec

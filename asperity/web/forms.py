@@ -25,9 +25,6 @@ class Form:
             return default
         return str(v).strip()
 
-    def given(self, name: str) -> bool:
-        return self.text(name) != ""
-
     def number(self, name: str, default: float | None = None, *, label: str | None = None,
                required: bool = True) -> float | None:
         """The field as a float (``1e-3``, ``0.2``); blank gives ``default`` (or a

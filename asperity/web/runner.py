@@ -31,8 +31,7 @@ class WorkerDied(Exception):
 class Slot:
     """One worker process and its pipe."""
 
-    def __init__(self, warm: bool = True):
-        self.warm = warm
+    def __init__(self):
         self.proc = None
         self.conn = None
         self.start()
@@ -41,7 +40,7 @@ class Slot:
         from . import worker
         ctx = multiprocessing.get_context("spawn")
         parent, child = ctx.Pipe()
-        self.proc = ctx.Process(target=worker.main, args=(child, self.warm),
+        self.proc = ctx.Process(target=worker.main, args=(child,),
                                 name="asperity-serve-worker", daemon=False)
         self.proc.start()
         child.close()
@@ -75,10 +74,9 @@ class Slot:
 class Runner:
     """Hands the jobs of ``store`` to ``workers`` worker processes."""
 
-    def __init__(self, store: Store, workers: int = 2, warm: bool = True):
+    def __init__(self, store: Store, workers: int = 2):
         self.store = store
         self.n = max(1, int(workers))
-        self.warm = warm
         self.queue: asyncio.Queue | None = None
         self.slots: list[Slot] = []
         self.tasks: list[asyncio.Task] = []
@@ -89,7 +87,7 @@ class Runner:
 
     async def start(self) -> None:
         self.queue = asyncio.Queue()
-        self.slots = [Slot(self.warm) for _ in range(self.n)]
+        self.slots = [Slot() for _ in range(self.n)]
         self.tasks = [asyncio.create_task(self._loop(s)) for s in self.slots]
         self.recover()
 

@@ -66,12 +66,11 @@ class Guard:
             if origin and origin != "null" and origin.split("://", 1)[-1] != host:
                 return await self._error(send, 403, "a form sent from another site is refused")
         if self.token is not None:
-            query = dict(parse_qsl(scope.get("query_string", b"").decode("latin-1")))
-            given = query.get("token")
+            pairs = parse_qsl(scope.get("query_string", b"").decode("latin-1"))
+            given = dict(pairs).get("token")
             cookie = _cookie_name(scope)
             if given is not None and secrets.compare_digest(given, self.token):
-                rest = urlencode([(k, v) for k, v in parse_qsl(
-                    scope.get("query_string", b"").decode("latin-1")) if k != "token"])
+                rest = urlencode([(k, v) for k, v in pairs if k != "token"])
                 return await self._redirect(send, scope["path"] + ("?" + rest if rest else ""),
                                             cookie)
             if not self._has_token(headers, cookie):

@@ -1,7 +1,6 @@
 """Binding the socket and running uvicorn: the body of ``asperity serve``."""
 from __future__ import annotations
 
-import fcntl
 import socket
 import sys
 
@@ -11,14 +10,10 @@ from ..errors import InputError
 def lock_data_dir(folder):
     """An exclusive lock on the data folder: two servers on one folder would both run its
     queued jobs."""
-    fh = open(folder / ".serve.lock", "a+")        # noqa: SIM115 - held while serving
-    try:
-        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
-        fh.close()
-        raise InputError(f"--data-dir {str(folder)!r} is in use by another asperity serve; "
-                         f"stop it or give another --data-dir") from None
-    return fh
+    from ..io import lock_file
+    return lock_file(folder / ".serve.lock", InputError(
+        f"--data-dir {str(folder)!r} is in use by another asperity serve; stop it or give "
+        f"another --data-dir"))
 
 
 def bind(host: str, port: int) -> socket.socket:

@@ -127,7 +127,7 @@ class Store:
             return {"id": uid, "name": uid, "size": None}
 
     # ------------------------------------------------------------------ jobs
-    def new_job(self, kind: str, params: dict, title: str, parent: str | None = None) -> dict:
+    def new_job(self, kind: str, params: dict, title: str) -> dict:
         stamp = time.strftime("%Y%m%d-%H%M%S", time.localtime())
         while True:
             jid = f"{stamp}-{secrets.token_hex(3)}"
@@ -139,7 +139,7 @@ class Store:
                 continue
         rec = {"id": jid, "kind": kind, "title": title, "status": "queued",
                "created": now_iso(), "started": None, "finished": None, "seconds": None,
-               "params": params, "parent": parent, "error": None, "error_status": None,
+               "params": params, "error": None, "error_status": None,
                "needs_units": False, "attempts": 0, "files": []}
         self.write(rec)
         return rec

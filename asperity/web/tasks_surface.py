@@ -139,18 +139,20 @@ def _law_outputs(gl, ctx: dict, n_csv: int = 360) -> dict:
     """The gauge file, CSV table and Abaqus block of a law into the job folder, and what
     the page shows of it."""
     from .. import write_gauge
-    from ..laws.export import orthotropic_approximation, write_abaqus, write_csv
+    from ..io import write_text_atomic
+    from ..laws.export import abaqus_block, orthotropic_approximation, write_csv
     from ..laws.summary import format_fit, summary
     from .figures import law_figures
     folder = ctx["job_dir"]
     gl = replace(gl, source=rename(gl.source, ctx["names"]))
     write_gauge(folder / "gauge.json", gl)
     write_csv(folder / "law.csv", gl, n_csv)
-    write_abaqus(folder / "law.inp", gl)
+    abaqus = abaqus_block(gl)
+    write_text_atomic(folder / "law.inp", abaqus)
     a = orthotropic_approximation(gl)
     return {"summary": summary(gl), "report": format_fit(gl), "figures": law_figures(gl),
             "kind": gl.kind, "principal_direction_deg": gl.principal_direction_deg,
-            "axes": a.axes, "abaqus": (folder / "law.inp").read_text(encoding="utf-8"),
+            "axes": a.axes, "abaqus": abaqus,
             "files": ["gauge.json", "law.csv", "law.inp"]}
 
 

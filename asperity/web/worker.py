@@ -32,7 +32,6 @@ class JobProgress(progress_bar):
         super().__init__("job", stream=io.StringIO())
         self.path = Path(path)
         self.last = 0.0
-        self.fraction = 0.0
 
     def __call__(self, fraction: float, label: str | None = None) -> None:
         try:
@@ -43,9 +42,8 @@ class JobProgress(progress_bar):
             self.phase = str(label)
         now = time.monotonic()
         if now - self.last < PROGRESS_EVERY and f < 1.0:
-            self.fraction = f
             return
-        self.last, self.fraction = now, f
+        self.last = now
         self.write(f, self.phase)
 
     def write(self, fraction: float, label: str) -> None:
@@ -116,14 +114,13 @@ def warm_up() -> None:
         pass
 
 
-def main(conn, warm: bool = True) -> None:
+def main(conn) -> None:
     """A worker process: jobs from ``conn`` until it closes (or None arrives)."""
     import os
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # the server stops its workers itself
     os.environ.setdefault("MPLBACKEND", "Agg")
-    if warm:
-        warm_up()
+    warm_up()
     while True:
         try:
             msg = conn.recv()
