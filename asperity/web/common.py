@@ -75,6 +75,22 @@ async def submit(web, request: Request, kind: str, params: dict, title: str):
     return RedirectResponse(f"/jobs/{rec['id'] if rec else ''}", status_code=303)
 
 
+async def post_form(web, request: Request, kind: str, build, render):
+    """A form's POST: ``build(web, form, kept) -> (params, title)`` checks it (``kept``:
+    uploads to keep if the form comes back); a refusal redraws the form with ``render`` and
+    its one-line error (4xx), else the job is submitted with the form's values."""
+    from ..errors import AsperityError
+    form = await read_form(request)
+    values, kept = form.values(), {}
+    try:
+        params, title = await build(web, form, kept)
+    except (AsperityError, TooLarge) as exc:
+        return render(web, request, status=status_of(exc), values=values, kept=kept,
+                      error=str(exc))
+    params.update(form=values, kept=kept)
+    return await submit(web, request, kind, params, title)
+
+
 async def form_again(web, request: Request, rec: dict) -> HTMLResponse:
     """The form that made job ``rec``, filled in again, with its error (or its note)."""
     params = rec.get("params", {})

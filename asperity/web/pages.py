@@ -9,6 +9,7 @@ from ..errors import AsperityError, check_choice
 from .common import (
     done_job,
     done_jobs,
+    post_form,
     read_form,
     status_of,
     submit,
@@ -79,33 +80,7 @@ def register(app, web) -> None:
 
     @app.post("/surface")
     async def surface_post(request: Request):
-        form = await read_form(request)
-        values, kept = form.values(), {}
-        try:
-            source = form.choice("source", ("wedge", "file"), "wedge")
-            params = {"contact": form.choice("contact", CONTACTS, "all-faces"),
-                      "directions": form.whole("directions", 360, low=8, high=100_000,
-                                               label="sliding directions"),
-                      "method": form.choice("method", ("closed-form", "springs"),
-                                            "closed-form")}
-            if source == "wedge":
-                src = wedge_source(form)
-                title = wedge_title(src)
-            else:
-                meta = await upload_or_kept(web, form, "file", "upload")
-                if meta is None:
-                    raise FormError("choose a file to upload (or enter a wedge in the other "
-                                    "form)")
-                kept["file"] = meta
-                fmap = await upload_or_kept(web, form, "friction_map", "map_upload")
-                src = surface_source(form, meta, fmap)
-                title = f"{'texture file' if meta['id'].endswith('.toml') else 'surface'} " \
-                        f"{meta['name']}"
-            params.update(source=src, form=values, kept=kept)
-        except (AsperityError, TooLarge) as exc:
-            return render_surface(web, request, status=status_of(exc), values=values, kept=kept,
-                                  error=str(exc))
-        return await submit(web, request, "derive", params, f"friction of {title}")
+        return await post_form(web, request, "derive", _surface_params, render_surface)
 
     @app.get("/law", response_class=HTMLResponse)
     async def law(request: Request):
@@ -113,29 +88,7 @@ def register(app, web) -> None:
 
     @app.post("/law")
     async def law_post(request: Request):
-        form = await read_form(request)
-        values = form.values()
-        try:
-            choice = form.text("source") or "wedge"
-            contact = form.text("contact")
-            if choice == "wedge":
-                src = wedge_source(form)
-                what = wedge_title(src)
-            else:
-                rec = done_job(web, choice, ("derive",), "surface result")
-                src = {"kind": "job", "job": choice}
-                what = f"result {choice}"
-                contact = contact or rec["params"].get("contact", "all-faces")
-            kind = form.choice("law", ("star", "ellipse"), "star")
-            params = {"source": src, "law": "star" if kind == "star" else "truncated-ellipse",
-                      "contact": check_choice("contact", contact or "all-faces", CONTACTS),
-                      "directions": form.whole("directions", 720, low=8, high=100_000,
-                                               label="sliding directions fitted"),
-                      "form": values}
-        except AsperityError as exc:
-            return render_law(web, request, status=status_of(exc), values=values, error=str(exc))
-        name = "star" if kind == "star" else "truncated-ellipse"
-        return await submit(web, request, "fit", params, f"{name} law of {what}")
+        return await post_form(web, request, "fit", _law_params, render_law)
 
     @app.post("/law/open")
     async def law_open(request: Request):
@@ -150,3 +103,43 @@ def register(app, web) -> None:
                                                     "form": {}}, f"gauge file {meta['name']}")
 
 
+async def _surface_params(web, form: Form, kept: dict) -> tuple[dict, str]:
+    source = form.choice("source", ("wedge", "file"), "wedge")
+    params = {"contact": form.choice("contact", CONTACTS, "all-faces"),
+              "directions": form.whole("directions", 360, low=8, high=100_000,
+                                       label="sliding directions"),
+              "method": form.choice("method", ("closed-form", "springs"), "closed-form")}
+    if source == "wedge":
+        src = wedge_source(form)
+        title = wedge_title(src)
+    else:
+        meta = await upload_or_kept(web, form, "file", "upload")
+        if meta is None:
+            raise FormError("choose a file to upload (or enter a wedge in the other form)")
+        kept["file"] = meta
+        fmap = await upload_or_kept(web, form, "friction_map", "map_upload")
+        src = surface_source(form, meta, fmap)
+        title = f"{'texture file' if meta['id'].endswith('.toml') else 'surface'} " \
+                f"{meta['name']}"
+    params["source"] = src
+    return params, f"friction of {title}"
+
+
+async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
+    choice = form.text("source") or "wedge"
+    contact = form.text("contact")
+    if choice == "wedge":
+        src = wedge_source(form)
+        what = wedge_title(src)
+    else:
+        rec = done_job(web, choice, ("derive",), "surface result")
+        src = {"kind": "job", "job": choice}
+        what = f"result {choice}"
+        contact = contact or rec["params"].get("contact", "all-faces")
+    kind = form.choice("law", ("star", "ellipse"), "star")
+    law = "star" if kind == "star" else "truncated-ellipse"
+    params = {"source": src, "law": law,
+              "contact": check_choice("contact", contact or "all-faces", CONTACTS),
+              "directions": form.whole("directions", 720, low=8, high=100_000,
+                                       label="sliding directions fitted")}
+    return params, f"{law} law of {what}"

@@ -4,20 +4,16 @@ from __future__ import annotations
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
-from ..errors import AsperityError
-from .forms import Form, FormError
 from .common import (
     done_job,
     done_jobs,
-    read_form,
+    post_form,
     save_upload,
-    status_of,
-    submit,
     upload_or_kept,
     wedge_source,
     wedge_title,
 )
-from .security import TooLarge
+from .forms import Form, FormError
 from .store import UploadError, check_plain_name
 
 BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a, mu2 along t_b)"),
@@ -188,24 +184,13 @@ def register(app, web) -> None:
     async def motion(request: Request):
         return render_motion(web, request)
 
-    async def post(request: Request, kind: str, build):
-        form = await read_form(request)
-        values, kept = form.values(), {}
-        try:
-            params, title = await build(web, form, kept)
-        except (AsperityError, TooLarge) as exc:
-            return render_motion(web, request, status=status_of(exc), values=values, kept=kept,
-                                 error=str(exc))
-        params.update(form=values, kept=kept)
-        return await submit(web, request, kind, params, title)
-
     @app.post("/motion/slide")
     async def slide_post(request: Request):
-        return await post(request, "slide", _slide_params)
+        return await post_form(web, request, "slide", _slide_params, render_motion)
 
     @app.post("/motion/risk")
     async def risk_post(request: Request):
-        return await post(request, "risk", _risk_params)
+        return await post_form(web, request, "risk", _risk_params, render_motion)
 
     @app.get("/studies", response_class=HTMLResponse)
     async def studies(request: Request):
@@ -213,18 +198,10 @@ def register(app, web) -> None:
 
     @app.post("/studies")
     async def studies_post(request: Request):
-        form = await read_form(request)
-        values = form.values()
-        try:
-            params, title = await _study_params(web, form)
-        except (AsperityError, TooLarge) as exc:
-            return render_studies(web, request, status=status_of(exc), values=values,
-                                  error=str(exc))
-        params["form"] = values
-        return await submit(web, request, "study", params, title)
+        return await post_form(web, request, "study", _study_params, render_studies)
 
 
-async def _study_params(web, form: Form) -> tuple[dict, str]:
+async def _study_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     from .tasks_study import check_references
     up = form.file("study")
     if up is None:
