@@ -106,8 +106,12 @@ async def form_again(web, request: Request, rec: dict) -> HTMLResponse:
     return render(web, request, status=status, **ctx)
 
 
+#: finished results offered as inputs on a form
+DONE_LIMIT = 30
+
+
 def done_jobs(web, kinds) -> list[dict]:
-    return web.store.jobs(kinds=kinds, status=("done",), limit=30)
+    return web.store.jobs(kinds=kinds, status=("done",), limit=DONE_LIMIT)
 
 
 def wedge_source(form: Form, prefix: str = "") -> dict:

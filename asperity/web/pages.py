@@ -7,8 +7,8 @@ from fastapi.responses import HTMLResponse
 
 from ..errors import AsperityError, check_choice
 from .common import (
+    DONE_LIMIT,
     done_job,
-    done_jobs,
     post_form,
     read_form,
     status_of,
@@ -30,15 +30,15 @@ def render_surface(web, request: Request, status: int = 200, **ctx) -> HTMLRespo
 
 
 def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
-    surfaces = done_jobs(web, ("derive",))
+    surfaces, jobs = web.store.select((("derive",), ("done",), DONE_LIMIT),
+                                      (("fit", "gauge"), None, 20))
     sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {j['title']}")
                                                 for j in surfaces]
     wanted = request.query_params.get("source", "")
     default = wanted if any(s == wanted for s, _ in sources) else \
         (surfaces[0]["id"] if surfaces else "wedge")
     return web.page(request, "law.html", status, page="law", sources=sources,
-                    default_source=default,
-                    jobs=web.store.jobs(kinds=("fit", "gauge"), limit=20), **ctx)
+                    default_source=default, jobs=jobs, **ctx)
 
 
 def pixel_size(text: str):

@@ -5,8 +5,8 @@ from fastapi import Request
 from fastapi.responses import HTMLResponse
 
 from .common import (
+    DONE_LIMIT,
     done_job,
-    done_jobs,
     post_form,
     save_upload,
     upload_or_kept,
@@ -29,8 +29,9 @@ MAX_TOML = 1 << 20
 
 
 def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
-    laws_done = done_jobs(web, ("fit", "gauge"))
-    surfaces = done_jobs(web, ("derive",))
+    laws_done, surfaces, jobs = web.store.select(
+        (("fit", "gauge"), ("done",), DONE_LIMIT), (("derive",), ("done",), DONE_LIMIT),
+        (("slide", "risk"), None, 20))
     q = request.query_params
     laws = [(f"job:{j['id']}", f"{j['id']}: {j['title']}") for j in laws_done] + list(BUILTIN)
     default_law = f"job:{q['law']}" if q.get("law") and any(
@@ -48,8 +49,7 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
         default_friction = f"law:{q['law']}"
     return web.page(request, "motion.html", status, page="motion", laws=laws,
                     default_law=default_law, frictions=frictions,
-                    default_friction=default_friction,
-                    jobs=web.store.jobs(kinds=("slide", "risk"), limit=20), **ctx)
+                    default_friction=default_friction, jobs=jobs, **ctx)
 
 
 def render_studies(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:

@@ -188,18 +188,25 @@ class Store:
 
     def jobs(self, kinds=None, status=None, limit: int = 50) -> list[dict]:
         """The newest jobs first (of ``kinds``, with ``status``)."""
-        out = []
+        return self.select((kinds, status, limit))[0]
+
+    def select(self, *queries) -> list[list[dict]]:
+        """Several :meth:`jobs` lists, one per query ``(kinds, status, limit)``, from one
+        pass over the records (a page lists jobs of several kinds)."""
+        outs: list[list[dict]] = [[] for _ in queries]
         try:
             names = sorted((p.name for p in self.jobs_dir.iterdir() if JOB_ID.match(p.name)),
                            reverse=True)
         except OSError:
-            return out
+            return outs
         for jid in names:
-            rec = self.read(jid)
-            if rec is None or (kinds and rec["kind"] not in kinds) or \
-                    (status and rec["status"] not in status):
-                continue
-            out.append(rec)
-            if len(out) >= limit:
+            if all(len(o) >= q[2] for o, q in zip(outs, queries)):
                 break
-        return out
+            rec = self.read(jid)
+            if rec is None:
+                continue
+            for o, (kinds, status, limit) in zip(outs, queries):
+                if len(o) < limit and (not kinds or rec["kind"] in kinds) and \
+                        (not status or rec["status"] in status):
+                    o.append(rec)
+        return outs
