@@ -110,10 +110,6 @@ async def form_again(web, request: Request, rec: dict) -> HTMLResponse:
 DONE_LIMIT = 30
 
 
-def done_jobs(web, kinds) -> list[dict]:
-    return web.store.jobs(kinds=kinds, status=("done",), limit=DONE_LIMIT)
-
-
 def wedge_source(form: Form, prefix: str = "") -> dict:
     return {"kind": "wedge", **{k: form.number(prefix + k, label=label)
                                 for k, label in WEDGE.items()}}

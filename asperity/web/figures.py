@@ -25,18 +25,9 @@ def _layout(title: str, xlabel: str, ylabel: str, *, equal: bool = False, **extr
 
 
 def _r(x, digits: int = 6):
-    """Rounded copy for the page (NaN -> None)."""
-    a = np.asarray(x, dtype=float)
-    out = np.round(a, digits).tolist()
-    if np.isnan(a).any():
-        return _none(out)
-    return out
-
-
-def _none(v):
-    if isinstance(v, list):
-        return [_none(x) for x in v]
-    return None if isinstance(v, float) and math.isnan(v) else v
+    """Rounded copy for the page (NaN becomes None with the rest of the job's result, in
+    io.json_ready)."""
+    return np.round(np.asarray(x, dtype=float), digits).tolist()
 
 
 def reservoir_figures(obj: dict) -> dict:
@@ -73,11 +64,11 @@ def reservoir_figures(obj: dict) -> dict:
         {"type": "scatter", "mode": "lines", "x": psi, "y": [d["lateral"] for d in dirs],
          "name": "L = p.s_perp (pushes sideways)", "hovertemplate":
          "psi = %{x:.2f} deg<br>L = %{y:.5f}<extra></extra>"}],
-        "layout": _layout("tangential and lateral parts against the sliding direction",
-                          "sliding direction psi (deg" + (", from +x)" if surface else
-                                                          ", from t_a)"), "force / normal load",
-                          xaxis={"title": {"text": "sliding direction psi (deg)"},
-                                 "tickvals": list(range(0, 361, 45))})}
+        "layout": _layout("tangential and lateral parts against the sliding direction", None,
+                          "force / normal load",
+                          xaxis={"title": {"text": "sliding direction psi (deg" + (
+                              ", from +x)" if surface else ", from t_a)")},
+                              "tickvals": list(range(0, 361, 45))})}
     if locked:
         tl["layout"]["title"]["text"] += f" -- self-locking at {len(locked)} directions"
     return {"polar": polar, "tl": tl}
