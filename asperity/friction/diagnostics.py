@@ -140,23 +140,40 @@ def locking_share(faces, res: Reservoir) -> np.ndarray:
     self-locking surface locks on a few steep outlier facets or on much of its area.
     Evaluated on at most MAX_SHARE_DIRECTIONS of the self-locking directions, evenly
     spread (NaN on the others)."""
-    from ._facet_kernels import locked_weight
-    from .reservoir import LEVEL_SLOPE_TOL, LOCK_TOL
+    from ..progress import report
     out, k = share_directions(res)
     if k.size == 0:
         return out
     g = faces.gradient
     mu = np.asarray(faces.mu, dtype=float)
     uniform = mu.strides == (0,)
-    from ..progress import chunks
-    from .facet_reservoir import PIECE_WORK
-    args = (np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1]),
-            np.ascontiguousarray(mu[:1] if uniform else mu), uniform,
-            np.ascontiguousarray(faces.weight, dtype=float))
-    lw = np.empty((k.size, 2))
-    # directions in pieces of ~PIECE_WORK facet-directions: Ctrl-C is honoured between them
-    for a, b in chunks(k.size, max(1, PIECE_WORK // max(1, g.shape[0]))):
-        lw[a:b] = locked_weight(*args, np.cos(res.psi[k[a:b]]), np.sin(res.psi[k[a:b]]),
-                                res.contact == "windward", LOCK_TOL, LEVEL_SLOPE_TOL)
-    out[k] = lw[:, 0] / np.where(lw[:, 1] > 0, lw[:, 1], 1.0)
+    lw = locked_weights(np.ascontiguousarray(g[:, 0]), np.ascontiguousarray(g[:, 1]),
+                        np.ascontiguousarray(mu[:1] if uniform else mu), uniform,
+                        np.ascontiguousarray(faces.weight, dtype=float), res.psi[k],
+                        res.contact == "windward", report)
+    out[k] = share_of(lw)
     return out
+
+
+def locked_weights(gx, gy, mu, uniform, w, psi, windward: bool, tick=None) -> np.ndarray:
+    """(m, 2): the weight of the facets that lock and of all loaded facets, for each
+    direction psi; in pieces of ~PIECE_WORK facet-directions (Ctrl-C is honoured between
+    them), ``tick(fraction done)`` after each."""
+    from ._facet_kernels import locked_weight
+    from .facet_reservoir import PIECE_WORK
+    from .reservoir import LEVEL_SLOPE_TOL, LOCK_TOL
+    m = psi.size
+    out = np.empty((m, 2))
+    step = max(1, PIECE_WORK // max(1, gx.size))
+    for a in range(0, m, step):
+        b = min(m, a + step)
+        out[a:b] = locked_weight(gx, gy, mu, uniform, w, np.cos(psi[a:b]), np.sin(psi[a:b]),
+                                 windward, LOCK_TOL, LEVEL_SLOPE_TOL)
+        if tick is not None:
+            tick(b / m)
+    return out
+
+
+def share_of(lw: np.ndarray) -> np.ndarray:
+    """Locked share of the load from :func:`locked_weights`."""
+    return lw[:, 0] / np.where(lw[:, 1] > 0, lw[:, 1], 1.0)

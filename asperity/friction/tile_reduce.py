@@ -175,6 +175,7 @@ def assemble(run, plan, info, prep, contact, n, other_contact):
         dT_dpsi_from,
         find_self_locking,
         share_directions,
+        share_of,
     )
     from .reservoir import directions
     src = plan.heights
@@ -220,8 +221,7 @@ def assemble(run, plan, info, prep, contact, n, other_contact):
     del post
     axis_res = _finish_job(run, plan, fake, axis_psi, contact, out[0], mode, rows)
     if k_share.size:
-        lw = out[1]
-        share[k_share] = lw[:, 0] / np.where(lw[:, 1] > 0, lw[:, 1], 1.0)
+        share[k_share] = share_of(out[1])
     other = None
     if other_contact is not None:
         other = _finish_job(run, plan, fake, psi, other_contact, out[-1], mode, rows)

@@ -137,20 +137,10 @@ def _job(fac, job, tick):
     kind, mode, psi = job
     m = psi.size
     if kind == "lockw":
-        out = np.zeros((m, 2))
-        if fac is not None:
-            from .facet_reservoir import PIECE_WORK
-            from ._facet_kernels import locked_weight
-            from .reservoir import LEVEL_SLOPE_TOL, LOCK_TOL
-            step = max(1, PIECE_WORK // max(1, fac.n))
-            for a in range(0, m, step):
-                b = min(m, a + step)
-                out[a:b] = locked_weight(fac.gx, fac.gy, fac.mu, fac.mu_uniform, fac.w,
-                                         np.cos(psi[a:b]), np.sin(psi[a:b]), mode,
-                                         LOCK_TOL, LEVEL_SLOPE_TOL)
-                if tick is not None:
-                    tick(b / m)
-        return out
+        if fac is None:
+            return np.zeros((m, 2))
+        from .diagnostics import locked_weights
+        return locked_weights(fac.gx, fac.gy, fac.mu, fac.mu_uniform, fac.w, psi, mode, tick)
     from ._facet_kernels import N_ACC
     from .facet_reservoir import _auto_batch, _numba_pass
     sums = np.zeros((m, N_ACC))
