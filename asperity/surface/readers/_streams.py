@@ -38,17 +38,11 @@ class NpyLines(LineSource):
     :mod:`.array` does: float64, x unit factor, x height_scale)."""
 
     def __init__(self, path, name, factor=1.0, height_scale=1.0, dx=None, dy=None):
-        from .array import _header
+        from .array import _check_shape, _header
         with open(path, "rb") as fh:
             shape, fortran, dtype, offset = _header(fh, name, "the array")
-        if len(shape) != 2:
-            raise TextureFileError(f"{name}: a height map must be a 2-D array, got the array "
-                                   f"of shape {shape}")
-        data = Path(path).stat().st_size - offset
-        need = shape[0] * shape[1] * dtype.itemsize
-        if data != need:
-            raise TextureFileError(f"{name}: the array holds {data} bytes of data, its shape "
-                                   f"{shape} needs {need}")
+        _check_shape(shape, name, "the array", Path(path).stat().st_size - offset,
+                     dtype.itemsize, None)
         if dtype.kind == "b":
             raise TextureFileError(f"{name}: the array holds booleans (a mask?), not heights")
         super().__init__(path, shape, dx, dy, Path(name).name)

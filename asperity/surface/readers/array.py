@@ -45,6 +45,8 @@ def _header(fh, name, what):
 
 
 def _check_shape(shape, name, what, data_bytes, itemsize, point_bytes, two_d=True):
+    """A height map's shape against its data size and (unless ``point_bytes`` is None: a
+    map read in tiles) the memory its points need."""
     if two_d and len(shape) != 2:
         raise TextureFileError(f"{name}: a height map must be a 2-D array, got {what} of "
                                f"shape {shape}")
@@ -52,6 +54,8 @@ def _check_shape(shape, name, what, data_bytes, itemsize, point_bytes, two_d=Tru
     if data_bytes != n * itemsize:
         raise TextureFileError(f"{name}: {what} holds {data_bytes} bytes of data, its shape "
                                f"{shape} needs {n * itemsize}")
+    if point_bytes is None:
+        return
     if len(shape) == 2:
         check_grid(shape[0], shape[1], name, point_bytes + itemsize)
     else:
