@@ -24,7 +24,7 @@ CONTACTS = ("all-faces", "windward")
 FACES = ("support", "part")
 
 
-def _check_texture(texture):
+def check_risk_texture(texture):
     if texture is not None and not (callable(getattr(texture, "faces", None))
                                     and callable(getattr(texture, "to_dict", None))):
         raise InputError(f"texture must be a wedge texture or a surface (load_texture, "
@@ -32,7 +32,7 @@ def _check_texture(texture):
     return texture
 
 
-def _axis_and_face(slip_axis_deg, textured):
+def check_axis_and_face(slip_axis_deg, textured):
     from ..errors import check_range
     if slip_axis_deg is not None:
         slip_axis_deg = check_range("slip_axis_deg", slip_axis_deg, -360.0, 360.0, unit="deg")
@@ -52,10 +52,10 @@ def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
     texture file).  ``slip_axis_deg`` and ``textured`` override the table's.
     """
     check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
-    _check_texture(texture)
+    check_risk_texture(texture)
     check_text("texture_name", texture_name, 4096)
     check_choice("contact", contact, CONTACTS)
-    slip_axis_deg, textured = _axis_and_face(slip_axis_deg, textured)
+    slip_axis_deg, textured = check_axis_and_face(slip_axis_deg, textured)
     fr = asm.friction_table
     axis = slip_axis_deg if slip_axis_deg is not None else fr.get("slip_axis_deg")
     face = textured or fr.get("textured", "support")
@@ -78,7 +78,7 @@ def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
     return resolve_friction(asm)
 
 
-def _life(asm: Assembly, cycles, tolerance) -> tuple[float, float | None]:
+def life_settings(asm: Assembly, cycles, tolerance) -> tuple[float, float | None]:
     check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
     cycles = check_cycles("cycles", asm.cycles or 1e6 if cycles is None else cycles)
     if tolerance is not None:
@@ -104,7 +104,7 @@ def assess_assembly(asm: Assembly, friction: Friction, *, cycles: float | None =
     """
     from .. import __version__
     from .verdict import assess
-    cycles, tolerance = _life(asm, cycles, tolerance)
+    cycles, tolerance = life_settings(asm, cycles, tolerance)
     check_instance("friction", friction, Friction, "Friction (from assembly_friction)")
     max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
     if dynamic_steps is not None:

@@ -10,9 +10,9 @@ from ..microslip.assembly import Assembly
 from ..microslip.risk import (
     CONTACTS,
     MAP_PARAMS,
-    _axis_and_face,
-    _check_texture,
-    _life,
+    check_axis_and_face,
+    check_risk_texture,
+    life_settings,
     loading_dict,
 )
 
@@ -42,12 +42,12 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
     (px, xs), (py, ys) = (_map_axis(name, a) for name, a in (("x", x), ("y", y)))
     if px == py:
         raise InputError(f"a risk map needs two different parameters, got {px} twice")
-    cycles, _ = _life(asm, cycles, None)
+    cycles, _ = life_settings(asm, cycles, None)
     max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
-    _check_texture(texture)
+    check_risk_texture(texture)
     if contact is not None:
         check_choice("contact", contact, CONTACTS)
-    slip_axis_deg, textured = _axis_and_face(slip_axis_deg, textured)
+    slip_axis_deg, textured = check_axis_and_face(slip_axis_deg, textured)
     fr = asm.friction_table
     if texture is None:
         if "texture" not in fr:
