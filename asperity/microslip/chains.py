@@ -175,6 +175,8 @@ def _built(kind, x, kb, le, kt, mp, mm, N, w, alpha_T, params) -> Chain:
     are float64, contiguous, finite and positive by construction, so only what depends on
     their combination (resolvable stiffness ratios and asymmetry) is checked -- the array
     checks of a user's Chain cost more than a two-node case's solution."""
+    if same_friction(mp, mm):
+        mm = mp            # the same coefficient but for rounding: exactly symmetric sliders
     c = object.__new__(Chain)
     for name, v in (("kind", kind), ("x", x), ("kb", kb), ("le", le), ("kt", kt),
                     ("cp", mp * N), ("cm", mm * N), ("fw", w), ("weight", w.copy()),

@@ -62,6 +62,10 @@ SAME_FRICTION = 1e-12
 
 def same_friction(mu_plus: float, mu_minus: float) -> bool:
     """mu+ and mu- equal but for rounding (relative difference at most SAME_FRICTION)."""
+    if mu_plus == mu_minus:
+        return True
+    if not (math.isfinite(mu_plus) and math.isfinite(mu_minus)):
+        return False                     # a self-locking side is never the other's value
     return abs(mu_plus - mu_minus) <= SAME_FRICTION * max(abs(mu_plus), abs(mu_minus))
 
 
