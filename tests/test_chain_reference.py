@@ -402,7 +402,7 @@ def test_production_force_histories_converge_to_the_reference(kind, mup, mum, at
     1, 64, 4096 substeps: two-node 3.7, 6.9e-2, 5.1e-5 -- the drift per cycle stalls at
     1.4e-5 below the closed form of the test above; strip n = 10: 1.1e-2, 4.6e-4, 4.0e-6;
     n = 9, force at the start: 3.0e-3, 5.4e-4, 8.4e-6, at the end: 1.4e-2, 7.5e-4, 1.2e-5).
-    An exact (event-driven) solver should meet 1e-9 at one substep."""
+    An exact (event-driven) solver meets 1e-9 at every substep count (accepted here too)."""
     c = two_node(mup, mum) if kind == "two-node" else strip(kind, mup, mum)
     if at != "uniform":
         c = _with_fw(c, [1.0 if i == (0 if at == "start" else c.n - 1) else 0.0
@@ -422,7 +422,8 @@ def test_production_force_histories_converge_to_the_reference(kind, mup, mum, at
     scale = abs(c.alpha_T) * c.length * make(1).dT_range
     err = [np.abs(simulate(c, make(s), 5, until_stable=False).u_end - ref.u_f).max() / scale
            for s in (1, 64, 4096)]
-    assert err[2] < 1e-4 and err[2] < err[1] < err[0], err
+    assert err[2] < 1e-4, err
+    assert max(err) <= 1e-9 or err[2] < err[1] < err[0], err   # exact, or converging
 
 
 def _with_fw(c, fw):
