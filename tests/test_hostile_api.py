@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from api_walk import (NAN, Kind, address, array, callback, choice, flag, infile, instance, judge, number,
+from api_walk import (BIG_INT as BIG, NAN, Kind, address, array, callback, choice, flag, infile, instance, judge, number,
                       outfile, outfolder, text, whole)
 from hostile import SURF
 
@@ -69,7 +69,8 @@ def api_table(folder: Path) -> list[Row]:
     angle_deg = number(1e-6, 90.0, hi_open=True)
     mu = number(0.0, 100.0)
     pos = number(0.0, None, lo_open=True)
-    psi = array(-1e3, 1e3, skip=("NaN", "subnormal"))    # a number or a 1-d array
+    psi = array(-1e3, 1e3, extra=[("NaN", "NaN", NAN), ("inf", "+inf", math.inf),  # or a number
+                                  ("overflow", "10**400", BIG), ("range", "huge", 1e300)])
     contact = choice()
     small = A.SpringModel(n_springs=8, steps_per_period=2000)
     elastic = A.SpringModel(k_f=1e6, n_springs=8, steps_per_period=2000)
