@@ -38,13 +38,15 @@ def hampel_numpy(z: np.ndarray, window: int, k: float) -> np.ndarray:
 
 
 def spiky_map(seed: int, n0: int = 70, n1: int = 55) -> np.ndarray:
-    """Rough heights (correlated noise on a tilt, a step of quantised levels in one corner),
-    2 % dropouts, 25 planted spikes of 2 to 30 standard deviations."""
+    """Rough heights (correlated noise on a tilt, quantised levels in one corner), 2 %
+    dropouts (75 % in the opposite corner: pixels with about W defined neighbours), 25
+    planted spikes of 2 to 30 standard deviations."""
     rng = np.random.default_rng(seed)
     z = rng.normal(size=(n0, n1))
     z = 0.5 * z + 0.25 * (np.roll(z, 1, 0) + np.roll(z, 1, 1)) + 0.02 * np.arange(n1)
     z[:12, :12] = np.round(z[:12, :12] * 2) / 2                 # quantised: MAD often 0
     z[rng.random(z.shape) < 0.02] = np.nan
+    z[-20:, -20:][rng.random((20, 20)) < 0.75] = np.nan        # sparse: few neighbours
     free = np.flatnonzero(np.isfinite(z).ravel())
     spikes = rng.choice(free, 25, replace=False)
     z.ravel()[spikes] += rng.choice([-1.0, 1.0], 25) * rng.uniform(2.0, 30.0, 25)
@@ -67,7 +69,8 @@ def test_flagged_sets_equal_an_independent_numpy_hampel_filter(window, k):
 def test_evidence_only_in_the_outermost_row_or_column_of_the_window(window):
     """A spike whose defined neighbours all lie in one outermost row or column of its
     window (one map per side): judged and flagged; a window one short on that side sees
-    too few neighbours and flags nothing."""
+    too few neighbours and flags nothing.  With one of those W neighbours undefined it is
+    not judged (fewer than W)."""
     r = window // 2
     for side in ("bottom", "top", "right", "left"):
         z = np.full((4 * window, 4 * window), np.nan)
@@ -86,3 +89,8 @@ def test_evidence_only_in_the_outermost_row_or_column_of_the_window(window):
         assert ref[i, j], side                                  # the reference judges it
         got = find_spikes(z, (6.0, window))
         np.testing.assert_array_equal(got, ref, err_msg=f"{side} side, W {window}")
+        # one of the W neighbours undefined: W - 1 left, the pixel is not judged
+        z[np.isfinite(z) & (z != 100.0) & (z == -r)] = np.nan
+        assert not hampel_numpy(z, window, 6.0)[i, j]
+        np.testing.assert_array_equal(find_spikes(z, (6.0, window)), hampel_numpy(z, window, 6.0),
+                                      err_msg=f"{side} side, W {window}, W - 1 neighbours")
