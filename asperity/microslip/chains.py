@@ -86,8 +86,8 @@ class MicroslipTolerances:
             checked[name] = check_int(f"tol.{name}", getattr(self, name), 1, 100_000)
         checked["prox_r_factor"] = check_range("tol.prox_r_factor", self.prox_r_factor, 0.0,
                                                2.0, low_open=True, high_open=True)
-        if not isinstance(self.events_only, (bool, np.bool_)):
-            raise InputError(f"tol.events_only must be True or False, got {self.events_only!r}")
+        from ..errors import check_flag
+        checked["events_only"] = check_flag("tol.events_only", self.events_only)
         for name, value in checked.items():
             object.__setattr__(self, name, value)
 

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_instance, check_int
+from ..errors import InputError, check_flag, check_instance, check_int
 from .chains import TOL, Chain, MicroslipTolerances, SlideOffError, SolverError, elastic_limit
 from .limits import MARGIN, check_cycles
 from .loading import Loading
@@ -203,8 +203,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     check_inputs(chain, loading, tol)
     cycles = check_int("cycles", cycles, 1, 100_000_000)
     min_cycles = check_int("min_cycles", min_cycles, 1, 100_000_000)
-    if not isinstance(until_stable, (bool, np.bool_)):
-        raise InputError(f"until_stable must be True or False, got {until_stable!r}")
+    until_stable = check_flag("until_stable", until_stable)
     rec = record_indices(chain, record_nodes)
     check_margin(chain, loading)
     check_capacity(chain, loading)
