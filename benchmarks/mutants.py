@@ -58,6 +58,8 @@ MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_r
              "test_risk_cli.py", "test_chain_reference.py")
 CHAIN = ("test_microslip_events.py", "test_chain_reference.py", "test_microslip.py",
          "test_hostile_microslip.py")
+WEB_PAGES = ("test_web_pages.py",)
+WEB_BROWSER = ("test_web_pages_browser.py",)
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")
 
@@ -259,6 +261,63 @@ MUTANTS = [
     Mutant("spike-mad-unscaled", "surface/_spike_kernels.py",
            "s = 1.4826 * _median(dev, n)", "s = _median(dev, n)",
            ("test_spike_filter.py",), "robust standard deviation without the 1.4826 factor"),
+    # ---- web page as a new user meets it (issue 18, section 8)
+    Mutant("web-download-name-fixed", "web/app.py",
+           "return FileResponse(path, filename=shown)",
+           "return FileResponse(path, filename=name.rsplit(\"/\", 1)[-1])", WEB_PAGES,
+           "every law downloads as gauge.json / law.csv / law.inp again"),
+    Mutant("web-unit-always-um", "web/units.py",
+           "return Unit(pick + base, SCALE[pick])", "return Unit(\"u\" + base, 1e-6)",
+           WEB_PAGES, "the engineering-unit chooser answers um whatever the values"),
+    Mutant("web-colour-bar-um", "web/figures.py",
+           "up = choose([float(np.nanmax(np.abs(zm)))])", "up = choose(1e-6)", WEB_PAGES,
+           "the height map's colour bar in um whatever the heights"),
+    Mutant("web-risk-figure-in-m", "web/figures.py",
+           "un = choose([float(np.max(np.abs(u))) for _, u, _ in h[\"nodes\"]])",
+           "un = choose(1.0)", WEB_PAGES, "the risk figure's node displacements in m"),
+    Mutant("web-tolerance-mm-again", "web/pages_motion.py",
+           "\"tolerance\": tol}", "\"tolerance\": None if tol is None else tol * 1e-3}",
+           WEB_PAGES, "the risk form's tolerance read in mm while its label says m"),
+    Mutant("web-delete-leaves-files", "web/store.py",
+           "folder.rename(trash)", "(folder / \"job.json\").rename(trash)", WEB_PAGES,
+           "deleting a result removes its record but leaves its files"),
+    Mutant("web-token-page-path", "web/app.py",
+           "kept={}, bare=True)", "kept={}, bare=False)", WEB_PAGES,
+           "the token-refused page shows the data folder's path"),
+    Mutant("web-elapsed-restarts", "web/store.py",
+           "t0 = rec.get(\"started_at\") if running else rec.get(\"created_at\")",
+           "t0 = now", WEB_PAGES, "a job's elapsed time starts at 0 on every reload"),
+    Mutant("web-time-left-wrong", "web/store.py",
+           "left = elapsed * (1.0 - f) / f", "left = elapsed / f", WEB_PAGES,
+           "time left estimated as the whole run's time"),
+    Mutant("web-duplicate-ids", "web/templates/surface.html",
+           "values, fid='f-file-contact') }}", "values) }}", WEB_PAGES,
+           "the Surface page's two forms give one id to two fields again"),
+    Mutant("web-settings-miss-max-slope", "web/labels.py",
+           "(\"max_slope\", lambda v: f\"max slope {_num(v)} deg\"),", "", WEB_PAGES,
+           "results that differ only by their max slope look alike in the lists"),
+    Mutant("web-slide-law-of-a-gauge-file", "web/tasks_motion.py",
+           "return params.get(\"law_text\") or f\"the {law.name} law of result "
+           "{spec['job']}\", name",
+           "return law.description, name", WEB_PAGES,
+           "a slide on a fitted law titled 'law of a gauge file'"),
+    Mutant("web-home-numbered-twice", "web/static/style.css",
+           ".steps { list-style: none; padding-left: 0; }", ".steps { padding-left: 0; }",
+           WEB_PAGES + WEB_BROWSER, "the home list shows '1. 1. Surface'"),
+    Mutant("web-long-cells-overflow", "web/static/style.css",
+           "main h1, main p, main td, main li, main small, main legend, .card "
+           "{ overflow-wrap: anywhere; }", "", WEB_BROWSER,
+           "long values run out of their cards at 1280 px"),
+    Mutant("web-prose-cells-nowrap", "web/static/style.css",
+           "table.numbers.prose td:nth-child(2) { white-space: normal; }", "", WEB_BROWSER,
+           "the data-quality notes kept on one line, past the card's edge"),
+    Mutant("web-title-under-toolbar", "web/static/app.js",
+           "delete fig.layout.title;", "", WEB_BROWSER,
+           "Plotly's toolbar covers the plot titles again"),
+    Mutant("web-risk-figure-static", "web/templates/result_risk.html",
+           "{% if result.figures %}{{ plot('risk-plot', result.figures.history) }}",
+           "{% if false %}", WEB_PAGES + WEB_BROWSER,
+           "the risk figure is a static image again"),
 ]
 
 
