@@ -374,3 +374,21 @@ def test_the_home_steps_are_numbered_once(client):
     css = client.get("/static/style.css").text
     rule = re.search(r"(?:^|\n)\.steps \{([^}]*)\}", css).group(1)
     assert "list-style: none" in rule            # the list's own numbers are not drawn
+
+
+def test_nearly_symmetric_friction_gets_a_verdict_with_its_meaning(client):
+    """Issue 18 item 7 on the page: mu+ and mu- 7.7e-5 apart (an isotropic scan's pair) get
+    a verdict, not a refusal: the two-node bar ratchets by the SPEC closed form's full
+    amount, towards the smaller coefficient, and the page says what that rests on."""
+    page = finished(client, client.post("/motion/risk", data={
+        **TWO_NODE, "dT_max": "300", "mu_plus": "0.200000", "mu_minus": "0.2000154"}))
+    assert page.status_code == 200, page.text[:300]
+    res = client.get(f"/api/jobs/{jid_of(page)}/result").json()
+    r = res["risk"]
+    assert r["verdict"] == "ratchet" and r["drift_per_cycle_m"] > 0
+    from asperity.microslip.closed_forms import two_node_drift_per_cycle
+    want = two_node_drift_per_cycle(1e6, 5e5, 100.0, 0.2, 0.2000154, 1.2e-5, 0.1, 0.0, 300.0)
+    assert r["drift_per_cycle_m"] == pytest.approx(want, rel=1e-9)
+    assert r["asymmetry"] == pytest.approx(-0.0000154 / 0.2000154, rel=1e-9)
+    assert len(res["notes"]) == 1 and "ratchets by the full amount" in res["notes"][0]
+    assert 'id="near-symmetric"' in page.text

@@ -147,7 +147,7 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     from .. import assembly_friction, assess_assembly
     from ..microslip.assembly import assembly_from_dict
     from ..microslip.plot import assembly_history, plot_assembly_history
-    from ..microslip.risk_text import format_text
+    from ..microslip.risk_text import format_text, near_symmetric_notes
     from .figures import risk_figures
     from .labels import stem
     data = dict(params["assembly"])
@@ -195,6 +195,7 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     return {"risk": public, "text": rename(text, {str(ctx["job_dir"]) + "/": "",
                                                   **ctx["names"]}), "files": files,
             "figures": figures,
+            "notes": [x.strip().removeprefix("NOTE: ") for x in near_symmetric_notes(out)],
             "downloads": {"risk.png": f"{base}_risk.png", "risk.json": f"{base}_risk.json",
                           "assembly.toml": f"{asm_stem}.toml"}}
 
