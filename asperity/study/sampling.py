@@ -13,6 +13,11 @@ Distributions (the ``[parameters]`` table of a study file)::
     { distribution = "lognormal", median = M, sigma = S }     # ln X ~ normal(ln M, S)
     { values = [v1, v2, ...] }  or  { low = L, high = H, n = N }   # kind = "grid" only
 
+A distribution that cannot be sampled in double precision -- a spread below the
+resolution of its values (every sample the same number), a truncated normal whose
+interval lies more than 6 sd from its mean or that is flat on it, tails beyond a double --
+is refused when the study is read, in one line naming the key and its allowed range.
+
 Sample matrices: ``grid`` the Cartesian product of the values (first parameter varying
 slowest); ``monte-carlo`` independent draws (NumPy PCG64 stream of the seed, inverse
 transform); ``latin-hypercube`` scipy.stats.qmc.LatinHypercube (seeded, one stratum per
