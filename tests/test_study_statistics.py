@@ -37,16 +37,20 @@ def text_of(s: dict) -> str:
     return "\n".join(lines(s))
 
 
-def sobol_study(tmp_path: Path, params: str, samples: int = 64, seed: int = 0) -> Path:
+def sampled_study(tmp_path: Path, kind: str, samples: int, seed: int, params: str) -> Path:
+    """A study of the two-node assembly (file name after kind, samples and seed)."""
     return write(tmp_path, f"""
 [study]
-kind = "sobol"
+kind = "{kind}"
 samples = {samples}
 seed = {seed}
 assembly = "TWO_NODE"
-tolerance = 1e-4
 [parameters]
-{params}""", f"sobol{seed}.toml")
+{params}""", f"{kind}{samples}-{seed}.toml")
+
+
+def sobol_study(tmp_path: Path, params: str, samples: int = 64, seed: int = 0) -> Path:
+    return sampled_study(tmp_path, "sobol", samples, seed, params)
 
 
 SOBOL_PARAMS = ('"loading.dT_max" = { distribution = "uniform", low = 100.0, high = 160.0 }\n'
@@ -249,16 +253,9 @@ def test_complete_sobol_indices_are_salibs_on_the_cases_in_design_order(tmp_path
 # ----------------------------------------------------------------------- rank correlations
 
 def mc_study(tmp_path: Path, samples: int, kind: str = "monte-carlo", seed: int = 1) -> Path:
-    return write(tmp_path, f"""
-[study]
-kind = "{kind}"
-samples = {samples}
-seed = {seed}
-assembly = "TWO_NODE"
-[parameters]
-"loading.dT_max" = {{ distribution = "uniform", low = 100.0, high = 160.0 }}
-"loading.tolerance" = {{ distribution = "uniform", low = 1e-5, high = 1e-3 }}
-""", f"{kind}{samples}.toml")
+    return sampled_study(tmp_path, kind, samples, seed, SOBOL_PARAMS.splitlines()[0] + """
+"loading.tolerance" = { distribution = "uniform", low = 1e-5, high = 1e-3 }
+""")
 
 
 @pytest.mark.parametrize("samples", [1, 2, 4])
@@ -320,15 +317,19 @@ def test_spearman_intervals_cover_the_population_value_95_percent_of_the_time():
 
 # ----------------------------------------------------------------------- grids
 
-def test_a_grid_of_one_value_per_parameter_ranks_nothing_and_has_no_interval(tmp_path):
-    f = write(tmp_path, """
+def grid_study(tmp_path: Path, dT_max: str) -> Path:
+    return write(tmp_path, f"""
 [study]
 kind = "grid"
 assembly = "TWO_NODE"
 [parameters]
-"loading.dT_max" = { values = [125.0] }
-"assembly.N" = { values = [100.0] }
+"loading.dT_max" = {dT_max}
+"assembly.N" = {{ values = [100.0] }}
 """)
+
+
+def test_a_grid_of_one_value_per_parameter_ranks_nothing_and_has_no_interval(tmp_path):
+    f = grid_study(tmp_path, "{ values = [125.0] }")
     s = run_study_file(f, tmp_path / "out", workers=0)
     assert s["cases"] == 1 and s["most_influential"] == []
     assert s["influence_note"].startswith("no parameter varies in the 1 completed case")
@@ -340,14 +341,7 @@ assembly = "TWO_NODE"
 
 
 def test_a_grid_ranks_over_the_grid_without_intervals(tmp_path):
-    f = write(tmp_path, """
-[study]
-kind = "grid"
-assembly = "TWO_NODE"
-[parameters]
-"loading.dT_max" = { low = 100.0, high = 160.0, n = 4 }
-"assembly.N" = { values = [100.0] }
-""")
+    f = grid_study(tmp_path, "{ low = 100.0, high = 160.0, n = 4 }")
     s = run_study_file(f, tmp_path / "out", workers=0)
     assert s["rank_correlation"] == {"loading.dT_max": -1.0, "assembly.N": None}
     assert "rank_correlation_interval" not in s and s["most_influential"] == ["loading.dT_max"]
