@@ -275,7 +275,7 @@ BAD = [
      "loading.dT_mx"),
     ("[study]\nkind = \"monte-carlo\"\nsamples = 10\nassembly = \"SURF/two-node-spec.toml\"\n"
      "[parameters]\n\"loading.dT_max\" = { distribution = \"normal\", mean = 1.0, sd = -2.0 }\n",
-     "parameters.loading.dT_max.sd must be > 0"),
+     "parameters.loading.dT_max.sd must be in (0, "),
     ("[study]\nkind = \"monte-carlo\"\nsamples = 10\nassembly = \"SURF/two-node-spec.toml\"\n"
      "[parameters]\n\"loading.dT_max\" = { distribution = \"uniform\", low = \"1\", high = 2.0 }\n",
      "parameters.loading.dT_max.low must be a number"),

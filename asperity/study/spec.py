@@ -378,7 +378,8 @@ def _check_one_case(study: Study) -> None:
     try:
         build_inputs(study.spec, values, None)
     except InputError as exc:
-        raise InputError(f"parameters at their medians ({_show(values)}): {exc}") from None
+        at = "the grid's first values" if study.kind == "grid" else "their medians"
+        raise InputError(f"parameters at {at} ({_show(values)}): {exc}") from None
 
 
 def _show(values: dict) -> str:

@@ -204,8 +204,37 @@ def read_store(folder) -> Store:
     return Store(con, folder, meta)
 
 
+def named_file(path: str, source: str) -> str:
+    """A scan library's file as its study names it: relative to the study file's folder
+    when it lies in it (the folder as the study was given, or its real path), else as
+    stored (an absolute pattern of the study).  Lexical: the files need not exist."""
+    folder = os.path.dirname(str(source))
+    if not folder:                        # a study file in the current folder
+        return path if os.path.isabs(path) else os.path.normpath(path)
+    for base in dict.fromkeys((folder, os.path.realpath(folder)) if os.path.isabs(folder)
+                              else (folder,)):
+        try:
+            return str(Path(path).relative_to(base))
+        except ValueError:
+            continue
+    return path
+
+
+def _rows(store: Store):
+    """Whole rows in case order, with a files study's file as its study names it."""
+    rows = store.rows()
+    if "file" not in store.inputs:
+        return rows
+    j = store.columns().index("file")
+    src = store.meta["study"].get("source", "")
+    return (r[:j] + (None if r[j] is None else named_file(r[j], src),) + r[j + 1:]
+            for r in rows)
+
+
 def export(store: Store, path) -> int:
-    """Write every stored case to ``path`` (.parquet or .csv), atomically; row count."""
+    """Write every stored case to ``path`` (.parquet or .csv), atomically; row count.  A
+    scan library's ``file`` column holds each file as the study names it (relative to the
+    study file), one row per file."""
     from ..io import atomic_path
     suffix = Path(str(path)).suffix.lower()
     if suffix not in (".parquet", ".csv"):
@@ -218,13 +247,13 @@ def export(store: Store, path) -> int:
             with open(tmp, "w", newline="", encoding="utf-8") as fh:
                 w = csv.writer(fh)
                 w.writerow(cols)
-                for row in store.rows():
+                for row in _rows(store):
                     w.writerow(["" if v is None else v for v in row])
                     n += 1
             return n
         import pyarrow as pa
         import pyarrow.parquet as pq
-        data = list(zip(*store.rows().fetchall())) or [()] * len(cols)
+        data = list(zip(*_rows(store))) or [()] * len(cols)
         types = {"case_id": pa.int64(), "status": pa.string(), "message": pa.string(),
                  "seconds": pa.float64(), "file": pa.string()}
         types.update({c: {"REAL": pa.float64(), "INTEGER": pa.int64(), "TEXT": pa.string()}[t]
