@@ -132,6 +132,17 @@ def test_every_key_and_form_that_leaves_the_folder_is_refused_naming_the_key(job
     assert seen == [], f"{key} = {value!r} opened or listed {seen}"
 
 
+@pytest.mark.parametrize("files", ['"lin*.toml"', '["wedge.toml", "*.toml"]', '"*"'])
+def test_a_pattern_inside_the_folder_that_matches_a_link_pointing_out_is_refused(job, files):
+    inp, out = job
+    (inp / "s.toml").write_text(f'[study]\nkind = "files"\nstages = ["derive"]\n'
+                                f'files = {files}\n')
+    with watched(out) as seen, pytest.raises(InputError) as e:
+        load_study(inp / "s.toml", confine=Confine(inp, WHY))
+    assert "study.files" in str(e.value) and WHY in str(e.value), str(e.value)
+    assert seen == [], seen
+
+
 def test_names_inside_the_folder_are_taken_and_each_file_is_read_from_there(job):
     inp, _ = job
     (inp / "sub").mkdir()
