@@ -234,9 +234,19 @@ def test_loopback_hosts_are_answered(server):
         assert httpx.get(server.base + "/", headers={"host": host}).status_code == 200, host
 
 
-def _chunked_post(base: str, path: str, total: int, piece: int) -> tuple[int, bytes]:
-    """POST a multipart upload of ``total`` bytes in chunks of ``piece`` bytes
-    (Transfer-Encoding: chunked, no Content-Length); (status, body) of the answer."""
+def _multipart(fields: list[tuple[str, str, bytes]]) -> bytes:
+    """A multipart/form-data body (boundary ``bnd``) of (field, file name, content)."""
+    out = b""
+    for field, name, content in fields:
+        out += (f'--bnd\r\nContent-Disposition: form-data; name="{field}"; '
+                f'filename="{name}"\r\nContent-Type: text/plain\r\n\r\n').encode()
+        out += content + b"\r\n"
+    return out + b"--bnd--\r\n"
+
+
+def _chunked_post(base: str, path: str, body: bytes, piece: int) -> tuple[int, bytes]:
+    """POST ``body`` in chunks of ``piece`` bytes (Transfer-Encoding: chunked, no
+    Content-Length), stopping as soon as the server answers; (status, answer)."""
     host, port = base.split("//", 1)[1].split(":")
     s = socket.create_connection((host, int(port)), timeout=30)
     answer = b""
@@ -244,20 +254,12 @@ def _chunked_post(base: str, path: str, total: int, piece: int) -> tuple[int, by
         s.sendall((f"POST {path} HTTP/1.1\r\nHost: {host}:{port}\r\nConnection: close\r\n"
                    f"Content-Type: multipart/form-data; boundary=bnd\r\n"
                    f"Transfer-Encoding: chunked\r\n\r\n").encode())
-
-        def chunk(b: bytes) -> None:
-            s.sendall(f"{len(b):x}\r\n".encode() + b + b"\r\n")
-        chunk(b'--bnd\r\nContent-Disposition: form-data; name="source"\r\n\r\nfile\r\n'
-              b'--bnd\r\nContent-Disposition: form-data; name="file"; filename="big.txt"\r\n'
-              b"Content-Type: text/plain\r\n\r\n")
-        sent = 0
-        while sent < total:
+        for at in range(0, len(body), piece):
             if select.select([s], [], [], 0)[0]:        # the server answered: stop sending
                 break
-            chunk(b"1 2 3 4\n" * (piece // 8))
-            sent += piece
+            b = body[at:at + piece]
+            s.sendall(f"{len(b):x}\r\n".encode() + b + b"\r\n")
         else:
-            chunk(b"\r\n--bnd--\r\n")
             s.sendall(b"0\r\n\r\n")
     except (BrokenPipeError, ConnectionResetError):
         pass
@@ -273,15 +275,20 @@ def _chunked_post(base: str, path: str, total: int, piece: int) -> tuple[int, by
 
 
 def test_the_upload_limit_counts_every_small_chunk_through_a_real_server(server):
+    """Four files of 0.3 times the limit each, sent in 2 kB chunks: each file and each
+    chunk is under the limit, the request is not."""
     limit = int(LIMIT_MB * 2**20)
-    status, body = _chunked_post(server.base, "/surface", 3 * limit, 2048)
-    assert status == 413, body[:300]
-    assert b"limit of 0.25 MB" in body and b"Traceback" not in body
-    uploads = data_dir(server) / "uploads"
-    assert all(p.stat().st_size < limit for p in uploads.rglob("*") if p.is_file())
-    # under the limit, the same chunked upload is taken (a form answer, not a 413)
-    status, body = _chunked_post(server.base, "/surface", limit // 4, 2048)
-    assert status in (200, 303, 400, 422) and status != 413, body[:300]
+    part = b"# " + b"x" * int(0.3 * limit) + b"\n"
+    study = b'[study]\nkind = "grid"\n'
+    body = _multipart([("study", "s.toml", study)] +
+                      [("companions", f"c{i}.toml", part) for i in range(4)])
+    status, answer = _chunked_post(server.base, "/studies", body, 2048)
+    assert status == 413, answer[:300]
+    assert b"limit of 0.25 MB" in answer and b"Traceback" not in answer
+    # under the limit, the same chunked request is read (a form's answer, not a 413)
+    body = _multipart([("study", "s.toml", study), ("companions", "c0.toml", part)])
+    status, answer = _chunked_post(server.base, "/studies", body, 2048)
+    assert status in (400, 422) and b"limit" not in answer, answer[:300]
     assert server.alive()
 
 
