@@ -183,8 +183,9 @@ MUTANTS = [
            SURFACE, "height-map facet slope dz/dy divided by dx (non-square pixels)"),
     # ---- files a study names: confinement (issue 18, section 1)
     Mutant("confine-skips-string-files", "study/inputs.py",
-           "    if isinstance(pats, str):\n        pats = [pats]",
-           "    if isinstance(pats, str):\n        pats, confine = [pats], None", CONFINE,
+           "    if isinstance(pats, str):\n        items = [(\"study.files\", pats)]",
+           "    if isinstance(pats, str):\n        items, confine = [(\"study.files\", pats)], "
+           "None", CONFINE,
            "study.files given as one string (a glob) is not confined, only a list is"),
     Mutant("confine-links-not-followed", "paths.py",
            "real = os.path.realpath(path)", "real = os.path.abspath(path)", CONFINE,

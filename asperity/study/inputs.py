@@ -124,28 +124,28 @@ def study_files(st: dict, folder, kind: str, confine: Confine | None = None) -> 
 
 
 def _patterns(pats, folder: Path, kind: str, confine, named: list) -> None:
-    keys = ["study.files"] if isinstance(pats, str) else None
     if isinstance(pats, str):
-        pats = [pats]
-    if not isinstance(pats, list) or not pats:
+        items = [("study.files", pats)]
+    elif isinstance(pats, list) and pats:
+        items = [(f"study.files[{i}]", p) for i, p in enumerate(pats)]
+    else:
         raise InputError("study.files must be a list of file names or patterns, e.g. "
                          "[\"scans/*.x3p\"] (relative to the study file)")
-    keys = keys or [f"study.files[{i}]" for i in range(len(pats))]
-    for key, pat in zip(keys, pats):
+    for key, pat in items:
         check_text(key, pat, 4096)
         if confine is not None:
             check_inside(key, pat, folder, confine.root, confine.outside)
     if kind != "files":
         return                                 # refused by the reader: nothing to match
     total = 0
-    for key, pat in zip(keys, pats):
+    for key, pat in items:
         hits = matching_files(pat, folder)
         if confine is not None:
             inside_matches(key, pat, hits, confine.root, confine.outside)
             if not hits:
                 raise InputError(f"{key} = {pat!r}: {confine.missing}")
         if not hits:
-            raise InputError(f"{key} {pat!r} matches no file (relative to {folder or '.'})")
+            raise InputError(f"{key} {pat!r} matches no file (relative to {folder})")
         total += len(hits)
         if total > MAX_FILES:
             raise InputError(f"study.files: at most {MAX_FILES} files, got more")
