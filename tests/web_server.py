@@ -3,6 +3,8 @@ free port and a data folder of the test's, stopped at the end (shared by the bro
 HTTP tests)."""
 from __future__ import annotations
 
+import importlib.util
+import os
 import signal
 import subprocess
 import sys
@@ -10,9 +12,10 @@ import threading
 import time
 from pathlib import Path
 
-from hostile import package_env
-
 ROOT = Path(__file__).resolve().parents[1]
+#: the folder holding the package under test (a mutant's copy in benchmarks/mutants.py):
+#: the server starts there, so that ``-m asperity`` imports that package, not the tree's
+PACKAGE_ROOT = Path(importlib.util.find_spec("asperity").origin).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data" / "surfaces"
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -23,15 +26,12 @@ class Server:
     """A running ``asperity serve``; ``url`` is its address (with the token if any)."""
 
     def __init__(self, data_dir, *args, timeout: float = 60.0):
-        data_dir = Path(data_dir).resolve()
         cmd = [sys.executable, "-m", "asperity", "serve", "--port", "0", "--data-dir",
                str(data_dir), *args]
-        # the package under test (the mutated copy of benchmarks/mutants.py too), from a
-        # cwd that holds no asperity/ (-m puts the cwd first on the path)
-        env = package_env({"PYTHONUNBUFFERED": "1"})
-        data_dir.mkdir(parents=True, exist_ok=True)
+        self.data_dir = Path(data_dir)
+        env = {**os.environ, "PYTHONUNBUFFERED": "1"}
         self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                     text=True, env=env, cwd=str(data_dir))
+                                     text=True, env=env, cwd=str(PACKAGE_ROOT))
         self.err: list[str] = []
         threading.Thread(target=self._drain, daemon=True).start()
         line = self._first_line(timeout)

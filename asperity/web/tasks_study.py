@@ -19,6 +19,7 @@ import tempfile
 from pathlib import Path
 
 from ..errors import InputError
+from .labels import stem
 from .results import rename
 from .store import UploadError, check_plain_name
 
@@ -71,7 +72,8 @@ def study_task(params: dict, ctx: dict, bar) -> dict:
         shutil.copyfile(upload_file(ctx, f["upload"], name), inp / name)
     ctx["names"][str(inp) + "/"] = ""
     ctx["names"][str(folder) + "/"] = ""
-    study = load_study(inp / params["study"]["name"], confine=confinement(inp))
+    study_name = params["study"]["name"]
+    study = load_study(inp / study_name, confine=confinement(inp))
     try:            # a job run again after a restart resumes its store: same inputs only
         summary = run_study_file(study, folder / "study", workers=params.get("workers", 0),
                                  plot=True)
@@ -87,8 +89,10 @@ def study_task(params: dict, ctx: dict, bar) -> dict:
     figures = [f if f.startswith("study/") else f"study/{f.rsplit('/', 1)[-1]}"
                for f in summary.get("figures", [])]
     files = ["cases.parquet", "cases.csv", "study/summary.json", "study/summary.md", *figures]
+    name = stem(study_name)
+    downloads = {f: f"{name}_{f.rsplit('/', 1)[-1]}" for f in files}
     return {"summary": summary, "text": rename("\n".join(lines(summary)), ctx["names"]),
-            "figures": figures, "rows": rows, "files": files}
+            "figures": figures, "rows": rows, "files": files, "downloads": downloads}
 
 
 TASKS = {"study": study_task}

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import TextureFileError
-from ..topography import PIXEL_SIZE_RANGE, one_line, pixel_pair, unit_factor
+from ..topography import PIXEL_SIZE_RANGE, check_height_scale, one_line, pixel_pair, unit_factor
 from ._files import split_suffix, surface_path
 from ._lines import LineSource
 
@@ -143,7 +143,7 @@ class X3pLines(LineSource):
         nx = lay.nx
         raw = np.frombuffer(self._read("data", a * nx * rec.itemsize, (b - a) * nx *
                                        rec.itemsize), dtype=rec)
-        z = _real(raw["CZ"], lay.axes[2])
+        z = _real(raw["CZ"], lay.axes[2], self.name)
         with np.errstate(invalid="ignore"):
             bad = ~np.isfinite(z)
         if lay.valid_member is not None:
@@ -209,6 +209,7 @@ def open_lines(path, *, unit=None, pixel_size=None, height_scale=1.0):
     whole).  Refuses what the whole-file readers refuse (missing unit, pixel size ...)."""
     from .text import open_text_lines
     p = surface_path(path)
+    height_scale = check_height_scale(height_scale)
     suffix, gz = split_suffix(p)
     if gz or not p.is_file():
         return None
