@@ -27,6 +27,7 @@ import argparse
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -471,13 +472,14 @@ def plant(root: Path, m: Mutant) -> str | None:
     return None
 
 
-def run_tests(root: Path, tests, timeout: float) -> tuple[bool, str, float]:
-    """(passed, first failing test or '', seconds) of pytest on ``tests`` with root first."""
+def run_tests(root: Path, tests, timeout: float, extra=()) -> tuple[bool, str, float]:
+    """(passed, first failing test or '', seconds) of pytest on ``tests`` with root first
+    (``extra``: more pytest arguments)."""
     env = dict(os.environ, PYTHONPATH=str(root) + os.pathsep + os.environ.get("PYTHONPATH", ""),
                PYTHONDONTWRITEBYTECODE="1")
     env.pop("PYTEST_XDIST_WORKER", None)
     cmd = [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "-p", "no:xdist",
-           "--no-header", "-rfE", "--tb=no", *[str(TESTS / t) for t in tests]]
+           "--no-header", "-rfE", "--tb=no", *extra, *[str(TESTS / t) for t in tests]]
     t0 = time.perf_counter()
     try:
         out = subprocess.run(cmd, cwd=root, env=env, capture_output=True, text=True,
@@ -509,6 +511,9 @@ def main(argv=None) -> int:
     ap.add_argument("--no-baseline", action="store_true",
                     help="skip the run of the test files on the unmutated copy")
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per mutant")
+    ap.add_argument("--pytest-args", default="",
+                    help="more pytest arguments, e.g. \"-k 'not ctrl_c'\" to leave out the "
+                         "timed Ctrl-C tests on a loaded machine")
     ap.add_argument("--from-head", action="store_true",
                     help="mutate the committed package (git HEAD) instead of the working "
                          "tree, e.g. while others have unfinished edits in it")
@@ -538,7 +543,7 @@ def main(argv=None) -> int:
         check_import(base)
         if not a.no_baseline:
             files = sorted({t for m in todo for t in m.tests})
-            ok, first, dt = run_tests(base, files, a.timeout)
+            ok, first, dt = run_tests(base, files, a.timeout, shlex.split(a.pytest_args))
             print(f"baseline ({len(files)} test files, unmutated): "
                   f"{'pass' if ok else 'FAIL ' + first} ({dt:.0f} s)", flush=True)
             if not ok:
@@ -551,7 +556,7 @@ def main(argv=None) -> int:
             if why:
                 status, first, dt = "stale", why, 0.0
             else:
-                ok, first, dt = run_tests(root, m.tests, a.timeout)
+                ok, first, dt = run_tests(root, m.tests, a.timeout, shlex.split(a.pytest_args))
                 status = "missed" if ok else "caught"
             shutil.rmtree(root, ignore_errors=True)
             results.append({"name": m.name, "file": f"asperity/{m.path}", "status": status,
