@@ -241,11 +241,12 @@ def format_text(d: Derivation) -> str:
         lines.append(f"SELF-LOCKING in {len(d.self_locking)} of {d.reservoir.psi.size} directions, "
                      f"psi in {locked_runs(d.reservoir)} ({'facet' if surface else 'face'} {', '.join(faces)}): "
                      "the tips cannot climb, friction is unbounded there")
-        lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g} % "
-                     "of the load")
-        if surface:
+        if surface:                  # one load share: the facets steeper than the limit
             from .quality import locking_advice
             lines += locking_advice(d)
+        else:
+            lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g}"
+                         " % of the load")
     else:
         lines.append("self-locking: none")
     if d.reservoir.set_valued.any():
