@@ -45,7 +45,8 @@ SLIDE = {"u0": ("u0", "u0 (m/s)"), "angle": ("angle_deg", "direction (deg)"),
          "mu2": ("mu2", "mu2")}
 #: what the command line's advice becomes on a page: (pattern, words, the key of the
 #: field it is about)
-PHRASES = ((re.compile(r"[;,]? ?on the command line --[\w-]+"), "", None),
+PHRASES = ((re.compile(r" ?\(on the command line --[\w-]+\)"), "", None),
+           (re.compile(r"[;,]? ?on the command line --[\w-]+"), "", None),
            (re.compile(r"\bdo not pass unit or pixel_size\b"), "leave the length unit and the "
                                                                "pixel size blank", "unit"),
            (re.compile(r"\bpass unit and pixel_size\b"), "give the length unit and the pixel "
