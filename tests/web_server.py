@@ -11,7 +11,12 @@ import threading
 import time
 from pathlib import Path
 
+import asperity
+
 ROOT = Path(__file__).resolve().parents[1]
+#: where the package under test is (a mutant's copy in benchmarks/mutants.py): the server
+#: is started from there, so that it imports the same package as the tests
+PACKAGE_ROOT = Path(asperity.__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data" / "surfaces"
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -26,7 +31,7 @@ class Server:
                str(data_dir), *args]
         env = {**os.environ, "PYTHONUNBUFFERED": "1"}
         self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                     text=True, env=env, cwd=str(ROOT))
+                                     text=True, env=env, cwd=str(PACKAGE_ROOT))
         self.err: list[str] = []
         threading.Thread(target=self._drain, daemon=True).start()
         line = self._first_line(timeout)
