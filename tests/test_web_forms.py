@@ -377,4 +377,5 @@ def test_every_field_of_every_form_refuses_hostile_values(site):
         Path(os.environ["ASPERITY_WALK_REPORT"]).write_text(json.dumps(report, indent=1))
     assert not defects, "\n".join(defects[:40]) + f"\n({len(defects)} defects)"
     assert not traced, traced[:10]
-    assert len(resubmitted) >= 4            # Surface file, law/open, slide, risk, studies
+    # the forms whose other fields come with a file: Surface (file), risk (texture), studies
+    assert len(resubmitted) >= 3, resubmitted
