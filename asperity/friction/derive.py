@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import __version__
-from ..errors import InputError, check_int
+from ..errors import InputError, check_choice, check_instance, check_int
 from .diagnostics import (
     DERIVATIVE_STEP,
     SURFACE_DERIVATIVE_STEP,
@@ -26,7 +26,7 @@ from .diagnostics import (
     locking_share,
 )
 from .faces import compute_faces_reservoir, faces_source
-from .reservoir import Reservoir, check_contact, directions, locked_runs
+from .reservoir import Reservoir, check_contact, check_progress, directions, locked_runs
 
 METHODS = ("closed-form", "springs")
 
@@ -64,12 +64,13 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
     TriangleMesh is taken as its facets (default friction, mean slope removed).
     """
     texture = faces_source(texture)
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable or None, got {progress!r}")
+    check_progress(progress)
     check_contact(contact)
-    if method not in METHODS:
-        raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    check_choice("method", method, METHODS)
     n = check_int("directions", n_directions, 8, 100_000)
+    if model is not None:
+        from ..texture.spring_model import SpringModel
+        check_instance("model", model, SpringModel)
     surface = getattr(texture, "kind", "") == "surface"
     if surface and method != "closed-form":
         raise InputError("method springs needs a wedge texture; surfaces use the facet closed form")

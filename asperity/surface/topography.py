@@ -12,7 +12,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, TextureFileError, check_array, check_int, check_range, check_text
+from ..errors import (
+    InputError,
+    TextureFileError,
+    _show,
+    check_array,
+    check_int,
+    check_range,
+    check_text,
+)
 
 #: length units accepted for ``unit`` (and in text headers): name -> metres
 UNITS = {
@@ -180,18 +188,19 @@ def unit_factor(unit, what: str = "unit") -> float:
 def pixel_pair(pixel_size, factor: float) -> tuple[float, float]:
     """(dx, dy) in metres from a number or a pair, given in a unit of ``factor`` metres;
     each within :data:`PIXEL_SIZE_RANGE` once in metres."""
-    if isinstance(pixel_size, (str, bytes, dict)) or pixel_size is None:
-        raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
-    try:
-        shape = np.shape(pixel_size)
-    except ValueError:
-        shape = None
+    shape = None
+    if not (isinstance(pixel_size, (str, bytes, dict)) or pixel_size is None):
+        try:
+            shape = np.shape(pixel_size)
+        except ValueError:                # ragged
+            pass
     if shape == ():
         vals = [pixel_size]
     elif shape == (2,):
         vals = list(pixel_size)
     else:
-        raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
+        got = _show(pixel_size) if shape is None else f"shape {shape}"
+        raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {got}")
     labels = ("pixel_size",) if len(vals) == 1 else ("pixel_size (dx)", "pixel_size (dy)")
     lo, hi = PIXEL_SIZE_RANGE
     out = []

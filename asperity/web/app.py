@@ -26,7 +26,8 @@ from ..errors import AsperityError, InputError, one_line
 from .common import form_again, status_of
 from .runner import Runner
 from .security import Guard, TooLarge
-from .store import Store
+from . import labels, units
+from .store import JOB_ID, Store, clock, duration
 
 HERE = Path(__file__).resolve().parent
 STATIC = {"app.js": "text/javascript", "style.css": "text/css"}
@@ -54,10 +55,14 @@ class Web:
     def __init__(self, settings):
         self.settings = settings
         self.store = Store(settings.data_dir)
+        self.store.sweep()
         self.runner = Runner(self.store, settings.workers)
         self.templates = Jinja2Templates(directory=str(HERE / "templates"))
         self.templates.env.globals.update(version=__version__, data_dir=str(settings.data_dir))
         self.templates.env.filters["abs"] = abs
+        self.templates.env.filters["duration"] = duration
+        self.templates.env.globals.update(settings_of=labels.settings)
+        units.register(self.templates.env)
         self.renderers: dict = {}           # job kind -> its form's page (pages register)
 
     def page(self, request: Request, name: str, status: int = 200, **context) -> HTMLResponse:
@@ -74,9 +79,11 @@ class Web:
         return self.page(request, "error.html", status, error=one_line(message), page="")
 
     def render_bare(self, status: int, message: str) -> tuple[str, bytes]:
-        """The error page without a request (for the Guard middleware)."""
+        """The error page without a request (for the Guard middleware): shown to anyone,
+        also a visitor without the token, so it says nothing about the server (``bare``:
+        no data folder in the footer)."""
         tpl = self.templates.env.get_template("error.html")
-        html = tpl.render(error=one_line(message), page="", values={}, kept={})
+        html = tpl.render(error=one_line(message), page="", values={}, kept={}, bare=True)
         return "text/html; charset=utf-8", html.encode("utf-8")
 
 
@@ -199,7 +206,11 @@ def _jobs(app: FastAPI, web: Web) -> None:
 
     @app.get("/jobs", response_class=HTMLResponse)
     async def jobs(request: Request):
-        return web.page(request, "jobs.html", page="jobs", jobs=store.jobs(limit=500))
+        gone = request.query_params.get("deleted", "")
+        notice = f"result {gone} deleted, with its files" if JOB_ID.match(gone) and \
+            store.read(gone) is None else None
+        return web.page(request, "jobs.html", page="jobs", jobs=store.jobs(limit=500),
+                        notice=notice, delete=True)
 
     @app.get("/api/jobs/{jid}")
     async def job_status(jid: str):
@@ -208,7 +219,7 @@ def _jobs(app: FastAPI, web: Web) -> None:
         return {"id": jid, "kind": rec["kind"], "status": rec["status"],
                 "fraction": 1.0 if rec["status"] == "done" else prog.get("fraction", 0.0),
                 "label": prog.get("label", ""), "error": rec.get("error"),
-                "files": rec.get("files", [])}
+                "files": rec.get("files", []), **clock(rec, prog)}
 
     @app.get("/api/jobs/{jid}/result")
     async def job_result(jid: str):
@@ -222,8 +233,9 @@ def _jobs(app: FastAPI, web: Web) -> None:
         rec = job_or_404(jid)
         page = PAGE_OF.get(rec["kind"], "")
         if rec["status"] in ("queued", "running"):
-            return web.page(request, "progress.html", page=page, job=rec,
-                            progress=store.progress(jid))
+            prog = store.progress(jid)
+            return web.page(request, "progress.html", page=page, job=rec, progress=prog,
+                            clock=clock(rec, prog))
         if rec["status"] == "done":
             result = store.result(jid)
             if result is not None:
@@ -239,7 +251,24 @@ def _jobs(app: FastAPI, web: Web) -> None:
         path = store.job_file(jid, name)
         if path is None:
             raise HTTPException(404, f"result {jid} has no file {name[:80]!r}")
-        return FileResponse(path, filename=name.rsplit("/", 1)[-1])
+        shown = labels.download_name((store.result(jid) or {}).get("downloads"), name)
+        return FileResponse(path, filename=shown)
+
+    @app.get("/jobs/{jid}/delete", response_class=HTMLResponse)
+    async def delete_page(request: Request, jid: str):
+        rec = job_or_404(jid)
+        return web.page(request, "delete.html", page="jobs", job=rec,
+                        busy=rec["status"] in ("queued", "running"))
+
+    @app.post("/jobs/{jid}/delete")
+    async def delete(jid: str):
+        rec = job_or_404(jid)
+        if rec["status"] in ("queued", "running"):
+            raise HTTPException(409, f"result {jid} is {rec['status']}: stop it first (the "
+                                     f"button on its page), then delete it")
+        if not store.delete(jid):
+            raise HTTPException(404, f"no result {jid!r} (it may have been deleted)")
+        return RedirectResponse(f"/jobs?deleted={jid}", status_code=303)
 
     @app.post("/jobs/{jid}/cancel")
     async def cancel(jid: str):

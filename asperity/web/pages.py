@@ -7,6 +7,7 @@ from fastapi.responses import HTMLResponse
 
 from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
 from .forms import Form, FormError
+from .labels import label, surface_options
 
 CONTACTS = ("all-faces", "windward")
 DETREND = ("slope", "none", "mean", "plane", "poly2", "poly3")
@@ -22,7 +23,7 @@ def render_surface(web, request: Request, status: int = 200, **ctx) -> HTMLRespo
 def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
     surfaces, jobs = web.store.select((("derive",), ("done",), DONE_LIMIT),
                                       (("fit", "gauge"), None, 20))
-    sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {j['title']}")
+    sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {label(j)}")
                                                 for j in surfaces]
     wanted = request.query_params.get("source", "")
     default = wanted if any(s == wanted for s, _ in sources) else \
@@ -117,7 +118,7 @@ async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     else:
         rec = done_job(web, choice, ("derive",), "surface result", "source")
         src = {"kind": "job", "job": choice}
-        what = f"result {choice}"
+        what = f"{rec['title'].removeprefix('friction of ')} (result {choice})"
         contact = contact or rec["params"].get("contact", "all-faces")
     kind = form.choice("law", ("star", "ellipse"), "star")
     law = "star" if kind == "star" else "truncated-ellipse"
@@ -125,6 +126,9 @@ async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
               "contact": contact or "all-faces",
               "directions": form.whole("directions", 720, low=8, high=100_000,
                                        label="sliding directions fitted")}
+    if choice != "wedge":                # the surface's own settings (max slope, ...)
+        params["source_settings"] = ", ".join(surface_options(
+            rec["params"].get("source", {}).get("options") or {}))
     return params, f"{law} law of {what}"
 
 

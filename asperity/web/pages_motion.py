@@ -6,6 +6,7 @@ from fastapi.responses import HTMLResponse
 
 from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
 from .forms import Form, FormError, at
+from .labels import label
 from .pages import CONTACTS, UNITS
 from .store import UploadError, check_plain_name
 from .words import STRIP, TWO_NODE
@@ -23,12 +24,12 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
         (("fit", "gauge"), ("done",), DONE_LIMIT), (("derive",), ("done",), DONE_LIMIT),
         (("slide", "risk"), None, 20))
     q = request.query_params
-    laws = [(f"job:{j['id']}", f"{j['id']}: {j['title']}") for j in laws_done] + list(BUILTIN)
+    laws = [(f"job:{j['id']}", f"{j['id']}: {label(j)}") for j in laws_done] + list(BUILTIN)
     default_law = f"job:{q['law']}" if q.get("law") and any(
         j["id"] == q["law"] for j in laws_done) else (laws[0][0] if laws else "ellipse")
     frictions = [("wedge", "a wedge texture (below)")]
-    frictions += [(f"job:{j['id']}", f"surface {j['id']}: {j['title']}") for j in surfaces]
-    frictions += [(f"law:{j['id']}", f"law {j['id']}: {j['title']}") for j in laws_done]
+    frictions += [(f"job:{j['id']}", f"surface {j['id']}: {label(j)}") for j in surfaces]
+    frictions += [(f"law:{j['id']}", f"law {j['id']}: {label(j)}") for j in laws_done]
     frictions += [("file", "a texture or surface file (upload below)"),
                   ("mu", "two coefficients mu+ and mu- (below)"),
                   ("assembly", "the assembly file's own [friction] (mu_plus, mu_minus)")]
@@ -51,8 +52,8 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     choice = form.text("law") or "ellipse"
     if choice.startswith("job:"):
         jid = choice[4:]
-        done_job(web, jid, ("fit", "gauge"), "law", "law")
-        spec, what = {"kind": "job", "job": jid}, f"the law of result {jid}"
+        rec = done_job(web, jid, ("fit", "gauge"), "law", "law")
+        spec, what = {"kind": "job", "job": jid}, f"the {rec['title']} (law {jid})"
     elif choice == "upload":
         meta = kept.get("gauge")
         if meta is None:
@@ -70,7 +71,7 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
               "angle_deg": form.number("angle_deg", label="direction (deg)"),
               "mass": form.number("mass", 1.0, label="mass (kg)"),
               "g": form.number("g", 9.81, label="g (m/s^2)"),
-              "dt": form.number("dt", 1e-4, label="time step (s)")}
+              "dt": form.number("dt", 1e-4, label="time step (s)"), "law_text": what}
     return params, f"slide on {what}"
 
 
@@ -156,6 +157,7 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     else:
         raise FormError(f"unknown friction source {choice[:40]!r}; pick one from the list",
                         "friction")
+    tol = form.optional("tolerance", label="tolerance (m)")
     params = {"assembly": data, "friction": spec, "assembly_toml": text, "assembly_name": what,
               "slip_axis_deg": form.optional("slip_axis_deg", label="slip axis (deg)"),
               "textured": form.choice("textured", ("", "support", "part"), "",
@@ -163,20 +165,8 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
               "contact": form.choice("r_contact", ("",) + CONTACTS, "", label="contact")
               or None,
               "cycles": form.optional("cycles", label="cycles"),
-              "tolerance": _tolerance(form)}
+              "tolerance": tol}
     return params, f"risk of {what} on {src_what}"
-
-
-def _tolerance(form: Form) -> float | None:
-    """The tolerance field (mm) in metres, within the library's range."""
-    from ..errors import check_range
-    from ..microslip.limits import TOLERANCE
-    tol = form.optional("tolerance_mm", label="tolerance (mm)")
-    if tol is None:
-        return None
-    with at("tolerance_mm"):
-        return 1e-3 * check_range("tolerance (mm)", tol, 1e3 * TOLERANCE[0], 1e3 * TOLERANCE[1],
-                                  unit="mm")
 
 
 def _stored_text(web, meta: dict, what: str) -> str:

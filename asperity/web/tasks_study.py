@@ -13,6 +13,7 @@ from __future__ import annotations
 import fnmatch
 import shutil
 
+from .labels import stem
 from .results import rename
 from .store import UploadError, check_plain_name
 
@@ -93,8 +94,10 @@ def study_task(params: dict, ctx: dict, bar) -> dict:
     figures = [f if f.startswith("study/") else f"study/{f.rsplit('/', 1)[-1]}"
                for f in summary.get("figures", [])]
     files = ["cases.parquet", "cases.csv", "study/summary.json", "study/summary.md", *figures]
+    name = stem(study_name)
+    downloads = {f: f"{name}_{f.rsplit('/', 1)[-1]}" for f in files}
     return {"summary": summary, "text": rename("\n".join(lines(summary)), ctx["names"]),
-            "figures": figures, "rows": rows, "files": files}
+            "figures": figures, "rows": rows, "files": files, "downloads": downloads}
 
 
 TASKS = {"study": study_task}

@@ -59,7 +59,7 @@ PHRASES = ((re.compile(r" ?\(on the command line --[\w-]+\)"), "", None),
             "the margin (the temperature range over twice the one the friction holds)", None))
 #: keys that are also plain words: taken for a key only as the subject of the message
 PLAIN = ("directions", "contact", "method", "mu", "unit", "g", "mass", "angle", "cycles",
-         "textured", "detrend")
+         "textured", "detrend", "tolerance")
 
 
 def _wedge(prefix: str = "") -> dict:
@@ -98,8 +98,8 @@ def words_of(kind: str, params: dict) -> dict:
     if kind == "slide":
         return dict(SLIDE)
     if kind == "risk":
-        out = {"cycles": ("cycles", "cycles"), "slip_axis_deg": ("slip_axis_deg",
-                                                                  "slip axis (deg)"),
+        out = {"cycles": ("cycles", "cycles"), "tolerance": ("tolerance", "tolerance (m)"),
+               "slip_axis_deg": ("slip_axis_deg", "slip axis (deg)"),
                "textured": ("textured", "texture on the"), "contact": ("r_contact", "contact")}
         fr = params.get("friction") or {}
         if fr.get("kind") == "wedge":

@@ -60,7 +60,7 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from ...errors import InputError
+from ...errors import InputError, check_range
 from ..topography import HeightMap, TriangleMesh, check_height_scale, unit_factor
 from ._files import read_bytes, split_suffix, surface_path
 
@@ -135,10 +135,11 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0,
     """
     p = surface_path(path)
     hs = check_height_scale(height_scale)
+    point_bytes = check_range("point_bytes", point_bytes, 0.0, 1e6, unit="bytes")
     reader, suffix, gz = reader_for(p)
     if unit is not None:
         unit_factor(unit)                 # fail early on an unknown unit
     if pixel_size is not None and not reader.takes_pixel_size:
         raise InputError(f"{p}: pixel_size applies to height maps, not to a mesh file")
     return reader.read(read_bytes(p, gz), suffix=suffix, gz=gz, name=p, unit=unit,
-                       pixel_size=pixel_size, height_scale=hs, point_bytes=float(point_bytes))
+                       pixel_size=pixel_size, height_scale=hs, point_bytes=point_bytes)

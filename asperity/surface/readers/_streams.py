@@ -24,6 +24,7 @@ import numpy as np
 
 from ...errors import TextureFileError
 from ..topography import (
+    check_height_scale,
     check_stated_pixel,
     given_sizes,
     one_line,
@@ -147,7 +148,7 @@ class X3pLines(LineSource):
         nx = lay.nx
         raw = np.frombuffer(self._read("data", a * nx * rec.itemsize, (b - a) * nx *
                                        rec.itemsize), dtype=rec)
-        z = _real(raw["CZ"], lay.axes[2])
+        z = _real(raw["CZ"], lay.axes[2], self.name)
         with np.errstate(invalid="ignore"):
             bad = ~np.isfinite(z)
         if lay.valid_member is not None:
@@ -213,6 +214,7 @@ def open_lines(path, *, unit=None, pixel_size=None, height_scale=1.0):
     whole).  Refuses what the whole-file readers refuse (missing unit, pixel size ...)."""
     from .text import open_text_lines
     p = surface_path(path)
+    height_scale = check_height_scale(height_scale)
     suffix, gz = split_suffix(p)
     if gz or not p.is_file():
         return None
