@@ -62,6 +62,9 @@ WEB_PAGES = ("test_web_pages.py",)
 WEB_BROWSER = ("test_web_pages_browser.py",)
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")
+CONFINE = ("test_study_inputs.py", "test_web_security.py")
+FINGERPRINT = ("test_study_fingerprint.py",)
+WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 
 
 @dataclass(frozen=True)
@@ -206,6 +209,65 @@ MUTANTS = [
     Mutant("heightmap-gy-over-dx", "surface/grid_facets.py",
            "(1, dy, ((z01, z00), (z11, z10)))", "(1, dx, ((z01, z00), (z11, z10)))",
            SURFACE, "height-map facet slope dz/dy divided by dx (non-square pixels)"),
+    # ---- files a study names: confinement (issue 18, section 1)
+    Mutant("confine-skips-string-files", "study/inputs.py",
+           "    if isinstance(pats, str):\n        items = [(\"study.files\", pats)]",
+           "    if isinstance(pats, str):\n        items, confine = [(\"study.files\", pats)], "
+           "None", CONFINE,
+           "study.files given as one string (a glob) is not confined, only a list is"),
+    Mutant("confine-links-not-followed", "paths.py",
+           "real = os.path.realpath(path)", "real = os.path.abspath(path)", CONFINE,
+           "the confinement resolves .. but not symbolic links (a link pointing out passes)"),
+    Mutant("confine-glob-matches-unchecked", "study/inputs.py",
+           "            inside_matches(key, pat, hits, confine.root, confine.outside)\n", "",
+           CONFINE, "the matches of a pattern are not checked (a matched link pointing out)"),
+    Mutant("confine-skips-assembly-names", "study/inputs.py",
+           "        if confine is not None:\n            check_inside(key, v, base,",
+           "        if confine is not None and \"friction\" not in key:\n"
+           "            check_inside(key, v, base,", CONFINE,
+           "the gauge and texture an assembly names are not confined, only the study's keys"),
+    Mutant("confine-sees-tilde-unexpanded", "paths.py",
+           "    full = str(named_path(value, folder))\n    fixed = full",
+           "    full = str(Path(folder) / value)\n    fixed = full", CONFINE,
+           "the check joins the name itself (~ not expanded) while the reader expands it"),
+    # ---- study fingerprint and --restart (issue 18, section 6)
+    Mutant("fingerprint-by-size", "study/inputs.py",
+           "return {p: file_digest(p) for p in paths}",
+           "return {p: str(Path(p).stat().st_size) for p in paths}", FINGERPRINT,
+           "the inputs are fingerprinted by their size, not their content"),
+    Mutant("fingerprint-study-keys-only", "study/inputs.py",
+           "for n in self.named for p in n.paths if p.is_file()",
+           "for n in self.named if n.key.startswith(\"study.\") for p in n.paths "
+           "if p.is_file()", FINGERPRINT,
+           "the files an assembly names (gauge, texture) are left out of the fingerprint"),
+    Mutant("resume-ignores-input-digests", "study/store.py",
+           "same = meta.get(\"fingerprint\") == fp and meta.get(\"input_digests\") == digests",
+           "same = meta.get(\"fingerprint\") == fp", FINGERPRINT,
+           "a store resumes whatever the inputs' digests say"),
+    Mutant("restart-keeps-cases", "study/store.py",
+           "con.execute(\"DROP TABLE IF EXISTS cases\")\n            con.execute(\"DROP TABLE "
+           "IF EXISTS meta\")\n        con.execute(\"CREATE TABLE meta (key TEXT PRIMARY KEY, "
+           "value TEXT)\")\n        con.execute(f\"CREATE TABLE cases (",
+           "con.execute(\"DROP TABLE IF EXISTS meta\")\n        con.execute(\"CREATE TABLE "
+           "meta (key TEXT PRIMARY KEY, value TEXT)\")\n        con.execute(f\"CREATE TABLE "
+           "IF NOT EXISTS cases (", FINGERPRINT,
+           "--restart replaces the study's meta but keeps the stored cases (a mixed store)"),
+    Mutant("restart-not-one-transaction", "study/store.py",
+           "con.execute(\"BEGIN IMMEDIATE\")", "con.execute(\"SELECT 1\")", FINGERPRINT,
+           "the restart's drops and creates commit one by one (an interrupt loses the store)"),
+    # ---- web security (issue 18, section 10)
+    Mutant("token-cookie-name-only", "web/security.py",
+           "if name == cookie and secrets.compare_digest(value, self.token):",
+           "if name == cookie:", WEB_SECURITY, "any value of the token's cookie is let in"),
+    Mutant("host-begins-with-localhost", "web/settings.py",
+           "    if host == \"localhost\":", "    if host.startswith(\"localhost\"):",
+           WEB_SECURITY, "a Host header that begins with localhost counts as loopback"),
+    Mutant("upload-limit-per-chunk", "web/security.py",
+           "seen += len(msg.get(\"body\", b\"\"))", "seen = len(msg.get(\"body\", b\"\"))",
+           WEB_SECURITY, "the upload limit is compared with each chunk, not the whole body"),
+    Mutant("download-undeclared-files", "web/store.py",
+           "if rec is None or name not in rec.get(\"files\", []):", "if rec is None:",
+           WEB_SECURITY, "any file of an existing job's folder is served"),
     # ---- issue 18: the Python API's bad arguments, the Abaqus block, the spike filter
     Mutant("api-psi-2d-unchecked", "friction/reservoir.py",
            "    if a.ndim != 1:\n        raise InputError(f\"{name} must be a number or a 1-d",
@@ -319,6 +381,56 @@ MUTANTS = [
            "{% if result.figures %}{{ plot('risk-plot', result.figures.history) }}",
            "{% if false %}", WEB_PAGES + WEB_BROWSER,
            "the risk figure is a static image again"),
+    # ---- study statistics (issue 18)
+    Mutant("sobol-min-samples-removed", "study/sampling.py",
+           "    if samples < MIN_SOBOL_BASE:", "    if samples < 1:",
+           ("test_study_distributions.py",),
+           "a Sobol study of base sample 1 (zero-width intervals) is accepted"),
+    Mutant("sd-below-resolution-accepted", "study/sampling.py",
+           "    if sd < least:", "    if sd < 0:", ("test_study_distributions.py",),
+           "an sd that rounds every sample to the mean passes its check"),
+    Mutant("truncnorm-tail-unchecked", "study/sampling.py",
+           "    if lo > mean + MAX_TAIL_SD * sd:", "    if lo > mean + 1e6 * sd:",
+           ("test_study_distributions.py",),
+           "a truncated normal whose interval lies 50 sd from its mean is accepted"),
+    Mutant("constant-output-ranked", "study/influence.py",
+           "    if np.ptp(vals) <= CONSTANT_RTOL * np.max(np.abs(vals)):",
+           "    if np.ptp(vals) < 0:",
+           ("test_study_statistics.py", "test_study_web_summary.py"),
+           "the zero-variance branch skipped: a constant output names a parameter"),
+    Mutant("sobol-missing-not-counted", "study/influence.py",
+           "    missing = n_cases - ok.size", "    missing = 0", ("test_study_statistics.py",),
+           "an interrupted Saltelli design is not reported as waiting for its cases"),
+    Mutant("bootstrap-collapse-shown", "study/influence.py",
+           "            if not (math.isfinite(c) and c > COLLAPSED):",
+           "            if not math.isfinite(c):", ("test_study_statistics.py",),
+           "a collapsed bootstrap is printed as an interval of zero width"),
+    Mutant("bootstrap-seed-zero", "study/influence.py",
+           "conf_level=0.95, seed=int(seed) + 1)", "conf_level=0.95, seed=int(seed))",
+           ("test_study_statistics.py",),
+           "SALib's bootstrap unseeded for seed = 0: intervals change on every summary"),
+    Mutant("rank-interval-ignored", "study/influence.py",
+           "        if ci is None or ci[0] > 0.0 or ci[1] < 0.0:", "        if True:",
+           ("test_study_statistics.py",),
+           "a parameter whose rank correlation's interval holds 0 is named as mattering"),
+    Mutant("rank-min-cases-2", "study/influence.py",
+           "MIN_RANK_CASES = 5", "MIN_RANK_CASES = 2", ("test_study_statistics.py",),
+           "rank correlations of 2 cases (+-1 always) name a parameter"),
+    Mutant("grid-share-with-interval", "study/summary.py",
+           '        if st["kind"] == "grid":', "        if False:",
+           ("test_study_statistics.py",),
+           "a grid's share of ratchet gets a Wilson interval as if it were a sample"),
+    Mutant("export-drops-file-column", "study/store.py",
+           "    cols = store.columns()\n    with atomic_path(path) as tmp:",
+           '    cols = [c for c in store.columns() if c != "file"]\n'
+           "    with atomic_path(path) as tmp:",
+           ("test_study_statistics.py", "test_study_web_summary.py"),
+           "the export of a scan library without its file column"),
+    Mutant("export-file-as-resolved", "study/store.py",
+           '    if "file" not in store.inputs:\n        return rows',
+           "    if True:\n        return rows",
+           ("test_study_statistics.py", "test_study_web_summary.py"),
+           "the export names files by the resolved (server) path, not as the study does"),
     # ---- web forms (issue 18): hostile fields, kept forms, quiet logs, self-locking pages
     Mutant("web-whole-int-float", "web/forms.py",
            "return _read(name, check_int, label, _read(name, number_from_text, label, t), "

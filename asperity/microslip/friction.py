@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..friction.sources import load_texture_or_surface
+from ..paths import named_path
 from .assembly import Assembly, AssemblyFileError
 
 
@@ -101,7 +102,9 @@ def friction_from_gauge(law, slip_axis_deg=None, textured: str = "support",
 
 
 def resolve_friction(asm: Assembly) -> Friction:
-    """The friction of an assembly file's [friction] table (files relative to it)."""
+    """The friction of an assembly file's [friction] table (file names relative to it,
+    ``~`` expanded: :func:`asperity.paths.named_path`, as a study that names the assembly
+    finds them)."""
     fr = asm.friction_table
     if "mu_plus" in fr:
         return Friction(float(fr["mu_plus"]), float(fr["mu_minus"]), "explicit")
@@ -109,10 +112,10 @@ def resolve_friction(asm: Assembly) -> Friction:
     textured = fr.get("textured", "support")
     if "gauge" in fr:
         from ..laws.gauge_file import read_gauge
-        path = asm.folder / fr["gauge"]
+        path = named_path(fr["gauge"], asm.folder)
         return friction_from_gauge(read_gauge(path), axis, textured, str(path))
     if "texture" in fr:
-        path = asm.folder / fr["texture"]
+        path = named_path(fr["texture"], asm.folder)
         return friction_from_texture(load_texture_or_surface(path), fr.get("contact", "all-faces"),
                                      axis, textured, str(path))
     raise AssemblyFileError("no friction: give a texture on the command line, or mu_plus and "

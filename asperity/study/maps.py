@@ -58,7 +58,8 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
             raise InputError("a risk map needs a wedge texture: a texture file, the wedge flags, or "
                              "a texture in the assembly's [friction] table")
         from ..friction.sources import load_texture_or_surface
-        texture = load_texture_or_surface(asm.folder / fr["texture"])
+        from ..paths import named_path
+        texture = load_texture_or_surface(named_path(fr["texture"], asm.folder))
         contact = contact or fr.get("contact", "all-faces")
     contact = contact or "all-faces"
     if getattr(texture, "kind", "") not in ("wedge", "gaussian-wedge"):

@@ -106,9 +106,13 @@ def _friction_table(asm: dict, spec: dict, ctx: dict, extra: dict) -> dict:
         shutil.copyfile(_gauge_of_job(ctx, spec.get("job")), ctx["job_dir"] / "gauge.json")
         return {"gauge": "gauge.json", **extra}
     fr = asm.get("friction", {})
-    if not isinstance(fr, dict) or any(k in fr for k in ("texture", "gauge")):
-        raise InputError("the assembly file names its texture or gauge file; choose that "
-                         "texture (or law) as the friction source on this form")
+    if not isinstance(fr, dict):
+        raise InputError("friction of the assembly file must be a table [friction]")
+    for k in ("texture", "gauge"):       # an uploaded assembly comes alone: never read them
+        if k in fr:
+            raise InputError(f"friction.{k} = {str(fr[k])[:80]!r}: on this page an assembly "
+                             f"file may not name other files; upload that file as the "
+                             f"friction source (or fit that law) and choose it on this form")
     return fr
 
 
