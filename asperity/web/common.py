@@ -54,23 +54,25 @@ async def save_upload(web, upload) -> dict:
     return web.store.finish_upload(uid, upload.filename, size)
 
 
-async def keep_uploads(web, form: Form, kept: dict) -> None:
+async def keep_uploads(web, form: Form, kept: dict, saved: list) -> None:
     """Every file of the form stored now, before any field is read (a refusal then keeps
     it: the page offers it again and the next submission reuses it), else the one stored
     before (sent back in its hidden field); ``kept``: key -> metadata, a list for a field
-    of several files (a file chosen again replaces the kept one of the same name)."""
+    of several files (a file chosen again replaces the kept one of the same name);
+    ``saved``: the metadata of the files stored by this request."""
     first = None
     for name, (key, hidden) in FILE_FIELDS.items():
         try:
             with at(name):
-                await _keep(web, form, kept, name, key, hidden)
+                await _keep(web, form, kept, saved, name, key, hidden)
         except (AsperityError, TooLarge) as exc:     # the other files are kept all the same
             first = first or exc
     if first is not None:
         raise first
 
 
-async def _keep(web, form: Form, kept: dict, name: str, key: str, hidden: str) -> None:
+async def _keep(web, form: Form, kept: dict, saved: list, name: str, key: str,
+                hidden: str) -> None:
     if name in MULTIPLE:
         old = {}
         for uid in form.form.getlist(hidden):
@@ -79,6 +81,7 @@ async def _keep(web, form: Form, kept: dict, name: str, key: str, hidden: str) -
         try:
             for up in form.files(name):
                 meta = await save_upload(web, up)
+                saved.append(meta)
                 old[meta["name"]] = meta
         finally:
             if old:
@@ -87,8 +90,16 @@ async def _keep(web, form: Form, kept: dict, name: str, key: str, hidden: str) -
     up = form.file(name)
     if up is not None:
         kept[key] = await save_upload(web, up)
+        saved.append(kept[key])
     elif form.text(hidden):
         kept[key] = web.store.upload_meta(form.text(hidden))
+
+
+def drop_upload(web, uid: str) -> None:
+    """Remove a stored upload (and its metadata) from the data folder."""
+    path = web.store.upload_path(uid)
+    for p in (path, path.with_name(path.name + ".json")):
+        p.unlink(missing_ok=True)
 
 
 async def submit(web, request: Request, kind: str, params: dict, title: str):
@@ -108,11 +119,15 @@ async def post_form(web, request: Request, kind: str, build, render):
     was typed and the files kept, and its one-line error next to its field (4xx), else
     the job is submitted with the form's values."""
     form = await read_form(request)
-    values, kept = form.values(), {}
+    values, kept, saved = form.values(), {}, []
     try:
-        await keep_uploads(web, form, kept)
+        await keep_uploads(web, form, kept, saved)
         params, title = await build(web, form, kept)
     except (AsperityError, TooLarge) as exc:
+        if getattr(exc, "discard", False):    # refused for what its files hold: none kept
+            kept = {}
+            for meta in saved:
+                drop_upload(web, meta["id"])
         return render(web, request, status=status_of(exc), values=values, kept=kept,
                       error=str(exc), error_field=field_of(exc))
     params.update(form=values, kept=kept)

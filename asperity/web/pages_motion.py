@@ -202,7 +202,7 @@ def register(app, web) -> None:
 
 
 async def _study_params(web, form: Form, kept: dict) -> tuple[dict, str]:
-    from .tasks_study import check_references
+    from .tasks_study import MISSING, OUTSIDE, check_references
     study = kept.get("study")
     if study is None:
         raise FormError("choose the study file (.toml) to upload", "study")
@@ -220,8 +220,9 @@ async def _study_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     workers = form.whole("workers", 0, low=0, high=64, label="local worker processes")
     try:
         check_references(_stored_text(web, study, "a study file"), texts)
-    except UploadError as exc:      # a file it names is missing: the files field's line
-        exc.field = "companions" if "uploaded with the study" in str(exc) else "study"
+    except UploadError as exc:
+        exc.field = "companions" if MISSING in str(exc) else "study"   # add the file there
+        exc.discard = OUTSIDE in str(exc)     # names a file of its own choosing: none kept
         raise
     return ({"study": {"upload": study["id"], "name": name},
              "companions": [{"upload": m["id"], "name": n} for m, n in zip(companions, names)],
