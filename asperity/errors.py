@@ -106,18 +106,20 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
 def check_int(name: str, value, low: int | None = None, high: int | None = None) -> int:
     """Return ``value`` as an int within [low, high], else raise InputError.  A float with
     an integral value (``1e6``) is accepted; text and booleans are not."""
+    rng = "" if low is None and high is None else \
+        f" in [{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise InputError(f"{name} must be a whole number, got {_show(value)} ({_kind(value)})")
+        raise InputError(f"{name} must be a whole number{rng}, got {_show(value)} "
+                         f"({_kind(value)})")
     if isinstance(value, numbers.Integral):
         n = int(value)
     else:
         x = float(value)
         if not (math.isfinite(x) and x.is_integer()):
-            raise InputError(f"{name} must be a whole number, got {_fmt(x)}")
+            raise InputError(f"{name} must be a whole number{rng}, got {_fmt(x)}")
         n = int(x)
     if (low is not None and n < low) or (high is not None and n > high):
-        rng = f"[{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
-        raise InputError(f"{name} must be a whole number in {rng}, got {_fmt_int(n)}")
+        raise InputError(f"{name} must be a whole number{rng}, got {_fmt_int(n)}")
     return n
 
 

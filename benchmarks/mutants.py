@@ -354,7 +354,8 @@ MUTANTS = [
            "left = elapsed * (1.0 - f) / f", "left = elapsed / f", WEB_PAGES,
            "time left estimated as the whole run's time"),
     Mutant("web-duplicate-ids", "web/templates/surface.html",
-           "values, fid='f-file-contact') }}", "values) }}", WEB_PAGES,
+           "values, fid='f-file-contact', form='file') }}", "values, form='file') }}",
+           WEB_PAGES,
            "the Surface page's two forms give one id to two fields again"),
     Mutant("web-settings-miss-max-slope", "web/labels.py",
            "(\"max_slope\", lambda v: f\"max slope {_num(v)} deg\"),", "", WEB_PAGES,
@@ -431,6 +432,44 @@ MUTANTS = [
            "    if True:\n        return rows",
            ("test_study_statistics.py", "test_study_web_summary.py"),
            "the export names files by the resolved (server) path, not as the study does"),
+    # ---- web forms (issue 18): hostile fields, kept forms, quiet logs, self-locking pages
+    Mutant("web-whole-int-float", "web/forms.py",
+           "return _read(name, check_int, label, _read(name, number_from_text, label, t), "
+           "low, high)", "return int(float(t))", ("test_web_forms.py",),
+           "a whole-number field parsed with int(float()) (inf: OverflowError, a 500)"),
+    Mutant("web-refusal-drops-the-form", "web/common.py",
+           "values=values, kept=kept,", "values={}, kept=kept,", ("test_web_forms.py",),
+           "a refused form comes back empty (what was typed lost)"),
+    Mutant("web-refusal-drops-uploads", "web/common.py",
+           "values=values, kept=kept,", "values=values, kept={},", ("test_web_forms.py",),
+           "a refused form forgets the files it stored (the user must choose them again)"),
+    Mutant("web-bug-reraised", "web/app.py",
+           "except Exception:                  # answered (and logged) by the bug handler\n"
+           "            pass",
+           "except Exception:                  # answered (and logged) by the bug handler\n"
+           "            raise", ("test_web_forms.py",),
+           "an exception answered with a 500 goes on to the server (uvicorn logs its traceback)"),
+    Mutant("web-disconnect-is-a-bug", "web/app.py",
+           "@app.exception_handler(ClientDisconnect)", "@app.exception_handler(ConnectionError)",
+           ("test_web_forms.py",),
+           "a client gone mid-upload is handled as a bug (an internal error in the log)"),
+    Mutant("web-library-refusal-not-placed", "web/words.py",
+           "            field = field or f\n", "            field = field\n",
+           ("test_web_http.py", "test_web_forms.py"),
+           "a job refused by the library comes back without the field it is about"),
+    Mutant("web-share-the-worst-direction", "web/templates/result_derive.html",
+           "{% set share = q.load_share_above_locking_limit if surface else "
+           "d.self_locking_load_share %}", "{% set share = d.self_locking_load_share %}",
+           ("test_web_new_user.py",),
+           "the page's load share is the worst direction's while the rest say the steep facets'"),
+    Mutant("web-locked-all-not-seen", "web/templates/result_derive.html",
+           "{% set locked_all = d.self_locking and d.self_locking | length == d.directions | "
+           "length %}", "{% set locked_all = false %}", ("test_web_new_user.py",),
+           "a result locked in every direction shows anisotropy 0, admissible yes, a fit button"),
+    Mutant("x3p-unit-not-on-the-spacing", "surface/readers/x3p.py",
+           "        dx, dy = dx * factor, dy * factor\n", "        dx, dy = dx, dy\n",
+           ("test_surface_readers.py", "test_web_new_user.py"),
+           "an x3p read in another unit converts its heights but not its spacing"),
 ]
 
 

@@ -88,10 +88,12 @@ def test_non_numeric_form_field_is_400(client):
     assert r.status_code == 400 and "mu2 must be a number" in error_line(r)
 
 
-def test_value_out_of_range_is_the_librarys_one_line(client):
+def test_value_out_of_range_is_the_librarys_one_line_in_the_pages_words(client):
     r = client.post("/surface", data={**WEDGE, "alpha_deg": "95"})
     assert r.status_code == 422
-    assert error_line(r) == "alpha_deg must be in (0, 90) deg, got 95"
+    assert error_line(r) == "alpha (deg) must be in (0, 90) deg, got 95"
+    assert re.search(r'name="alpha_deg"[^>]*value="95"[^>]*>\s*<small>[^<]*</small>'
+                     r'<small class="field-error">alpha \(deg\) must', r.text)
 
 
 def test_unknown_route_and_method(client):

@@ -208,11 +208,13 @@ def format_text(d: Derivation) -> str:
         return "inf (self-locking)" if not math.isfinite(x) else f"{x:.6f}"
     tex = d.texture
     surface = getattr(tex, "kind", "") == "surface"
+    locked_all = len(d.self_locking) == d.reservoir.psi.size
     if surface:
         th = d.principal_direction_deg
         head = [tex.describe(),
                 f"contact: {d.contact}   directions: {d.reservoir.psi.size}",
-                f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
+                "principal direction t_a, anisotropy: none (no direction slides)" if locked_all
+                else f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
                 f"from +x; anisotropy (max T - min T)/mean T = {d.anisotropy:.4f}"]
         dirs = [f"towards {(th + k) % 360:.1f} deg" for k in (0, 180, 90, 270)]
     else:
@@ -227,9 +229,14 @@ def format_text(d: Derivation) -> str:
              f"  mu_b- (slide {dirs[3]}) = {f(d.axes['mu_b_minus'])}",
              ""]
     a = d.admissibility
-    lines.append(f"admissible (p.s >= 0 for all directions): {'yes' if a.admissible else 'NO'}"
-                 + (f"  (min p.s = {a.min_dissipation:.4g} at psi = {a.psi_min_deg:g} deg)"
-                    if math.isfinite(a.min_dissipation) else ""))
+    if locked_all:
+        lines.append("admissible (p.s >= 0 for all directions): nothing to check (no "
+                     "direction slides)")
+    else:
+        lines.append(f"admissible (p.s >= 0 for all directions): "
+                     f"{'yes' if a.admissible else 'NO'}"
+                     + (f"  (min p.s = {a.min_dissipation:.4g} at psi = {a.psi_min_deg:g} deg)"
+                        if math.isfinite(a.min_dissipation) else ""))
     s = d.associativity
     if not s.defined.any():
         lines.append("associated (L = dT/dpsi): not defined (no direction with a finite, "
@@ -242,11 +249,12 @@ def format_text(d: Derivation) -> str:
         lines.append(f"SELF-LOCKING in {len(d.self_locking)} of {d.reservoir.psi.size} directions, "
                      f"psi in {locked_runs(d.reservoir)} ({'facet' if surface else 'face'} {', '.join(faces)}): "
                      "the tips cannot climb, friction is unbounded there")
-        lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g} % "
-                     "of the load")
-        if surface:
+        if surface:                  # one load share: the facets steeper than the limit
             from .quality import locking_advice
             lines += locking_advice(d)
+        else:
+            lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g}"
+                         " % of the load")
     else:
         lines.append("self-locking: none")
     if d.reservoir.set_valued.any():

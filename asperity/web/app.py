@@ -4,7 +4,8 @@
 :class:`~asperity.web.security.Guard`).  Every error reaches the user as one line on the
 page with a 4xx status: a form field that is not a number (400), an upload refused (400,
 413), input the library refuses (422, its own one-line message), an unknown page (404);
-a bug is one line too (500, the traceback only in the server's log).
+a bug is one line too (500, its traceback in the server's log only with ASPERITY_DEBUG=1);
+a client that goes away mid-request is no error at all.
 """
 from __future__ import annotations
 
@@ -15,9 +16,10 @@ from pathlib import Path
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse, Response
 from fastapi.templating import Jinja2Templates
 from starlette.exceptions import HTTPException
+from starlette.requests import ClientDisconnect
 
 from .. import __version__
 from ..errors import AsperityError, InputError, one_line
@@ -106,7 +108,27 @@ def create_app(settings):
     _jobs(app, web)
     pages.register(app, web)
     pages_motion.register(app, web)
-    return Guard(app, settings, web.render_bare)
+    return Guard(Quiet(app), settings, web.render_bare)
+
+
+class Quiet:
+    """The application with no exception escaping to the server.  Starlette answers a bug
+    with the ``bug`` handler's page (500, one line, logged in one line) and then raises it
+    again for the server to log: uvicorn would print its traceback for every such request
+    ("Exception in ASGI application").  The traceback is printed only with
+    ASPERITY_DEBUG=1 (by the ``bug`` handler)."""
+
+    def __init__(self, app):
+        self.app = app
+
+    def __getattr__(self, name):           # the application's state, routes, ...
+        return getattr(self.app, name)
+
+    async def __call__(self, scope, receive, send):
+        try:
+            await self.app(scope, receive, send)
+        except Exception:                  # answered (and logged) by the bug handler
+            pass
 
 
 def _errors(app: FastAPI, web: Web) -> None:
@@ -132,6 +154,12 @@ def _errors(app: FastAPI, web: Web) -> None:
 
     async def refused(request: Request, exc: Exception):
         return web.error_page(request, status_of(exc), str(exc))
+
+    @app.exception_handler(ClientDisconnect)
+    async def gone(request: Request, exc: ClientDisconnect):
+        """The client went away during its request (a closed tab, a lost connection
+        mid-upload): nobody reads the answer, nothing to log."""
+        return Response(status_code=400)
 
     app.add_exception_handler(TooLarge, refused)
     app.add_exception_handler(AsperityError, refused)
