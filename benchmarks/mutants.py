@@ -202,6 +202,11 @@ MUTANTS = [
            "        if st[i] != 0 and guess[i] != st[i]:\n            return False",
            "        if st[i] != 0 and guess[i] != st[i] and n < 0:\n            return False",
            CHAIN, "the increment taken although a slider sliding at the start stopped in it"),
+    Mutant("march-nonuniform-in-increments", "microslip/quasi_static.py",
+           "events_only = tol.events_only or not is_uniform(chain)",
+           "events_only = tol.events_only", CHAIN,
+           "a chain outside the uniform class taken in increments (its sliders stop inside "
+           "segments)"),
     # ---- surface
     Mutant("detrend-dropped", "surface/detrend.py",
            "heights=surface.heights - fit.form(", "heights=surface.heights + 0 * fit.form(",

@@ -250,6 +250,30 @@ def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
                    "normal_loads": Nn})
 
 
+def is_uniform(chain: Chain) -> bool:
+    """The chain is uniform: every element has the same kb le (so the same thermal force),
+    and each node's contact stiffness and thresholds are in one proportion to its tributary
+    length (the half-lengths of its elements), as in the two-node model and the strip.
+    Along a load segment whose external force does not change, no slider of such a chain
+    stops sliding inside the segment, so the march takes the segment in one increment
+    (:mod:`._march_kernels`); other chains are marched event by event."""
+    memo = chain.__dict__.get("_uniform")
+    if memo is not None:
+        return memo
+    kl = chain.kb * chain.le
+    trib = np.zeros(chain.n)
+    trib[:-1] += 0.5 * chain.le
+    trib[1:] += 0.5 * chain.le
+
+    def even(a):
+        a = a[np.isfinite(a)] if np.isinf(a).any() else a
+        return a.size == 0 or bool(np.ptp(a) <= 1e-9 * np.abs(a).max())
+    ok = bool(even(kl) and all(even(a / trib) for a in (chain.kt, chain.cp, chain.cm))
+              and all(np.isinf(a).all() or np.isfinite(a).all() for a in (chain.cp, chain.cm)))
+    chain.__dict__["_uniform"] = ok
+    return ok
+
+
 def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     """dT_c of the chain: the size of the temperature change (heating if ``sign`` = +1,
     cooling if -1), from the stress-free state without external force, at which the first
