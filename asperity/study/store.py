@@ -44,6 +44,7 @@ class Store:
         self.inputs = meta["inputs"]
         self.outputs = [tuple(c) for c in meta["outputs"]]
         self._lock = None
+        self.created: list[Path] = []      # what open_store created (discard() removes it)
 
     @property
     def path(self) -> Path:
@@ -102,6 +103,29 @@ class Store:
             self._lock.close()
             self._lock = None
 
+    def discard(self) -> bool:
+        """Close, and remove what :func:`open_store` created if no case was stored (a run
+        that failed before its first case leaves nothing behind); True if removed."""
+        try:
+            empty = self.con.execute("SELECT COUNT(*) FROM cases").fetchone()[0] == 0
+        except sqlite3.Error:
+            empty = False
+        if not (self.created and empty):
+            self.close()
+            return False
+        self.con.close()
+        import contextlib
+        for name in (DB_NAME, DB_NAME + "-wal", DB_NAME + "-shm", ".lock"):
+            with contextlib.suppress(OSError):
+                (self.folder / name).unlink()
+        if self._lock is not None:
+            self._lock.close()
+            self._lock = None
+        for folder in reversed(self.created[1:]):          # the folders mkdir made
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        return True
+
 
 def _connect(path: Path) -> sqlite3.Connection:
     con = sqlite3.connect(str(path), timeout=30.0, isolation_level="DEFERRED")
@@ -112,7 +136,7 @@ def _connect(path: Path) -> sqlite3.Connection:
 
 def _lock(folder: Path):
     """An exclusive lock on the folder: two runs on one store would race."""
-    from ..io import lock_file
+    from ..locks import lock_file
     return lock_file(folder / ".lock", StoreError(
         f"{folder}: another asperity study is running on this folder; wait for it or stop "
         f"it"))
@@ -124,6 +148,7 @@ def open_store(folder, study) -> Store:
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise StoreError(f"{folder}: exists and is not a folder (give -o a folder name)")
+    made = [p for p in (folder, *folder.parents) if not p.exists()][::-1]
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -138,11 +163,14 @@ def open_store(folder, study) -> Store:
         raise OutputError(f"{folder}: permission denied (the study folder must be writable)")
     lock = _lock(folder)
     try:
+        new = not db.exists()                   # (again: now under the lock)
         store = _open(db, folder, study)
     except BaseException:
         lock.close()
         raise
     store._lock = lock
+    if new:
+        store.created = [db, *made]
     return store
 
 

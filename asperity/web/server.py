@@ -10,7 +10,7 @@ from ..errors import InputError
 def lock_data_dir(folder):
     """An exclusive lock on the data folder: two servers on one folder would both run its
     queued jobs."""
-    from ..io import lock_file
+    from ..locks import lock_file
     return lock_file(folder / ".serve.lock", InputError(
         f"--data-dir {str(folder)!r} is in use by another asperity serve; stop it or give "
         f"another --data-dir"))

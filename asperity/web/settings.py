@@ -63,13 +63,27 @@ def make_settings(host: str = DEFAULT_HOST, port=DEFAULT_PORT, data_dir=None,
                          f"then needs the access token printed at start)")
     port = check_int("--port", port, 0, 65535)
     mb = check_range("--max-upload", max_upload_mb, 0.001, MAX_UPLOAD_MB, unit="MB")
-    n = os.cpu_count() or 1
-    workers = n if workers is None else check_int("--workers", workers, 1, 64)
+    if workers is not None:
+        workers = check_int("--workers", workers, 1, 64)
+    workers = serve_workers(workers)
+    if data_dir is not None and not str(data_dir).strip():
+        raise InputError("--data-dir is empty: give a folder name (or leave --data-dir out "
+                         f"for the default, {default_data_dir()})")
     folder = Path(os.path.expanduser(str(data_dir))) if data_dir else default_data_dir()
     if allow_remote and token is None:
         token = secrets.token_urlsafe(24)
     return Settings(host=host, port=port, data_dir=folder, token=token if allow_remote else None,
                     max_upload=int(mb * 2**20), workers=workers)
+
+
+def serve_workers(asked: int | None) -> int:
+    """Worker processes of the server: ``asked`` (None: one per core) within what the
+    cores and the free memory allow (one line says so when fewer start)."""
+    from ..resources import WORKER_BYTES, local_workers, note
+    n, why = local_workers(asked, WORKER_BYTES, dask=False)
+    if why:
+        note(why)
+    return n
 
 
 def prepare_data_dir(folder: Path) -> Path:
