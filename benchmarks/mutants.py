@@ -55,6 +55,7 @@ LAWS = ("test_law_sets.py", "test_law_fitting.py", "test_gauge_file.py", "test_f
 DYNAMICS = ("test_dynamics_moreau.py", "test_slide_cli.py")
 MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_risk.py",
              "test_risk_cli.py")
+PROCS = "test_processes.py"
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")
 
@@ -178,6 +179,56 @@ MUTANTS = [
     Mutant("heightmap-gy-over-dx", "surface/facets.py",
            "(1, dy, ((z01, z00), (z11, z10)))", "(1, dx, ((z01, z00), (z11, z10)))",
            SURFACE, "height-map facet slope dz/dy divided by dx (non-square pixels)"),
+    # ---- processes, locks, workers, schedulers (issue 18, sections 3 and 4)
+    Mutant("lifeline-no-death-signal", "lifeline.py",
+           "return libc.prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0", "return False",
+           (f"{PROCS}::test_dask_workers_die_with_the_client_even_inside_a_kernel",),
+           "no parent-death signal: only the watch thread, which a kernel holding the "
+           "interpreter lock keeps from running"),
+    Mutant("dask-workers-not-watching", "study/clusters.py",
+           "preload=[lifeline.PRELOAD],", "preload=[],",
+           (f"{PROCS}::test_dask_workers_die_with_the_client_even_inside_a_kernel",),
+           "local Dask workers without the lifeline preload (only Dask's own watch)"),
+    Mutant("serve-worker-not-watching", "web/worker.py",
+           "    die_with_parent(parent)\n", "",
+           (f"{PROCS}::test_serve_killed_mid_study_takes_its_workers_and_the_restart_"
+            "finishes_it",),
+           "a worker of asperity serve does not watch the server: it goes on with its study"),
+    Mutant("stale-lock-kept", "locks.py",
+           "                    _replace_lock(path)            # apart",
+           "                    pass                           # apart",
+           (f"{PROCS}::test_a_lock_left_to_a_child_of_a_finished_holder_is_taken_over",),
+           "a lock left to a forked child of a finished holder is never taken over"),
+    Mutant("lock-shared", "locks.py",
+           "fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)",
+           "fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)",
+           (f"{PROCS}::test_two_studies_on_one_folder_exclude_each_other_and_a_killed_one_"
+            "frees_it", f"{PROCS}::test_two_servers_on_one_data_folder_exclude_each_other"),
+           "the folder lock is a shared lock: two runs on one folder both get it"),
+    Mutant("worker-cap-ignores-memory", "resources.py",
+           "n = max(1, min(want, cores, fit))", "n = max(1, min(want, cores))",
+           (f"{PROCS}::test_local_workers_fit_the_cores_and_the_free_memory",
+            f"{PROCS}::test_study_with_1000_workers_starts_what_the_machine_allows"),
+           "local workers limited by the cores only, not by the free memory"),
+    Mutant("worker-cap-ignores-cores", "resources.py",
+           "n = max(1, min(want, cores, fit))", "n = max(1, min(want, fit))",
+           (f"{PROCS}::test_local_workers_fit_the_cores_and_the_free_memory",
+            f"{PROCS}::test_study_with_1000_workers_starts_what_the_machine_allows"),
+           "local workers limited by the free memory only, not by the cores"),
+    Mutant("scheduler-port-unchecked", "study/clusters.py",
+           "if not 1 <= port <= 65535:", "if port < 0:",
+           (f"{PROCS}::test_bad_schedulers_are_refused_in_one_line_and_leave_nothing",),
+           "a scheduler port out of range reaches the socket library"),
+    Mutant("scheduler-greeting-unread", "study/clusters.py",
+           "_probe(host, port, where, greeting=scheme == \"tcp\")",
+           "_probe(host, port, where, greeting=False)",
+           (f"{PROCS}::test_bad_schedulers_are_refused_in_one_line_and_leave_nothing",),
+           "a service that is not a Dask scheduler (an HTTP server) is handed to Dask"),
+    Mutant("failed-run-leaves-its-store", "study/run.py",
+           "        store.discard()", "        store.close()",
+           (f"{PROCS}::test_a_run_that_fails_before_its_first_case_leaves_the_folder_as_it_"
+            "was",),
+           "a run that fails before its first case leaves an empty store behind"),
 ]
 
 
