@@ -45,15 +45,17 @@ def lock_file(path: str | Path, error: BaseException, wait: float | None = None)
             holder = fh.read(200).split()
             seen = (os.fstat(fh.fileno()).st_ino, tuple(holder))
             fh.close()
-            if len(holder) == 2 and holder[1] == host and holder[0].isdigit() \
-                    and not _alive(int(holder[0])):
+            ended = len(holder) == 2 and holder[1] == host and holder[0].isdigit() \
+                and not _alive(int(holder[0]))
+            if ended:
                 if seen == suspect:                # the same ended holder twice, 50 ms
                     _replace_lock(path)            # apart: not a new holder about to
                     suspect = None                 # write its id
                     continue
                 suspect = seen
-            elif time.monotonic() >= deadline:
-                who = f" (process {holder[0]})" if holder and holder[0].isdigit() else ""
+            if time.monotonic() >= deadline:
+                who = "" if not holder or not holder[0].isdigit() else \
+                    f" (process {holder[0]}{', which has ended' if ended else ''})"
                 raise type(error)(f"{error}{who}") from None
             time.sleep(0.05)
             continue

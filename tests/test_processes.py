@@ -370,10 +370,11 @@ HOLD = """
 import os, sys, time
 from asperity.locks import lock_file
 fh = lock_file(sys.argv[1], RuntimeError("held"))
-if os.fork() == 0:                    # a child inherits the locked descriptor
+child = os.fork()
+if child == 0:                        # a child inherits the locked descriptor
     time.sleep(120)
     os._exit(0)
-print("locked", flush=True)
+print("locked", child, flush=True)
 time.sleep(120 if sys.argv[2] == "stay" else 0)
 """
 
@@ -383,13 +384,13 @@ def test_a_lock_left_to_a_child_of_a_finished_holder_is_taken_over(tmp_path):
     lock = tmp_path / ".lock"
     code = HOLD.replace("sys.argv[1]", repr(str(lock)))
     with started(code=code.replace("sys.argv[2]", "'stay'"), stdout=subprocess.PIPE) as p:
-        assert first_line(p) == "locked\n"
+        assert first_line(p).startswith("locked ")
         t0 = time.monotonic()
         with pytest.raises(RuntimeError, match=rf"^in use \(process {p.pid}\)$"):
             lock_file(lock, RuntimeError("in use"), wait=0.5)  # alive: refused after 0.5 s
         assert time.monotonic() - t0 >= 0.5
     with started(code=code.replace("sys.argv[2]", "'go'"), stdout=subprocess.PIPE) as p:
-        assert first_line(p) == "locked\n"
+        child = int(first_line(p).split()[1])
         assert p.p.wait(30) == 0                     # the holder has ended, its child not
         import fcntl
         probe = open(lock)                           # the inherited descriptor still locks it
@@ -398,6 +399,7 @@ def test_a_lock_left_to_a_child_of_a_finished_holder_is_taken_over(tmp_path):
         probe.close()
         fh = lock_file(lock, RuntimeError("in use"), wait=0.5)
         try:
+            assert alive([child])                    # taken over, not given back
             assert lock.read_text().split()[0] == str(os.getpid())
             with pytest.raises(RuntimeError):        # and it is exclusive again
                 lock_file(lock, RuntimeError("in use"), wait=0.2)
@@ -446,6 +448,26 @@ def test_study_with_1000_workers_starts_what_the_machine_allows(tmp_path, capsys
     assert f"64 workers asked (--workers), {n} started" in err and "--scheduler" not in err
 
 
+class _Banner:
+    """A TCP service on 127.0.0.1 that greets every connection with a line of text (as
+    SSH or SMTP servers do), for the scheduler checks."""
+
+    def __enter__(self):
+        import socketserver
+
+        class Greet(socketserver.BaseRequestHandler):
+            def handle(self):
+                self.request.sendall(b"SSH-2.0-OpenSSH_9.2\r\n")
+        self.srv = socketserver.ThreadingTCPServer(("127.0.0.1", 0), Greet)
+        self.srv.daemon_threads = True
+        threading.Thread(target=self.srv.serve_forever, daemon=True).start()
+        return f"tcp://127.0.0.1:{self.srv.server_address[1]}"
+
+    def __exit__(self, *exc):
+        self.srv.shutdown()
+        self.srv.server_close()
+
+
 class _Http:
     """An HTTP server on 127.0.0.1 (a free port) for the scheduler checks."""
 
@@ -479,7 +501,7 @@ def test_bad_schedulers_are_refused_in_one_line_and_leave_nothing(tmp_path, caps
     (tmp_path / "empty.json").write_text("")
     (tmp_path / "afolder").mkdir()
     free = _free_port()
-    with _Http() as http:
+    with _Http() as http, _Banner() as banner:
         cases = [("tcp://127.0.0.1:99999", "port 99999 is out of range"),
                  ("tcp://[::1", "without its ']'"),
                  ("tcp://127.0.0.1:x1", "port 'x1' is not a number"),
@@ -492,7 +514,8 @@ def test_bad_schedulers_are_refused_in_one_line_and_leave_nothing(tmp_path, caps
                  ("no-such-file.json", "no such scheduler file"),
                  (f"tcp://127.0.0.1:{free}", f"nothing listens on 127.0.0.1:{free}"),
                  (f"127.0.0.1:{free}", "connection refused"),
-                 (http, "not a Dask scheduler (it sent no greeting")]
+                 (http, "not a Dask scheduler (it sent no greeting"),
+                 (banner, "not a Dask scheduler (it answers in another protocol: 'SSH-2.0-')")]
         before = sorted(p.name for p in tmp_path.iterdir())
         for address, msg in cases:
             for argv in (["study", f, "-o", tmp_path / "out"], ["study", f]):
