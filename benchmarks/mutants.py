@@ -44,7 +44,8 @@ KERNEL_DEPENDENTS = {
     "laws/_set_kernels.py": ("laws/_law_kernels.py", "dynamics/_moreau_kernels.py"),
     "laws/_law_kernels.py": ("dynamics/_moreau_kernels.py",),
     "texture/_tip_kernels.py": ("texture/_spring_kernels.py",),
-    "microslip/_chain_kernels.py": ("microslip/_dynamic_kernels.py",),
+    "microslip/_chain_kernels.py": ("microslip/_dynamic_kernels.py",
+                                    "microslip/_march_kernels.py"),
 }
 
 TEXTURE = ("test_texture_closed_form.py", "test_law_fitting.py", "test_derive_cli.py")
@@ -55,6 +56,7 @@ LAWS = ("test_law_sets.py", "test_law_fitting.py", "test_gauge_file.py", "test_f
 DYNAMICS = ("test_dynamics_moreau.py", "test_slide_cli.py")
 MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_risk.py",
              "test_risk_cli.py")
+CHAIN = ("test_microslip_events.py", "test_microslip.py", "test_hostile_microslip.py")
 PROCS = "test_processes.py"
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")
@@ -162,7 +164,7 @@ MUTANTS = [
            "math.tanh(0.5 * lam * l)", "math.tanh(lam * l)", MICROSLIP,
            "strip dT_c with coth(lam l) instead of coth(lam l / 2)"),
     Mutant("elastic-limit-max", "microslip/chains.py",
-           "return float(lim.min())", "return float(lim.max())", MICROSLIP,
+           "= float(lim.min())", "= float(lim.max())", MICROSLIP,
            "chain elastic limit: the last slider to slip instead of the first"),
     Mutant("march-one-cycle-short", "microslip/quasi_static.py",
            "for c in range(1, cycles + 1):", "for c in range(1, cycles):", MICROSLIP,
@@ -172,11 +174,34 @@ MUTANTS = [
            "psi = math.radians(psi_deg) + np.array([0.0, 0.5 * math.pi])\n    f = law.force(psi)",
            MICROSLIP + ("test_gauge_file.py",),
            "mu- of a gauge taken at +90 deg instead of +180 deg"),
+    # ---- the exact march of the slider chain (issue 18)
+    Mutant("chain-series-spring", "microslip/_chain_kernels.py",
+           "            sr = kb[e] * G[e] / (kb[e] + G[e])\n            p = sr",
+           "            sr = min(kb[e], G[e])\n            p = sr", CHAIN,
+           "condensation: an element and the part left of it combined by min, not in series"),
+    Mutant("chain-no-least-motion", "microslip/_chain_kernels.py",
+           "    t = min(max(t, tlo), thi)", "    t = min(max(0.0, tlo), thi)", CHAIN,
+           "a chain free to translate takes the smallest admissible shift, not least motion"),
+    Mutant("chain-degenerate-kept", "microslip/_chain_kernels.py",
+           "if code == 0 and _all_at_bounds(", "if code == 3 and _all_at_bounds(", CHAIN,
+           "a degenerate solution (a slider stuck exactly at a bound) kept, not the family's "
+           "least motion"),
+    Mutant("chain-ties-missed", "microslip/_chain_kernels.py",
+           "AT_THRESHOLD = 1e-13", "AT_THRESHOLD = 1e-17", CHAIN,
+           "a slider within rounding of its threshold not taken as at it (ties missed)"),
+    Mutant("march-increment-under-force-change", "microslip/_march_kernels.py",
+           "    if dF != 0.0:\n        return False", "    if dF != dF:\n        return False",
+           CHAIN, "a segment whose force changes taken in one increment (inexact)"),
+    Mutant("march-increment-unchecked-start", "microslip/_march_kernels.py",
+           "        if st[i] != 0 and guess[i] != st[i]:\n            return False",
+           "        if st[i] != 0 and guess[i] != st[i] and n < 0:\n            return False",
+           CHAIN, "the increment taken although a slider sliding at the start stopped in it"),
     # ---- surface
     Mutant("detrend-dropped", "surface/detrend.py",
-           "heights=surface.heights - form)", "heights=surface.heights)", SURFACE,
+           "heights=surface.heights - fit.form(", "heights=surface.heights + 0 * fit.form(",
+           SURFACE,
            "height-map form removal returns the heights unchanged"),
-    Mutant("heightmap-gy-over-dx", "surface/facets.py",
+    Mutant("heightmap-gy-over-dx", "surface/grid_facets.py",
            "(1, dy, ((z01, z00), (z11, z10)))", "(1, dx, ((z01, z00), (z11, z10)))",
            SURFACE, "height-map facet slope dz/dy divided by dx (non-square pixels)"),
     # ---- processes, locks, workers, schedulers (issue 18, sections 3 and 4)

@@ -1,6 +1,7 @@
-"""Numba kernels of the slider chain, quasi-static (physics in
-:mod:`asperity.microslip.quasi_static`; the Moreau kernel of :mod:`asperity.microslip.dynamic`
-is in :mod:`asperity.microslip._dynamic_kernels`).
+"""Numba kernels of the slider chain: its equations, the complementarity problem of its
+rates and increments (physics in :mod:`asperity.microslip.quasi_static`; the march in
+:mod:`asperity.microslip._march_kernels`, the Moreau kernel of
+:mod:`asperity.microslip.dynamic` in :mod:`asperity.microslip._dynamic_kernels`).
 
 Array-in/array-out loops, no Python objects, no validation (the wrappers validate and
 coerce).  Kernels cannot raise: failures come back as integer status codes (``STATUS_*``),
@@ -13,10 +14,21 @@ The chain (SPEC.md section 5), n nodes on a line:
     cp, cm (n,) slider thresholds mu+ N_i (slides towards +x) and mu- N_i (towards -x), N,
                positive, possibly +inf (self-locking)
     fw (n,)    share of the external tangential force F acting on node i (sums to 1)
-State: u (n,) node displacements, s (n,) slider positions; contact force q = kt (u - s),
-admissible in [-cm, cp].  Equilibrium of node i (element forces
+State: u (n,) node displacements and q (n,) contact forces q = kt (u - s) (s: slider
+positions), admissible in [-cm, cp].  Equilibrium of node i (element forces
 N_e = kb_e (u_{e+1} - u_e - alpha_T le_e dT)):  N_i - N_{i-1} - q_i + F fw_i = 0.
-Slider status: 0 stick, +1 sliding towards +x (q = cp), -1 towards -x (q = -cm).
+
+The rate-independent chain is piecewise linear: along a linear load segment the state moves
+linearly between *events* (a sticking slider reaching a threshold, a sliding slider whose
+slip would reverse); :mod:`._march_kernels` marches it, event by event or in one increment
+where that is certain to be exact.
+
+Both are linear complementarity problems of the same form, solved by principal pivoting
+(:func:`solve_lcp`) on a condensation of the chain from its left end in springs in series
+(no difference of large stiffnesses).  A sliding slider's force is its threshold exactly
+(never recomputed from u - s), so which of two nearly equal thresholds is reached first is
+decided by the thresholds, not by rounding: mu+ and mu- that differ by 1e-12 of their value
+are told apart; forces within AT_THRESHOLD of a threshold are at it (ties).
 """
 from __future__ import annotations
 
@@ -27,349 +39,219 @@ from numba import njit
 
 STATUS_OK = 0
 STATUS_SLIDE_OFF = 1       # no equilibrium: the external load exceeds the sliders' capacity
-STATUS_NO_CONVERGENCE = 2  # the active-set iteration (or the prox fixed point) did not converge
+STATUS_NO_CONVERGENCE = 2  # the pivoting did not settle, or too many events in a segment
+STATUS_NON_FINITE = 3      # a displacement overflowed (never passed on as a number)
 
-#: converged when max |grad Phi| <= _GTOL x the largest force in the sums
-_GTOL = 1e-11
-#: Hessian regularisation when every slider slides (rigid mode): x the smaller of the
-#: node's contact stiffness and its elements' stiffness, so that it never stiffens the
-#: chain's deformation modes (a bed much stiffer than the chain would else slow Newton)
-_REG = 1e-6
-#: from this Newton iteration on, an iteration that no longer moves u (within rounding)
-#: ends the increment if the gradient is at the rounding of the force terms
-_STALL_CHECK = 20
+#: a sticking slider whose force is within this fraction of a threshold is at it, and a
+#: force may overshoot a threshold by this fraction before the slider must slide (ties of
+#: equal thresholds reached together; mu+ and mu- closer than limits.SAME_FRICTION = 1e-12
+#: are made equal, so every distinct pair stands out of it)
+AT_THRESHOLD = 1e-13
+#: a sliding slider sticks when its slip points back by more than this x the largest
+#: displacement (rate or increment): the sign of a rounding is no reversal
+SLIP_BACK = 1e-12
+#: nodal loads that sum to this x their magnitudes balance (a floating chain may translate)
+BALANCED = 1e-12
+#: principal pivoting: flip every violation for this many rounds, then one at a time (least
+#: index first: finite for the positive definite problems of a chain that sticks somewhere)
+_BLOCK_ROUNDS = 8
 
 
 @njit(cache=True)
-def solve_tridiag(kb, kd, rhs, u, cw, dw):
-    """Solve (K_bar + diag(kd)) u = rhs by the Thomas algorithm (K_bar: the chain's
-    element stiffness; kd >= 0 with at least one kd > 0).  cw, dw: work arrays (n,)."""
-    n = u.size
-    # row i: -kb[i-1] u_{i-1} + (kb[i-1] + kb[i] + kd[i]) u_i - kb[i] u_{i+1} = rhs_i
-    b0 = (kb[0] if n > 1 else 0.0) + kd[0]
-    cw[0] = (-kb[0] / b0) if n > 1 else 0.0
-    dw[0] = rhs[0] / b0
+def solve_chain(kb, kt, th, f, st, G, P, v):
+    """Displacements ``v`` (out) of the chain under element elongations ``th`` (n-1,) and
+    nodal loads ``f`` (n,), with the contact springs of sliders ``st == 0`` (the others
+    carry no stiffness: their force is in ``f``).
+
+    Condensation from the left: the part 0..i of the chain pulls node i with P_i - G_i v_i
+    (G_i: its stiffness to the support, springs in series; P_i: its load), then back
+    substitution from the right end.  G, P: work arrays (n,).
+    Returns 0; 1 if no spring holds the chain and its loads do not balance; 2 if no spring
+    holds it and they balance (v holds the solution with v[n-1] = 0: the rigid
+    translation is the caller's)."""
+    n = v.size
+    G[0] = kt[0] if st[0] == 0 else 0.0
+    P[0] = f[0]
+    fabs = abs(f[0])
     for i in range(1, n):
-        a = -kb[i - 1]
-        b = kb[i - 1] + (kb[i] if i < n - 1 else 0.0) + kd[i]
-        den = b - a * cw[i - 1]
-        cw[i] = (-kb[i] / den) if i < n - 1 else 0.0
-        dw[i] = (rhs[i] - a * dw[i - 1]) / den
-    u[n - 1] = dw[n - 1]
+        e = i - 1
+        if G[e] > 0.0:
+            sr = kb[e] * G[e] / (kb[e] + G[e])
+            p = sr * (P[e] / G[e] + th[e])
+        else:
+            sr = 0.0
+            p = P[e]
+        G[i] = sr + (kt[i] if st[i] == 0 else 0.0)
+        P[i] = p + f[i]
+        fabs += abs(f[i])
+    code = 0
+    if G[n - 1] > 0.0:
+        v[n - 1] = P[n - 1] / G[n - 1]
+    else:
+        if abs(P[n - 1]) > BALANCED * fabs:
+            return 1
+        v[n - 1] = 0.0
+        code = 2
     for i in range(n - 2, -1, -1):
-        u[i] = dw[i] - cw[i] * u[i + 1]
-
-
-@njit(cache=True)
-def _classify(kt, cp, cm, s_old, u, cls):
-    """Slider status of the trial forces kt (u - s_old): +1 above cp, -1 below -cm, else 0;
-    returns the number of sticking sliders."""
-    nst = 0
-    for i in range(u.size):
-        tq = kt[i] * (u[i] - s_old[i])
-        if tq > cp[i]:
-            cls[i] = 1
-        elif tq < -cm[i]:
-            cls[i] = -1
+        if G[i] > 0.0:
+            sr = kb[i] * G[i] / (kb[i] + G[i])
+            v[i] = (P[i] + sr * (v[i + 1] - th[i] - P[i] / G[i])) / G[i]
         else:
-            cls[i] = 0
-            nst += 1
-    return nst
+            v[i] = v[i + 1] - th[i] + P[i] / kb[i]
+    return code
 
 
 @njit(cache=True)
-def _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, g):
-    """Incremental energy Phi(u) (sliders eliminated by the return mapping) and its
-    gradient g = K_bar u - thermal - F fw + q(u) (out); returns (Phi, max |g|, force scale)."""
-    n = u.size
-    phi = 0.0
-    scale = 0.0
-    for i in range(n):
-        g[i] = -F * fw[i]
-        phi -= F * fw[i] * u[i]
-    for e in range(n - 1):
-        th = alpha_T * le[e] * dT
-        d = u[e + 1] - u[e] - th
-        Ne = kb[e] * d
-        phi += 0.5 * Ne * d
-        g[e] -= Ne
-        g[e + 1] += Ne
-        a = abs(Ne)
-        if a > scale:
-            scale = a
-    for i in range(n):
-        v = u[i] - s_old[i]
-        tq = kt[i] * v
-        if tq > cp[i]:
-            qi = cp[i]
-            phi += cp[i] * v - 0.5 * cp[i] * cp[i] / kt[i]
-        elif tq < -cm[i]:
-            qi = -cm[i]
-            phi += -cm[i] * v - 0.5 * cm[i] * cm[i] / kt[i]
-        else:
-            qi = tq
-            phi += 0.5 * tq * v
-        g[i] += qi
-        a = abs(qi) + abs(F * fw[i])
-        if a > scale:
-            scale = a
-    gmax = 0.0
-    for i in range(n):
-        if abs(g[i]) > gmax:
-            gmax = abs(g[i])
-    return phi, gmax, scale
-
-
-@njit(cache=True)
-def _rounding_scale(kb, le, kt, alpha_T, dT, s_old, u):
-    """1e-3 x the largest term of an element force kb (u_{e+1} - u_e - alpha_T le dT) or of
-    a contact force kt (u - s): a force that is a small difference of large terms is only
-    known to the rounding of the large ones, so a gradient below _GTOL x this (~50
-    roundings) is as small as it can get (the test of a stalled iteration)."""
-    n = u.size
-    rnd = 0.0
-    for e in range(n - 1):
-        a = kb[e] * max(abs(alpha_T * le[e] * dT), abs(u[e]), abs(u[e + 1]))
-        if a > rnd:
-            rnd = a
-    for i in range(n):
-        a = kt[i] * max(abs(u[i]), abs(s_old[i]))
-        if a > rnd:
-            rnd = a
-    return 1e-3 * rnd
-
-
-@njit(cache=True)
-def _rigid_line_search(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, du, un, gn):
-    """The step t in (0, 1] minimising Phi(u + t du) (convex, C1: bisection on the sign of
-    its derivative).  Used when every slider slides: the regularised Newton step along the
-    rigid mode is then huge and may overshoot far past the state where a slider sticks
-    (a line search that only asks for decrease would then crawl back)."""
-    n = u.size
-    a, b = 0.0, 1.0
-    for i in range(n):
-        un[i] = u[i] + du[i]
-    _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, un, gn)
-    d = 0.0
-    for i in range(n):
-        d += gn[i] * du[i]
-    if d <= 0.0:
-        return 1.0
-    for _ in range(60):
-        t = 0.5 * (a + b)
-        for i in range(n):
-            un[i] = u[i] + t * du[i]
-        _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, un, gn)
-        d = 0.0
-        for i in range(n):
-            d += gn[i] * du[i]
-        if d > 0.0:
-            b = t
-        else:
-            a = t
-        if b - a <= 1e-14 * b:
-            break
-    return b if a == 0.0 else a
-
-
-@njit(cache=True)
-def solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, s, q, status,
-               g, un, gn, du, cls, clsn, cw, dw, max_iter):
-    """One load increment of the slider chain to the load (dT, F), exactly (backward Euler
-    of the rate-independent law, exact while every slider's slip is monotone over it).
-
-    Minimises the incremental energy Phi(u) -- bars, contact springs, the sliders'
-    dissipation, eliminated by the return mapping -- which is convex, C1 and piecewise
-    quadratic, by semismooth Newton (Hessian K_bar + diag(k_t of the sticking sliders),
-    tridiagonal) with a backtracking line search: globally convergent, and exact once the
-    slider status stops changing.  ``u``: starting guess in, solution out.
-    Returns (code, Newton iterations); on success s, q, status hold the new state."""
-    n = u.size
-    kd = np.empty(n)
-    # absolute floor of the force scale: the largest finite slider threshold
-    cap = 0.0
-    for i in range(n):
-        if math.isfinite(cp[i]) and cp[i] > cap:
-            cap = cp[i]
-        if math.isfinite(cm[i]) and cm[i] > cap:
-            cap = cm[i]
-    phi, gmax, scale = _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, g)
-    scale = max(scale, cap)
-    nst = _classify(kt, cp, cm, s_old, u, cls)
-    code = STATUS_NO_CONVERGENCE
-    its = max_iter
-    for it in range(1, max_iter + 1):
-        if gmax <= _GTOL * scale:
-            code = STATUS_OK
-            its = it - 1
-            break
-        for i in range(n):
-            g[i] = -g[i]
-            # Hessian of the current piece; with every slider sliding the rigid mode is
-            # free: a small regularisation keeps the step finite (the line search and the
-            # gradient test decide, so the solution does not depend on it)
-            if cls[i] == 0:
-                kd[i] = kt[i]
-            elif nst == 0:
-                kd[i] = _REG * min(kt[i], kb[i - 1] if i > 0 else kt[i],
-                                   kb[i] if i < n - 1 else kt[i])
-            else:
-                kd[i] = 0.0
-        solve_tridiag(kb, kd, g, du, cw, dw)
-        slope = 0.0
-        for i in range(n):
-            slope -= g[i] * du[i]          # g holds -grad
-        step = 1.0
-        accepted = False
-        if nst == 0:
-            step = _rigid_line_search(kb, le, kt, cp, cm, fw, alpha_T, dT, F, s_old, u, du, un,
-                                      gn)
-        for _ in range(60):
-            for i in range(n):
-                un[i] = u[i] + step * du[i]
-            phin, gmaxn, scalen = _energy_gradient(kb, le, kt, cp, cm, fw, alpha_T, dT, F,
-                                                   s_old, un, gn)
-            if (phin <= phi + 1e-4 * step * slope + 1e-12 * abs(phi)
-                    or gmaxn <= _GTOL * max(scalen, cap)):
-                accepted = True
-                break
-            step *= 0.5
-        if not accepted:
-            # no descent left within rounding: a solution if the gradient is small
-            if gmax <= 1e-8 * scale or gmax <= _GTOL * _rounding_scale(kb, le, kt, alpha_T,
-                                                                      dT, s_old, u):
-                code = STATUS_OK
-                its = it
-            break
-        moved = 0.0
-        size = 0.0
-        if it >= _STALL_CHECK:
-            for i in range(n):
-                moved = max(moved, abs(un[i] - u[i]))
-                size = max(size, abs(u[i]))
-        for i in range(n):
-            u[i] = un[i]
-            g[i] = gn[i]
-        phi, gmax, scale = phin, gmaxn, max(scalen, cap)
-        if it >= _STALL_CHECK and moved <= 4e-16 * size and gmax <= _GTOL * max(
-                scale, _rounding_scale(kb, le, kt, alpha_T, dT, s_old, u)):
-            code = STATUS_OK                   # stalled at the rounding of u
-            its = it
-            break
-        nstn = _classify(kt, cp, cm, s_old, u, clsn)
-        same = nstn == nst and step == 1.0 and nst > 0
-        if same:
-            for i in range(n):
-                if clsn[i] != cls[i]:
-                    same = False
-                    break
-        for i in range(n):
-            cls[i] = clsn[i]
-        nst = nstn
-        if same:                           # the exact minimiser of this quadratic piece
-            code = STATUS_OK
-            its = it
-            break
-    if code != STATUS_OK:
-        return code, its
-    for i in range(n):
-        tq = kt[i] * (u[i] - s_old[i])
-        if tq > cp[i]:
-            q[i] = cp[i]
-            status[i] = 1
-        elif tq < -cm[i]:
-            q[i] = -cm[i]
-            status[i] = -1
-        else:
-            q[i] = tq
-            status[i] = 0
-        s[i] = u[i] - q[i] / kt[i] if status[i] != 0 else s_old[i]
-    return STATUS_OK, its
-
-
-@njit(cache=True)
-def _least_motion(kt, cp, cm, u_old, s_old, u, s, q):
-    """Select among equal solutions.  When every contact force is at its threshold after a
-    converged increment (sliding, or sticking exactly at the threshold), the incremental
-    energy is flat along the rigid translation u + t (its slope, the sum of the slider
-    forces less F, is zero there): a whole interval of t are exact solutions (e.g. mu+ =
-    mu-, both ends of a bar sliding apart).  Take the one that moves the chain least, t
-    minimising sum kt_i (u_i + t - u_old_i)^2 while every slider keeps its direction: the
-    limit of any small viscosity, and no drift for a symmetric contact.  q: the contact
-    forces (in); u, s updated."""
-    n = u.size
-    lo = -np.inf
-    hi = np.inf
+def _translate(kt, st, lo, hi, v):
+    """No spring holds the chain and its loads balance: add the translation t of least
+    motion (minimising sum kt (v + t)^2, the limit of a small viscosity) that keeps every
+    slider's direction (v + t >= hi sliding towards +x, <= lo towards -x).  Returns the
+    index of a slider that cannot keep its direction whatever t (it must stick) or -1."""
+    n = v.size
+    tlo = -np.inf
+    thi = np.inf
+    ilo = -1
+    ihi = -1
     num = 0.0
     den = 0.0
     for i in range(n):
-        v = u[i] - s_old[i]
-        if q[i] >= cp[i] * (1.0 - 1e-9):
-            lo = max(lo, cp[i] / kt[i] - v)
-        elif q[i] <= -cm[i] * (1.0 - 1e-9):
-            hi = min(hi, -cm[i] / kt[i] - v)
-        else:
-            return                                  # a contact sticks: the solution is unique
-        num -= kt[i] * (u[i] - u_old[i])
+        if st[i] > 0 and hi[i] - v[i] > tlo:
+            tlo = hi[i] - v[i]
+            ilo = i
+        elif st[i] < 0 and lo[i] - v[i] < thi:
+            thi = lo[i] - v[i]
+            ihi = i
+        num -= kt[i] * v[i]
         den += kt[i]
-    lo = min(lo, 0.0)
-    hi = max(hi, 0.0)
-    t = min(max(num / den, lo), hi)
-    if t == 0.0:
-        return
+    t = num / den
+    if tlo > thi:
+        return ilo if tlo - t > t - thi else ihi
+    t = min(max(t, tlo), thi)
     for i in range(n):
-        u[i] += t
-        s[i] = u[i] - q[i] / kt[i]
+        v[i] += t
+    return -1
 
 
 @njit(cache=True)
-def march(kb, le, kt, cp, cm, fw, alpha_T, dT_seq, F_seq, u, s, du_seq, slip_seq, rec_nodes,
-          rec_u, max_iter):
-    """March the load points (dT_seq[j], F_seq[j]) from the state (u, s) (updated in place).
-    The state carries everything: a sequence marched in pieces (consecutive slices of the
-    arrays) gives exactly the same result as in one call.
+def _all_at_bounds(kt, cp, cm, lo, hi, st, v):
+    """Every slider slides, or sticks with its force at a threshold (within AT_THRESHOLD),
+    and at least one sticks."""
+    one = False
+    for i in range(v.size):
+        if st[i] == 0:
+            if not (_at_hi(kt[i], cp[i], hi[i], v[i]) or _at_lo(kt[i], cm[i], lo[i], v[i])):
+                return False
+            one = True
+    return one
 
-    du_seq (m, n): displacement increments of the same points one cycle earlier, the
-    starting guess of each increment (exact once the cycle is stabilised); overwritten.
-    slip_seq (m,): the largest |slip| of a slider over each increment (out).
-    rec_u (m, len(rec_nodes)): node displacements recorded at each point.
-    Returns (code, index of the failing point or -1, total Newton iterations)."""
-    n = u.size
-    m = dT_seq.size
-    s_old = s.copy()
-    u_old = u.copy()
-    q = np.empty(n)
-    g = np.empty(n)
-    un = np.empty(n)
-    gn = np.empty(n)
-    dd = np.empty(n)
-    cls = np.empty(n, np.int8)
-    clsn = np.empty(n, np.int8)
-    cw = np.empty(n)
-    dw = np.empty(n)
-    st = np.empty(n, np.int8)
-    iters = 0
-    for j in range(m):
+
+@njit(cache=True)
+def _at_hi(kt, cp, hi, v):
+    """A sticking slider's force kt v at its (finite) threshold towards +x."""
+    return math.isfinite(hi) and abs(kt * (v - hi)) <= AT_THRESHOLD * cp
+
+
+@njit(cache=True)
+def _at_lo(kt, cm, lo, v):
+    """A sticking slider's force kt v at its (finite) threshold towards -x."""
+    return math.isfinite(lo) and abs(kt * (v - lo)) <= AT_THRESHOLD * cm
+
+
+@njit(cache=True)
+def solve_lcp(kb, kt, cp, cm, th, base, lo, hi, st, f, G, P, v, max_rounds):
+    """The complementarity problem of the chain: displacements (rates or increments) ``v``
+    under elongations ``th`` and nodal loads ``base``, where a sticking slider i keeps
+    lo_i <= v_i <= hi_i (its force kt v within its thresholds) and a sliding one has its
+    force at the bound (load base_i - kt_i hi_i, slip v_i - hi_i >= 0 towards +x; likewise
+    lo_i towards -x).  ``st`` (in: the guess, out: the solution): +1/-1 sliding towards
+    +x/-x, 0 sticking.  f, G, P: work arrays.  Returns STATUS_OK, STATUS_SLIDE_OFF,
+    STATUS_NO_CONVERGENCE or STATUS_NON_FINITE."""
+    n = v.size
+    for rnd in range(max_rounds):
         for i in range(n):
-            s_old[i] = s[i]
-            u_old[i] = u[i]
-            u[i] += du_seq[j, i]
-        code, it = solve_step(kb, le, kt, cp, cm, fw, alpha_T, dT_seq[j], F_seq[j], s_old, u, s,
-                              q, st, g, un, gn, dd, cls, clsn, cw, dw, max_iter)
-        iters += it
-        if code != STATUS_OK:
+            if st[i] > 0:
+                f[i] = base[i] - kt[i] * hi[i]
+            elif st[i] < 0:
+                f[i] = base[i] - kt[i] * lo[i]
+            else:
+                f[i] = base[i]
+        code = solve_chain(kb, kt, th, f, st, G, P, v)
+        if code == 1:
+            # the sliders cannot hold the load: one pushing along it stops
+            tot = 0.0
             for i in range(n):
-                s[i] = s_old[i]
-                u[i] = u_old[i]
-            return code, j, iters
-        _least_motion(kt, cp, cm, u_old, s_old, u, s, q)
-        smax = 0.0
+                tot += f[i]
+            flip = -1
+            for i in range(n):
+                if st[i] != 0 and st[i] * tot < 0.0:
+                    flip = i
+                    break
+            if flip < 0:
+                return STATUS_SLIDE_OFF
+            st[flip] = 0
+            continue
+        if code == 2:
+            flip = _translate(kt, st, lo, hi, v)
+            if flip >= 0:
+                st[flip] = 0
+                continue
+        scale = 0.0
         for i in range(n):
-            du_seq[j, i] = u[i] - u_old[i]
-            d = abs(s[i] - s_old[i])
-            if d > smax:
-                smax = d
-        slip_seq[j] = smax
-        for k in range(rec_nodes.size):
-            rec_u[j, k] = u[rec_nodes[k]]
-    return STATUS_OK, -1, iters
+            scale = max(scale, abs(v[i]))
+        if not math.isfinite(scale):
+            return STATUS_NON_FINITE
+        back = SLIP_BACK * scale
+        nviol = 0
+        first = -1
+        for i in range(n):
+            to = 0
+            if st[i] > 0:
+                to = -1 if v[i] - hi[i] < -back else 1
+            elif st[i] < 0:
+                to = 1 if v[i] - lo[i] > back else -1
+            elif kt[i] * (v[i] - hi[i]) > AT_THRESHOLD * cp[i]:
+                to = 2
+            elif kt[i] * (lo[i] - v[i]) > AT_THRESHOLD * cm[i]:
+                to = -2
+            if to == 2 or to == -2 or (st[i] != 0 and to == -st[i]):
+                nviol += 1
+                if first < 0:
+                    first = i
+                if rnd < _BLOCK_ROUNDS:
+                    st[i] = 0 if st[i] != 0 else to // 2
+        if nviol == 0:
+            if code == 0 and _all_at_bounds(kt, cp, cm, lo, hi, st, v):
+                # a degenerate solution: every slider slides or sticks exactly at a bound, a
+                # whole family of solutions (the chain may translate); the one of least
+                # motion lets them all slide (solve again so, if that keeps directions)
+                for i in range(n):
+                    if st[i] == 0:
+                        st[i] = 1 if _at_hi(kt[i], cp[i], hi[i], v[i]) else -1
+                continue
+            return STATUS_OK
+        if rnd >= _BLOCK_ROUNDS:
+            st[first] = 0 if st[first] != 0 else (1 if v[first] > hi[first] else -1)
+    return STATUS_NO_CONVERGENCE
+
+
+@njit(cache=True)
+def rate_bounds(cp, cm, q, lo, hi):
+    """Bounds of the rate problem at the state q: a slider at a threshold (within
+    AT_THRESHOLD) may not move out of it (bound 0), the others are free (+-inf)."""
+    for i in range(q.size):
+        hi[i] = 0.0 if q[i] >= cp[i] * (1.0 - AT_THRESHOLD) else np.inf
+        lo[i] = 0.0 if q[i] <= -cm[i] * (1.0 - AT_THRESHOLD) else -np.inf
+
+
+@njit(cache=True)
+def rate_statuses(kb, kt, cp, cm, fw, th, dF, q, st, w):
+    """The sliders' statuses ``st`` (out) of the rate problem at the state q under the load
+    rates (th, dF); w: (7, n) work array (w[6] holds the rates on return).  Returns the
+    status code."""
+    n = q.size
+    lo, hi, base, f, G, P, v = w[0], w[1], w[2], w[3], w[4], w[5], w[6]
+    rate_bounds(cp, cm, q, lo, hi)
+    for i in range(n):
+        base[i] = dF * fw[i]
+        st[i] = 1 if q[i] == cp[i] else (-1 if q[i] == -cm[i] else 0)
+    return solve_lcp(kb, kt, cp, cm, th, base, lo, hi, st, f, G, P, v, 4 * n + 2 * _BLOCK_ROUNDS)

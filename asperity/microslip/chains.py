@@ -15,10 +15,10 @@ the assembly creeps towards ``-x`` (the side of the smaller coefficient): a nega
 * :func:`two_node_chain`, :func:`strip_chain` build the two models of Antoni et al.;
 * :func:`two_node_dT_c`, :func:`two_node_drift_per_cycle`, :func:`strip_dT_c` are the closed
   forms (SPEC.md 5) beside the numerics;
-* :func:`simulate` marches cycles quasi-statically (exact incremental solution of the
-  slider chain: one backward-Euler increment per monotone load segment is exact while every
-  slider's slip is monotone over it; ``substeps`` refines) and detects the stabilised cycle,
-  from which the drift after any number of cycles is extrapolated exactly;
+* :func:`simulate` marches cycles quasi-statically (exact solution of the rate-independent
+  chain, event by event: every slider's start and stop located along each linear load
+  segment) and detects the stabilised cycle, from which the drift after any number of cycles
+  is extrapolated exactly;
 * :func:`simulate_dynamic` solves the same chain with small masses and slow loading by
   Moreau's midpoint time-stepping, friction impulses from the proximal equation onto
   ``[-mu- N dt, mu+ N dt]``.
@@ -35,7 +35,6 @@ import numpy as np
 from ..errors import AsperityError, InputError, check_array, check_instance, check_range, check_text
 from .limits import (
     ASYMMETRY,
-    ASYMMETRY_RESOLVED,
     STIFFNESS_RATIO,
     STRIP,
     TWO_NODE,
@@ -68,8 +67,12 @@ class MicroslipTolerances:
     #: |alpha_T| * length * dT range, counts as no drift (the rounding of a chain 1e9 times
     #: stiffer than its contacts reaches ~1e-9)
     no_drift: float = 1e-8
-    #: Newton iterations per load increment
-    max_newton: int = 500
+    #: slip events per node and load segment before the march gives up (a chain's sliders
+    #: start and stop a few times per segment)
+    max_events_per_node: int = 50
+    #: march every load segment event by event (else in one increment where that is
+    #: certain to be exact: the same result, faster; for checks and benchmarks)
+    events_only: bool = False
     #: Moreau: fixed-point tolerance (relative to the impulse bound), iteration limit, r/G
     prox_tol: float = 1e-12
     prox_max_iter: int = 100
@@ -79,10 +82,12 @@ class MicroslipTolerances:
         from ..errors import check_int
         checked = {name: check_range(f"tol.{name}", getattr(self, name), 1e-15, 1e-2)
                    for name in ("stabilised", "no_drift", "prox_tol")}
-        for name in ("max_newton", "prox_max_iter"):
+        for name in ("max_events_per_node", "prox_max_iter"):
             checked[name] = check_int(f"tol.{name}", getattr(self, name), 1, 100_000)
         checked["prox_r_factor"] = check_range("tol.prox_r_factor", self.prox_r_factor, 0.0,
                                                2.0, low_open=True, high_open=True)
+        if not isinstance(self.events_only, (bool, np.bool_)):
+            raise InputError(f"tol.events_only must be True or False, got {self.events_only!r}")
         for name, value in checked.items():
             object.__setattr__(self, name, value)
 
@@ -188,7 +193,8 @@ def _built(kind, x, kb, le, kt, mp, mm, N, w, alpha_T, params) -> Chain:
 
 
 def _check_resolvable(c: Chain) -> None:
-    """Stiffness ratios and friction asymmetry within what double precision resolves."""
+    """Stiffness ratios and the ratio of the coefficients within what double precision
+    resolves (nearly equal coefficients are resolved whatever their difference)."""
     kb, kt = c.kb, c.kt
     for ratio, what, fix in ((kb.max() / kt.min(), "elements are", "fewer nodes"),
                              (kt.max() / kb.min(), "contacts are", "more nodes")):
@@ -202,25 +208,11 @@ def _check_resolvable(c: Chain) -> None:
     if len(mus) == 2 and max(mus) > ASYMMETRY * min(mus):
         raise InputError(f"mu_plus / mu_minus = {c.mu_plus / c.mu_minus:.3g} is beyond what the "
                          f"chain solvers resolve (at most {ASYMMETRY:g} either way)")
-    check_asymmetry(c.mu_plus, c.mu_minus, ASYMMETRY_RESOLVED)
 
 
 def stiffness_ratio(c: Chain) -> float:
     """The largest element/contact stiffness ratio of a chain, either way."""
     return float(max(c.kb.max() / c.kt.min(), c.kt.max() / c.kb.min()))
-
-
-def check_asymmetry(mu_plus: float, mu_minus: float, resolved: float) -> None:
-    """Refuse mu+ != mu- closer than ``resolved`` (relative): the drift of a ratcheting
-    chain goes all the way one way or the other across mu+ = mu-, and below the solvers'
-    resolution the side would be decided by rounding (same_friction: equal)."""
-    mus = [m for m in (mu_plus, mu_minus) if math.isfinite(m)]
-    if len(mus) == 2 and not same_friction(*mus) and abs(mus[0] - mus[1]) < resolved * max(mus):
-        raise InputError(f"mu_plus and mu_minus differ by {abs(mus[0] - mus[1]) / max(mus):.2g} "
-                         f"of their value, less than the {resolved:.2g} the chain solvers "
-                         "resolve here: a ratchet, if any, would run its full drift one way or "
-                         "the other; give equal coefficients (symmetric friction) or a larger "
-                         "difference")
 
 
 def two_node_chain(k, l0, alpha_T, k_t, N, mu_plus, mu_minus) -> Chain:
@@ -262,7 +254,7 @@ def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     """dT_c of the chain: the size of the temperature change (heating if ``sign`` = +1,
     cooling if -1), from the stress-free state without external force, at which the first
     slider slips (K, > 0 whatever the sign of alpha_T; inf if none ever does)."""
-    from ._chain_kernels import solve_tridiag
+    from ._chain_kernels import solve_chain
     check_instance("chain", chain, Chain)
     if isinstance(sign, bool) or sign not in (1, -1, 1.0, -1.0):
         raise InputError(f"sign must be 1 (heating) or -1 (cooling), got {sign!r}")
@@ -270,12 +262,9 @@ def elastic_limit(chain: Chain, sign: float = 1.0) -> float:
     if float(sign) in memo:
         return memo[float(sign)]
     n = chain.n
-    rhs = np.zeros(n)
-    e = chain.kb * chain.alpha_T * chain.le * sign
-    rhs[1:] += e
-    rhs[:-1] -= e
     u = np.empty(n)
-    solve_tridiag(chain.kb, chain.kt, rhs, u, np.empty(n), np.empty(n))
+    solve_chain(chain.kb, chain.kt, chain.alpha_T * chain.le * sign, np.zeros(n),
+                np.zeros(n, np.int64), np.empty(n), np.empty(n), u)
     q = chain.kt * u                                     # contact forces per K
     with np.errstate(divide="ignore", over="ignore"):
         lim = np.where(q > 0, chain.cp / np.where(q > 0, q, 1.0),

@@ -49,14 +49,10 @@ POINTS_PER_CYCLE = 10_000_000
 STIFFNESS_RATIO = 1e9
 ASYMMETRY = 1e3
 MARGIN = 1e4
-#: the smallest friction asymmetry |mu+ - mu-| / max(mu+, mu-) the chain solvers resolve:
-#: the drift of a ratcheting chain jumps from one direction to the other across mu+ = mu-,
-#: and below this the side is decided by rounding (refused; fuzzed two-node chains over
-#: the whole ranges: the Newton iteration stalls or takes the wrong side below 1e-4, and
-#: with very stiff contacts and large margins below 10 margin ratio eps, see
-#: quasi_static.check_margin); differences up to SAME_FRICTION are the rounding of a
-#: symmetric texture: the same coefficient
-ASYMMETRY_RESOLVED = 1e-4
+#: coefficients whose relative difference |mu+ - mu-| / max(mu+, mu-) is at most this are
+#: the same coefficient (the rounding of a symmetric texture: symmetric sliders, no drift);
+#: any larger difference is resolved (the chain solvers decide which threshold is reached
+#: first from the thresholds themselves, see microslip._chain_kernels)
 SAME_FRICTION = 1e-12
 
 

@@ -75,6 +75,7 @@ def format_text(out: dict) -> str:
         if a["model"] == "strip" and v == "alternating-slip" and out["margin"] > 1:
             lines.append("  (for a strip, margin > 1 is necessary but not sufficient: its ends "
                          "slip back and forth while its middle sticks)")
+        lines.extend(_near_symmetric(out))
     dyn = out.get("dynamic")
     if dyn:
         rel = dyn["relative_difference"]
@@ -85,6 +86,25 @@ def format_text(out: dict) -> str:
                      + f"; solver {dyn['solver'].get('status', '?')}")
     lines.append(f"sign convention: {out['sign_convention']}")
     return "\n".join(lines)
+
+
+def _near_symmetric(out: dict) -> list:
+    """Notes on what nearly symmetric friction means for the verdict."""
+    r = out.get("asymmetry")
+    res = out.get("resolution")
+    if res:
+        return [f"  NOTE: mu+ and mu- differ by {abs(r):.2g} of their value; the whole strip "
+                f"slides about a node that holds that imbalance, so no drift shows with "
+                f"{res['nodes']} nodes (they resolve {res['asymmetry_resolved']:.2g}); the "
+                f"continuum drifts at most {_len(res['continuum_drift_bound_m'])[1:]} per "
+                f"cycle: assembly.n >= {res['nodes_to_resolve']} resolves it"]
+    if r and abs(r) < 1e-3 and out["verdict"] == "ratchet" \
+            and out["assembly"]["model"] == "two-node":
+        return [f"  NOTE: mu+ and mu- differ by only {abs(r):.2g} of their value; the "
+                f"two-node model ratchets by the full amount for any difference (the weaker "
+                f"slider caps the bar force), so the direction rests on the sign of that "
+                f"difference: check it against the scatter of the measurement"]
+    return []
 
 
 def format_map(out: dict) -> str:

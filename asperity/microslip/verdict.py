@@ -65,6 +65,7 @@ def assess(chain: Chain, loading: Loading, cycles: float = 1e6, tolerance: float
     rng = loading.dT_range
     out = {"sign_convention": SIGN_CONVENTION,
            "mu_plus": _jnum(chain.mu_plus), "mu_minus": _jnum(chain.mu_minus),
+           "asymmetry": asymmetry(chain.mu_plus, chain.mu_minus),
            "dT_c_K": _jnum(dT_c), "dT_c_closed_form_K": _jnum(dT_c_closed_form),
            "dT_range_K": rng,
            "margin": (rng / (2.0 * dT_c)) if math.isfinite(dT_c) and dT_c > 0 else 0.0,
@@ -94,5 +95,31 @@ def assess(chain: Chain, loading: Loading, cycles: float = 1e6, tolerance: float
     if r.stabilised_at is None:
         out["warning"] = (f"the cycle did not stabilise within {r.cycles_run} cycles: the drift "
                           "per cycle is that of the last cycle marched")
+    out["resolution"] = pinned_resolution(chain, loading, r)
     out["_result"] = r
     return out
+
+
+def asymmetry(mu_plus: float, mu_minus: float) -> float | None:
+    """(mu+ - mu-) / max(mu+, mu-), None when a side self-locks."""
+    if not (math.isfinite(mu_plus) and math.isfinite(mu_minus)):
+        return None
+    return (mu_plus - mu_minus) / max(mu_plus, mu_minus)
+
+
+def pinned_resolution(chain: Chain, loading: Loading, result) -> dict | None:
+    """A strip that slides whole (every node but at most one at once) slides about its
+    neutral point, where the friction forces balance; with nodes, that point is a node,
+    which holds an imbalance of up to its own threshold: mu+ and mu- closer than about
+    2/(n - 1) of their value then cannot move it from heating to cooling, and no drift
+    shows where the continuum drifts up to alpha_T l dT_range |mu+ - mu-| / (mu+ + mu-)
+    per cycle.  That case (nonzero asymmetry below 2/(n - 1)) as a dict, else None."""
+    a = asymmetry(chain.mu_plus, chain.mu_minus)
+    n = chain.n
+    if chain.kind != "strip" or not result.whole_slip or not a or abs(a) >= 2.0 / (n - 1):
+        return None
+    mp, mm = chain.mu_plus, chain.mu_minus
+    return {"nodes": n, "asymmetry_resolved": 2.0 / (n - 1),
+            "continuum_drift_bound_m": abs(chain.alpha_T) * chain.length * loading.dT_range
+            * abs(mp - mm) / (mp + mm),
+            "nodes_to_resolve": int(min(math.ceil(2.0 / abs(a)) + 1, 1e9))}

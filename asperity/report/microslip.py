@@ -84,8 +84,8 @@ def section(folder: Path) -> list[str]:
     t = TWO_NODE
     out = ["## Cumulative microslip: assemblies under thermal cycles", "",
            "Slider chains (SPEC.md 5): each contact node an elastic spring k_t in series with a "
-           "slider at mu+ N (towards +x) and mu- N (towards -x). Quasi-static mode: one exact "
-           "increment per monotone load segment (semismooth Newton on the incremental energy); "
+           "slider at mu+ N (towards +x) and mu- N (towards -x). Quasi-static mode: the exact "
+           "solution of the rate-independent chain (each slider's start and stop located exactly); "
            "dynamic mode: Moreau midpoint time-stepping with small masses and slow loading. "
            "Sign convention: drift < 0 is towards -x, the side of the smaller coefficient "
            "when mu+ > mu-.", ""]

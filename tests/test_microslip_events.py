@@ -1,0 +1,142 @@
+"""The exact march of the slider chain (issue 18 item 7): nearly symmetric friction resolved
+for every pair, the one-increment path identical to the event-by-event path, the least
+motion of a chain that may translate, and the dynamic mode with nearly equal coefficients."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from asperity.microslip.chains import (
+    MicroslipTolerances,
+    elastic_limit,
+    strip_chain,
+    two_node_chain,
+)
+from asperity.microslip.closed_forms import two_node_drift_per_cycle, two_node_dT_c
+from asperity.microslip.dynamic import simulate_dynamic
+from asperity.microslip.loading import Loading
+from asperity.microslip.quasi_static import simulate
+
+EVENTS = MicroslipTolerances(events_only=True)
+K, KT, N, AT, L0, MU = 1e6, 5e5, 100.0, 1.2e-5, 0.1, 0.1
+# the shipped bushing's strip (lam l = 7.6)
+BUSHING = dict(h=2.5e-3, E=1.1e11, p=5e6, l=0.04, k_t=1e13, alpha_T=6e-6)
+RELATIVE = [0.0, 1e-12, 3e-12, 1e-10, 1e-8, 1e-6, 1e-5, 1e-4, 1e-3]
+
+
+@pytest.mark.parametrize("r", RELATIVE + [-x for x in RELATIVE[1:]])
+@pytest.mark.parametrize("margin", [0.7, 1.5, 40.0])
+def test_two_node_nearly_symmetric_pairs_match_the_closed_form(r, margin):
+    """The two-node drift is -alpha_T l0 (dT range - 2 dT_c) per cycle for every mu+ > mu-
+    however close (the weaker slider caps the bar force: the other never slips), towards
+    the smaller coefficient; equal coefficients (r = 0) do not drift.  To 1e-12 of
+    alpha_T l0 dT range, both marches."""
+    mup, mum = MU * (1 + max(r, 0.0)), MU * (1 + max(-r, 0.0))
+    dTc = two_node_dT_c(K, KT, N, mup, mum, AT, L0)
+    rng = 2 * margin * dTc
+    want = two_node_drift_per_cycle(K, KT, N, mup, mum, AT, L0, 0.0, rng)
+    for tol in (None, EVENTS):
+        res = simulate(two_node_chain(K, L0, AT, KT, N, mup, mum),
+                       Loading.cycles_between(0.0, rng), 6, **({"tol": tol} if tol else {}))
+        assert abs(res.drift_per_cycle - want) <= 1e-12 * AT * L0 * rng, (r, margin, tol)
+        if r == 0.0 or margin < 1:
+            assert res.drift_per_cycle == 0.0
+        else:
+            assert np.sign(res.drift_per_cycle) == -np.sign(r)
+
+
+def strip_drift(r, n, rng, tol=None, **over):
+    par = {**BUSHING, **over}
+    c = strip_chain(n=n, mu_plus=0.15 * (1 + max(r, 0.0)), mu_minus=0.15 * (1 + max(-r, 0.0)),
+                    **par)
+    res = simulate(c, Loading.cycles_between(0.0, rng), 30, **({"tol": tol} if tol else {}))
+    return res.drift_per_cycle / (par["alpha_T"] * par["l"] * rng), res
+
+
+@pytest.mark.parametrize("lam_l", [0.5, 7.6])
+def test_strip_drift_tends_to_zero_with_the_asymmetry(lam_l):
+    """Unlike the two-node model, a strip's drift shrinks with mu+ - mu- (the neutral region
+    moves continuously): at a range that slips the whole strip, drift / (alpha_T l dT) goes
+    to zero with r, has the sign of -r, never exceeds (the continuum's) r / 2 by more than
+    one element's share, and is zero for equal coefficients."""
+    kt = (lam_l / BUSHING["l"]) ** 2 * BUSHING["E"] * BUSHING["h"]
+    n = 101
+    c0 = strip_chain(n=n, mu_plus=0.15, mu_minus=0.15, **{**BUSHING, "k_t": kt})
+    rng = min(5000.0, 400 * elastic_limit(c0))
+    prev = None
+    for r in (1e-1, 3e-2, 1e-2, 1e-3, 1e-4, 1e-6, 0.0):
+        d, res = strip_drift(r, n, rng, k_t=kt)
+        assert d <= 0.0 and abs(d) <= r / 2 + 1.0 / (n - 1), (r, d)
+        if prev is not None:
+            assert abs(d) <= abs(prev) + 1e-12, "drift grows as the asymmetry shrinks"
+        prev = d
+    assert prev == 0.0
+
+
+def test_one_increment_and_event_by_event_give_the_same_march():
+    """Fuzzed chains (two nodes and strips, lam l 0.1 to 30), coefficients from equal to 3x
+    apart, temperature histories of 2-5 points, no force, a constant force or a force that
+    changes (marched event by event), 1-2 load points per segment: the default march (one
+    certain increment per segment) and the event-by-event march agree to 1e-9 of the
+    thermal displacement (measured: 2e-13)."""
+    rng = np.random.default_rng(18)
+    for case in range(60):
+        n = int(rng.integers(2, 40))
+        r = 10 ** rng.uniform(-12, 0.5) * rng.choice([-1, 1]) * (rng.random() < 0.85)
+        mup, mum = 0.15 * (1 + max(r, 0)), 0.15 * (1 + max(-r, 0))
+        sign = rng.choice([-1.0, 1.0])
+        if n == 2:
+            c = two_node_chain(K, L0, AT * sign, 10 ** rng.uniform(3, 8), N, mup, mum)
+        else:
+            kt = (10 ** rng.uniform(-1, 1.5) / 0.04) ** 2 * 1.1e11 * 2.5e-3
+            c = strip_chain(2.5e-3, 1.1e11, 5e6, 0.04, kt, 6e-6 * sign, n, mup, mum)
+        cap = min(c.cp.sum(), c.cm.sum())
+        m = int(rng.integers(2, 6))
+        dT = np.append(x := rng.uniform(-1, 1, m) * 10 ** rng.uniform(0.5, 3), x[0])
+        kind = case % 3
+        F = (np.zeros(m + 1) if kind == 0 else np.full(m + 1, rng.uniform(-0.9, 0.9) * cap)
+             if kind == 1 else rng.uniform(-0.9, 0.9, m + 1) * cap)
+        F[-1] = F[0]
+        L = Loading(dT, F, int(rng.integers(1, 3)))
+        a = simulate(c, L, 6, until_stable=False)
+        b = simulate(c, L, 6, until_stable=False, tol=EVENTS)
+        scale = abs(c.alpha_T) * c.length * max(L.dT_range, np.abs(L.dT).max())
+        assert np.isfinite(a.u_end).all() and np.isfinite(b.u_end).all()
+        np.testing.assert_allclose(a.u_end, b.u_end, rtol=0, atol=1e-9 * scale,
+                                   err_msg=f"case {case}: one increment vs events")
+        np.testing.assert_allclose(a.q_end, b.q_end, rtol=0, atol=1e-9 * c.cp.max())
+
+
+@pytest.mark.parametrize("n", [2, 3, 4, 51, 52])
+@pytest.mark.parametrize("tol", [None, EVENTS], ids=["default", "events"])
+def test_equal_coefficients_never_drift_even_when_the_whole_chain_slides(n, tol):
+    """mu+ = mu- exactly and a range that slides every slider at once (an even chain: no
+    node in the middle holds it): the chain may translate as a whole; the least motion (the
+    limit of a small viscosity) keeps it centred, so no drift, over a history of several
+    points (seen: 0.065 of alpha_T l dT per cycle before the least motion was chosen among
+    the degenerate solutions)."""
+    c = (two_node_chain(K, L0, -AT, KT, N, 0.15, 0.15) if n == 2 else
+         strip_chain(2.5e-3, 1.1e11, 5e6, 0.04, (10.7 / 0.04) ** 2 * 1.1e11 * 2.5e-3, -6e-6, n,
+                     0.15, 0.15))
+    dTc = elastic_limit(c)
+    L = Loading(np.array([0.5, 20.0, -8.0, 40.0, 0.5]) * dTc, np.zeros(5), 2)
+    res = simulate(c, L, 6, until_stable=False, **({"tol": tol} if tol else {}))
+    scale = AT * c.length * 48 * dTc
+    assert np.isfinite(res.mean_u).all()
+    assert np.abs(res.mean_u).max() <= 1e-12 * scale
+    assert res.drift_per_cycle == 0.0 and res.slip_in_cycle
+
+
+def test_dynamic_mode_takes_nearly_equal_coefficients():
+    """The Moreau solution accepts every pair: equal coefficients give no drift; mu+ and mu-
+    1e-3 apart give the two-node closed form once the loading is slow enough (its rate
+    effects, about 1/steps, below the asymmetry: 2e5 steps per segment)."""
+    dTc = two_node_dT_c(K, KT, N, MU * 1.001, MU, AT, L0)
+    L = Loading.cycles_between(0.0, 3 * dTc)
+    same = simulate_dynamic(two_node_chain(K, L0, AT, KT, N, MU, MU), L, 3,
+                            steps_per_segment=20_000)
+    assert same.drift_per_cycle == 0.0
+    near = simulate_dynamic(two_node_chain(K, L0, AT, KT, N, MU * 1.001, MU), L, 3,
+                            steps_per_segment=200_000)
+    want = two_node_drift_per_cycle(K, KT, N, MU * 1.001, MU, AT, L0, 0.0, 3 * dTc)
+    assert near.drift_per_cycle == pytest.approx(want, rel=2e-3)
