@@ -35,17 +35,30 @@ PR_SET_PDEATHSIG = 1
 _watching: list[int] = []
 
 
+def _prctl():
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        import ctypes
+        return ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+
+
 def parent_death_signal(sig: int = signal.SIGKILL) -> bool:
     """Ask the kernel to send ``sig`` to this process when its parent dies (Linux only);
     True when it is set."""
-    if not sys.platform.startswith("linux"):
-        return False
-    try:
-        import ctypes
-        libc = ctypes.CDLL(None, use_errno=True)
-        return libc.prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0
-    except (OSError, AttributeError):
-        return False
+    prctl = _prctl()
+    return prctl is not None and prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0
+
+
+def preexec():
+    """A ``preexec_fn`` for :mod:`subprocess`: the child gets SIGKILL when the thread that
+    starts it ends (start it from the main thread); None where that is not available."""
+    prctl = _prctl()                           # looked up here, not in the forked child
+    if prctl is None:
+        return None
+    return lambda: prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
 
 
 def original_parent() -> int:

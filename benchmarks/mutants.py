@@ -206,7 +206,8 @@ MUTANTS = [
            SURFACE, "height-map facet slope dz/dy divided by dx (non-square pixels)"),
     # ---- processes, locks, workers, schedulers (issue 18, sections 3 and 4)
     Mutant("lifeline-no-death-signal", "lifeline.py",
-           "return libc.prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0", "return False",
+           "return prctl is not None and prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0",
+           "return False",
            (f"{PROCS}::test_dask_workers_die_with_the_client_even_inside_a_kernel",),
            "no parent-death signal: only the watch thread, which a kernel holding the "
            "interpreter lock keeps from running"),

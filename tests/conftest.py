@@ -26,9 +26,9 @@ def _init(self, *args, preexec_fn=None, **kwargs):
     user = preexec_fn
 
     def preexec():
+        if user is not None:                 # e.g. a change of user, which would clear
+            user()                           # the signal asked before it
         _die_with_parent()
-        if user is not None:
-            user()
     _popen_init(self, *args, preexec_fn=preexec, **kwargs)
 
 
