@@ -55,8 +55,9 @@ LAWS = ("test_law_sets.py", "test_law_fitting.py", "test_gauge_file.py", "test_f
         "test_dynamics_moreau.py")
 DYNAMICS = ("test_dynamics_moreau.py", "test_slide_cli.py")
 MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_risk.py",
-             "test_risk_cli.py")
-CHAIN = ("test_microslip_events.py", "test_microslip.py", "test_hostile_microslip.py")
+             "test_risk_cli.py", "test_chain_reference.py")
+CHAIN = ("test_microslip_events.py", "test_chain_reference.py", "test_microslip.py",
+         "test_hostile_microslip.py")
 PROCS = "test_processes.py"
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")

@@ -140,3 +140,78 @@ def test_dynamic_mode_takes_nearly_equal_coefficients():
                             steps_per_segment=200_000)
     want = two_node_drift_per_cycle(K, KT, N, MU * 1.001, MU, AT, L0, 0.0, 3 * dTc)
     assert near.drift_per_cycle == pytest.approx(want, rel=2e-3)
+
+
+# ------------------------------------------------------- against the exact rational reference
+
+def _chain_of(model, r):
+    """The chain of ``model`` with mu+ = 0.15 (1 + r) (r < 0: mu- larger), as built by the
+    package (pairs 1e-12 apart become equal); lam l = 3.5 for the strips."""
+    mup, mum = 0.15 * (1 + max(r, 0.0)), 0.15 * (1 + max(-r, 0.0))
+    if model == "two-node":
+        return two_node_chain(K, L0, AT, KT, N, mup, mum)
+    n = int(model.split("=")[1])
+    return strip_chain(2e-3, 2e11, 1e6, 0.1, (3.5 / 0.1) ** 2 * 2e11 * 2e-3, 1.2e-5, n, mup,
+                       mum)
+
+
+@pytest.mark.parametrize("model", ["two-node", "strip n=9", "strip n=10", "strip n=11"])
+@pytest.mark.parametrize("r", [0.0, 2e-12, 1e-9, 1e-6, 1e-5, 1e-4, 1e-3, -1e-9, -1e-5, -1e-3])
+@pytest.mark.parametrize("load", ["margin 1.5", "margin 40", "history", "force"])
+def test_nearly_symmetric_pairs_against_the_exact_reference(model, r, load):
+    """Issue 18 item 7: mu+ and mu- from equal to 1e-3 apart, both ways, two-node and strips
+    (odd and even nodes), simple cycles at two margins, a 4-point temperature history and a
+    force in phase (marched event by event): the drift per cycle and every end state of the
+    default march and of the event-by-event march agree with the exact rational march
+    (tests/chain_reference.py, written independently of the package) to 1e-6 of
+    alpha_T l dT range (measured: about 1e-15)."""
+    from chain_reference import march as exact
+    c = _chain_of(model, r)
+    dTc = elastic_limit(c)
+    if load == "history":
+        L = Loading(np.array([0.0, 30.0, -6.0, 12.0, 0.0]) * dTc, np.zeros(5))
+    elif load == "force":
+        L = Loading.cycles_between(0.0, 6 * dTc, 0.0, 0.3 * min(c.cp.sum(), c.cm.sum()))
+    else:
+        L = Loading.cycles_between(0.0, 2 * float(load.split()[1]) * dTc)
+    ref = exact(c, L, 4)
+    scale = abs(c.alpha_T) * c.length * max(L.dT_range, np.abs(L.dT).max())
+    for tol in (None, EVENTS):
+        got = simulate(c, L, 4, until_stable=False, **({"tol": tol} if tol else {}))
+        assert abs(got.drift_per_cycle - ref.drift_f) <= 1e-6 * scale, (tol, got.drift_per_cycle,
+                                                                        ref.drift_f)
+        np.testing.assert_allclose(got.u_end, ref.u_f, rtol=0, atol=1e-6 * scale)
+        np.testing.assert_allclose(got.q_end, ref.q_f[-1], rtol=0, atol=1e-9 * c.cp.max())
+
+
+@pytest.mark.parametrize("n", [201, 200])
+def test_a_whole_sliding_strip_says_when_its_nodes_decide_the_drift(n):
+    """The bushing's strip at 1000 K slides whole; mu+ 1e-4 above mu- is below the 2/(n-1)
+    its nodes resolve: an odd strip shows no drift, an even one about an element's thermal
+    expansion per cycle (the artefact of the nodes); ``resolution`` says so, with the bound
+    alpha_T l dT_range (mu+ - mu-)/(mu+ + mu-) of the continuum and the node count that
+    resolves it; 1e-1 apart, or two nodes, it says nothing."""
+    from asperity.microslip.risk_text import near_symmetric_notes
+    from asperity.microslip.verdict import assess
+    c = strip_chain(n=n, mu_plus=0.15 * 1.0001, mu_minus=0.15, **BUSHING)
+    L = Loading.cycles_between(0.0, 1000.0)
+    out = assess(c, L, 1e6, 1e-4)
+    res = out["resolution"]
+    scale = BUSHING["alpha_T"] * BUSHING["l"] * 1000.0
+    assert res["nodes"] == n and res["asymmetry_resolved"] == pytest.approx(2 / (n - 1))
+    assert res["continuum_drift_bound_m"] == pytest.approx(scale * 1e-4 / 2.0001, rel=1e-6)
+    need = res["nodes_to_resolve"]
+    assert 2 / out["asymmetry"] < need - 1 <= 2 / out["asymmetry"] + 2
+    d = out["drift_per_cycle_m"] / (scale / (n - 1))
+    assert (d == 0.0) if n % 2 else (-1.0 < d < -0.5), d
+    note = near_symmetric_notes(out)
+    assert len(note) == 1 and f"{n} nodes" in note[0] and f">= {need} " in note[0]
+    assert ("none" in note[0]) == bool(n % 2)
+    far = assess(c.with_friction(0.15 * 1.1, 0.15), L, 1e6, 1e-4)
+    assert far["resolution"] is None and near_symmetric_notes(far) == []
+    two = assess(two_node_chain(K, L0, AT, KT, N, MU * 1.0001, MU),
+                 Loading.cycles_between(0.0, 3 * two_node_dT_c(K, KT, N, MU * 1.0001, MU, AT,
+                                                               L0)), 1e6, 1e-4)
+    assert two["resolution"] is None and two["asymmetry"] == pytest.approx(1e-4 / 1.0001)
+    two["assembly"] = {"model": "two-node"}
+    assert "ratchets by the full amount" in near_symmetric_notes(two)[0]

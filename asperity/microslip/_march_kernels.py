@@ -27,7 +27,13 @@ import math
 import numpy as np
 from numba import njit
 
-from ._chain_kernels import STATUS_NO_CONVERGENCE, STATUS_OK, rate_statuses, solve_lcp
+from ._chain_kernels import (
+    _BLOCK_ROUNDS,
+    STATUS_NO_CONVERGENCE,
+    STATUS_OK,
+    rate_statuses,
+    solve_lcp,
+)
 
 
 @njit(cache=True)

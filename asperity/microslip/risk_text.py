@@ -75,7 +75,7 @@ def format_text(out: dict) -> str:
         if a["model"] == "strip" and v == "alternating-slip" and out["margin"] > 1:
             lines.append("  (for a strip, margin > 1 is necessary but not sufficient: its ends "
                          "slip back and forth while its middle sticks)")
-        lines.extend(_near_symmetric(out))
+        lines.extend(near_symmetric_notes(out))
     dyn = out.get("dynamic")
     if dyn:
         rel = dyn["relative_difference"]
@@ -88,16 +88,20 @@ def format_text(out: dict) -> str:
     return "\n".join(lines)
 
 
-def _near_symmetric(out: dict) -> list:
+def near_symmetric_notes(out: dict) -> list:
     """Notes on what nearly symmetric friction means for the verdict."""
     r = out.get("asymmetry")
     res = out.get("resolution")
     if res:
-        return [f"  NOTE: mu+ and mu- differ by {abs(r):.2g} of their value; the whole strip "
-                f"slides about a node that holds that imbalance, so no drift shows with "
-                f"{res['nodes']} nodes (they resolve {res['asymmetry_resolved']:.2g}); the "
-                f"continuum drifts at most {_len(res['continuum_drift_bound_m'])[1:]} per "
-                f"cycle: assembly.n >= {res['nodes_to_resolve']} resolves it"]
+        odd = res["nodes"] % 2
+        return [f"  NOTE: mu+ and mu- differ by {abs(r):.2g} of their value, less than the "
+                f"{res['asymmetry_resolved']:.2g} that {res['nodes']} nodes resolve: the whole "
+                f"strip slides about a node, so the nodes decide the drift ("
+                + ("the middle one holds the imbalance: none" if odd else
+                   "the two middle ones take turns: about an element's expansion per cycle")
+                + f"); the continuum drifts at most "
+                f"{_len(res['continuum_drift_bound_m'])[1:]} per cycle: assembly.n >= "
+                f"{res['nodes_to_resolve']} resolves it"]
     if r and abs(r) < 1e-3 and out["verdict"] == "ratchet" \
             and out["assembly"]["model"] == "two-node":
         return [f"  NOTE: mu+ and mu- differ by only {abs(r):.2g} of their value; the "

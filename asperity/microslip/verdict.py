@@ -109,11 +109,13 @@ def asymmetry(mu_plus: float, mu_minus: float) -> float | None:
 
 def pinned_resolution(chain: Chain, loading: Loading, result) -> dict | None:
     """A strip that slides whole (every node but at most one at once) slides about its
-    neutral point, where the friction forces balance; with nodes, that point is a node,
-    which holds an imbalance of up to its own threshold: mu+ and mu- closer than about
-    2/(n - 1) of their value then cannot move it from heating to cooling, and no drift
-    shows where the continuum drifts up to alpha_T l dT_range |mu+ - mu-| / (mu+ + mu-)
-    per cycle.  That case (nonzero asymmetry below 2/(n - 1)) as a dict, else None."""
+    neutral point, where the friction forces balance; with nodes, that point is a node.
+    With mu+ and mu- closer than about 2/(n - 1) of their value the nodes, not the friction,
+    decide the drift: an odd strip's middle node holds the imbalance in both half cycles
+    (no drift), an even strip's two middle nodes take turns (about one element's thermal
+    expansion per cycle), where the continuum drifts at most alpha_T l dT_range |mu+ - mu-|
+    / (mu+ + mu-) per cycle.  That case (nonzero asymmetry below 2/(n - 1)) as a dict, else
+    None."""
     a = asymmetry(chain.mu_plus, chain.mu_minus)
     n = chain.n
     if chain.kind != "strip" or not result.whole_slip or not a or abs(a) >= 2.0 / (n - 1):
