@@ -108,8 +108,8 @@ def check_work(steps: float, limit: float, what: str, lower: str) -> None:
 # ----------------------------------------------------------------------------- local workers
 
 #: memory of one warm local worker process (asperity, numba's kernels, Dask): measured
-#: 128-130 MB of private memory (RssAnon of a LocalCluster worker after a study's cases),
-#: with a margin; a case's own needs come on top
+#: 92-130 MB of private memory and 134-172 MB proportional set size (RssAnon and Pss of a
+#: LocalCluster worker after a study's cases); a case's own needs come on top
 WORKER_BYTES = 150 << 20
 
 
