@@ -5,8 +5,8 @@ in separate processes (``spawn``: the parent never forks a process with numba's 
 in it): one :class:`Slot` per worker, each a process fed one job at a time through a
 pipe, that ends when the server ends, however it ends (:mod:`asperity.lifeline`: killed
 with SIGKILL, the server takes its workers and their study clusters with it; the next
-start runs their jobs again, a study resuming its store).  The server's event loop only hands out jobs and reads records, so a page never
-waits for a computation.  Queued jobs wait in a first-in first-out queue; their records
+start runs their jobs again, a study resuming its store).  The server's event loop only
+hands out jobs and reads records, so a page never waits for a computation.  Queued jobs wait in a first-in first-out queue; their records
 say ``queued`` on disk, so a restart finds them and runs them (and the ones that were
 running when the server stopped) again.  A worker that dies (out of memory, a crash, a
 job stopped from its page) is replaced; its job is tried once more, then failed with
@@ -71,7 +71,6 @@ class Slot:
             self.proc.join(timeout=5)
         if self.conn is not None:
             self.conn.close()
-
 
 
 class Runner:

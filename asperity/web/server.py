@@ -67,6 +67,8 @@ def serve(settings) -> int:
     print(f"asperity serve: {url_of(settings.host, port, settings.token)}", flush=True)
     print(f"  data folder {folder}; {settings.workers} worker process(es); uploads up to "
           f"{settings.max_upload / 2**20:.4g} MB; Ctrl-C stops", file=sys.stderr, flush=True)
+    if settings.workers_note:
+        print(f"  {settings.workers_note}", file=sys.stderr, flush=True)
     if settings.token:
         print("  every request needs the token in this link (it sets a cookie); keep it "
               "private", file=sys.stderr, flush=True)
