@@ -256,6 +256,12 @@ MUTANTS = [
            (f"{PROCS}::test_a_run_that_fails_before_its_first_case_leaves_the_folder_as_it_"
             "was",),
            "a run that fails before its first case leaves an empty store behind"),
+    Mutant("store-without-tables-stuck", "study/store.py",
+           "new = con.execute(\"SELECT 1 FROM sqlite_master WHERE type = 'table'\").fetchone() "
+           "is None", "new = db.stat().st_size == 0",
+           (f"{PROCS}::test_a_store_killed_before_its_tables_were_made_is_taken_as_new",),
+           "a store file left without tables (a kill before the first transaction) refused "
+           "for ever unless it is empty"),
 ]
 
 

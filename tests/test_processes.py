@@ -563,6 +563,22 @@ def test_a_run_that_fails_before_its_first_case_leaves_the_folder_as_it_was(tmp_
     assert case_ids(tmp_path / "half") == [0, 1, 2, 3, 4]
 
 
+def test_a_store_killed_before_its_tables_were_made_is_taken_as_new(tmp_path):
+    """A kill between the creation of study.sqlite and its first transaction (or a reader
+    that opened the file first) leaves a database without tables: the next run uses it."""
+    from asperity.study.run import run_study_file
+    f = study_file(tmp_path, 6)
+    (tmp_path / "empty").mkdir()
+    (tmp_path / "empty" / "study.sqlite").write_bytes(b"")
+    (tmp_path / "header").mkdir()
+    con = sqlite3.connect(tmp_path / "header" / "study.sqlite")
+    con.execute("PRAGMA journal_mode=WAL")            # the header written, no table yet
+    con.close()
+    for folder in ("empty", "header"):
+        s = run_study_file(f, tmp_path / folder, workers=0)
+        assert s["run"]["ran"] == 6 and case_ids(tmp_path / folder) == list(range(6))
+
+
 def test_folders_named_like_study_files_and_an_empty_data_folder_say_what_they_are(
         tmp_path, capsys):
     (tmp_path / "foo.toml").mkdir()

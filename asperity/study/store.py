@@ -163,22 +163,23 @@ def open_store(folder, study) -> Store:
         raise OutputError(f"{folder}: permission denied (the study folder must be writable)")
     lock = _lock(folder)
     try:
-        new = not db.exists()                   # (again: now under the lock)
         store = _open(db, folder, study)
     except BaseException:
         lock.close()
         raise
     store._lock = lock
-    if new:
-        store.created = [db, *made]
+    if store.created:
+        store.created += made
     return store
 
 
 def _open(db: Path, folder: Path, study) -> Store:
     fp = study.fingerprint()
-    new = not db.exists()
     try:
         con = _connect(db)
+        # no table yet: a new store, also when a run was killed before it made its tables
+        # or a reader opened the file first (the lock is held: nobody else creates them)
+        new = con.execute("SELECT 1 FROM sqlite_master WHERE type = 'table'").fetchone() is None
         if new:
             inputs = ["file"] if study.kind == "files" else study.parameter_names
             meta = {"schema": SCHEMA_VERSION, "fingerprint": fp, "study": study.to_dict(),
@@ -193,7 +194,9 @@ def _open(db: Path, folder: Path, study) -> Store:
                 con.execute(f"CREATE TABLE cases (case_id INTEGER PRIMARY KEY, {', '.join(cols)})")
                 con.executemany("INSERT INTO meta VALUES (?, ?)",
                                 [(k, json.dumps(v, default=repr)) for k, v in meta.items()])
-            return Store(con, folder, meta)
+            store = Store(con, folder, meta)
+            store.created = [db]
+            return store
         meta = _meta(con, db)
     except sqlite3.Error as exc:
         raise StoreError(f"{db}: not a usable study store ({exc})") from None
