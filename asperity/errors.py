@@ -53,7 +53,7 @@ def _kind(value) -> str:
 
 
 def _show(value) -> str:
-    text = repr(value)
+    text = " ".join(repr(value).split())          # an array's repr spans lines
     return text if len(text) <= 40 else text[:37] + "..."
 
 
@@ -106,18 +106,20 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
 def check_int(name: str, value, low: int | None = None, high: int | None = None) -> int:
     """Return ``value`` as an int within [low, high], else raise InputError.  A float with
     an integral value (``1e6``) is accepted; text and booleans are not."""
+    rng = "" if low is None and high is None else \
+        f" in [{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise InputError(f"{name} must be a whole number, got {_show(value)} ({_kind(value)})")
+        raise InputError(f"{name} must be a whole number{rng}, got {_show(value)} "
+                         f"({_kind(value)})")
     if isinstance(value, numbers.Integral):
         n = int(value)
     else:
         x = float(value)
         if not (math.isfinite(x) and x.is_integer()):
-            raise InputError(f"{name} must be a whole number, got {_fmt(x)}")
+            raise InputError(f"{name} must be a whole number{rng}, got {_fmt(x)}")
         n = int(x)
     if (low is not None and n < low) or (high is not None and n > high):
-        rng = f"[{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
-        raise InputError(f"{name} must be a whole number in {rng}, got {_fmt_int(n)}")
+        raise InputError(f"{name} must be a whole number{rng}, got {_fmt_int(n)}")
     return n
 
 
@@ -132,6 +134,14 @@ def check_choice(name: str, value, choices) -> str:
         got = _show(value) if isinstance(value, str) else f"{_show(value)} ({_kind(value)})"
         raise InputError(f"{name} must be one of {', '.join(choices)}, got {got}")
     return value
+
+
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is True or False (a NumPy bool too), else InputError."""
+    import numpy as np
+    if not isinstance(value, (bool, np.bool_)):
+        raise InputError(f"{name} must be True or False, got {_show(value)} ({_kind(value)})")
+    return bool(value)
 
 
 def check_text(name: str, value, max_len: int = 4096) -> str:
@@ -185,11 +195,19 @@ def check_array(name: str, value, ndim: int | None = None, shape=None, *,
         exp = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ")"
         raise InputError(f"{name} must have shape {exp}, got {a.shape}")
     if a.size < min_size:
-        raise InputError(f"{name} must hold at least {min_size} values, got {a.size}")
+        raise InputError(f"{name} must hold at least {min_size} value{'s' * (min_size != 1)}, "
+                         f"got {a.size}")
     if finite and a.dtype.kind == "f" and not np.all(np.isfinite(a)):
         k = int(np.flatnonzero(~np.isfinite(a.ravel()))[0])
         raise InputError(f"{name} must be finite, got {a.ravel()[k]} at index {k}")
     return a
+
+
+def is_array(value) -> bool:
+    """``value`` is meant as an array (a list, a tuple or an array of one dimension or
+    more), not as one number: to choose between :func:`check_array` and a number check."""
+    import numpy as np
+    return isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim > 0)
 
 
 def _fmt(x: float) -> str:
@@ -197,5 +215,8 @@ def _fmt(x: float) -> str:
 
 
 def _fmt_int(n: int) -> str:
-    s = str(n) if abs(n) < 10**30 else f"{float(n):g}"
-    return s
+    if abs(n) < 10**30:
+        return str(n)
+    digits = str(abs(n))                  # as %g would, beyond a float's range too (10**400)
+    frac = digits[1:6].rstrip("0")
+    return f"{'-' if n < 0 else ''}{digits[0]}{'.' + frac if frac else ''}e+{len(digits) - 1}"

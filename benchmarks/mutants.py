@@ -27,6 +27,7 @@ import argparse
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -58,9 +59,14 @@ MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_r
              "test_risk_cli.py", "test_chain_reference.py")
 CHAIN = ("test_microslip_events.py", "test_chain_reference.py", "test_microslip.py",
          "test_hostile_microslip.py")
+WEB_PAGES = ("test_web_pages.py",)
+WEB_BROWSER = ("test_web_pages_browser.py",)
 PROCS = "test_processes.py"
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")
+CONFINE = ("test_study_inputs.py", "test_web_security.py")
+FINGERPRINT = ("test_study_fingerprint.py",)
+WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 
 
 @dataclass(frozen=True)
@@ -139,9 +145,9 @@ MUTANTS = [
            "D = ConvexSet(psi, h, h * np.tan(dc))", "D = ConvexSet(psi, h, -h * np.tan(dc))",
            LAWS, "fit_star: h' = -h tan(delta), the sliding rule's sign flipped"),
     Mutant("abaqus-degrees-as-radians", "laws/export.py",
-           "theta = math.radians(gl.principal_direction_deg)\n    data",
-           "theta = gl.principal_direction_deg\n    data",
-           ("test_fit_law_cli.py", "test_law_fitting.py"),
+           "theta = math.radians(gl.principal_direction_deg)\n    phi",
+           "theta = gl.principal_direction_deg\n    phi",
+           ("test_fit_law_cli.py", "test_law_fitting.py", "test_abaqus_block.py"),
            "orthotropic (Abaqus) fit in a frame turned by degrees read as radians"),
     # ---- dynamics
     Mutant("moreau-midpoint-full-step", "dynamics/_moreau_kernels.py",
@@ -197,6 +203,11 @@ MUTANTS = [
            "        if st[i] != 0 and guess[i] != st[i]:\n            return False",
            "        if st[i] != 0 and guess[i] != st[i] and n < 0:\n            return False",
            CHAIN, "the increment taken although a slider sliding at the start stopped in it"),
+    Mutant("march-nonuniform-in-increments", "microslip/quasi_static.py",
+           "events_only = tol.events_only or not is_uniform(chain)",
+           "events_only = tol.events_only", CHAIN,
+           "a chain outside the uniform class taken in increments (its sliders stop inside "
+           "segments)"),
     # ---- surface
     Mutant("detrend-dropped", "surface/detrend.py",
            "heights=surface.heights - fit.form(", "heights=surface.heights + 0 * fit.form(",
@@ -205,6 +216,266 @@ MUTANTS = [
     Mutant("heightmap-gy-over-dx", "surface/grid_facets.py",
            "(1, dy, ((z01, z00), (z11, z10)))", "(1, dx, ((z01, z00), (z11, z10)))",
            SURFACE, "height-map facet slope dz/dy divided by dx (non-square pixels)"),
+    # ---- files a study names: confinement (issue 18, section 1)
+    Mutant("confine-skips-string-files", "study/inputs.py",
+           "    if isinstance(pats, str):\n        items = [(\"study.files\", pats)]",
+           "    if isinstance(pats, str):\n        items, confine = [(\"study.files\", pats)], "
+           "None", CONFINE,
+           "study.files given as one string (a glob) is not confined, only a list is"),
+    Mutant("confine-links-not-followed", "paths.py",
+           "real = os.path.realpath(path)", "real = os.path.abspath(path)", CONFINE,
+           "the confinement resolves .. but not symbolic links (a link pointing out passes)"),
+    Mutant("confine-glob-matches-unchecked", "study/inputs.py",
+           "            inside_matches(key, pat, hits, confine.root, confine.outside)\n", "",
+           CONFINE, "the matches of a pattern are not checked (a matched link pointing out)"),
+    Mutant("confine-skips-assembly-names", "study/inputs.py",
+           "        if confine is not None:\n            check_inside(key, v, base,",
+           "        if confine is not None and \"friction\" not in key:\n"
+           "            check_inside(key, v, base,", CONFINE,
+           "the gauge and texture an assembly names are not confined, only the study's keys"),
+    Mutant("confine-sees-tilde-unexpanded", "paths.py",
+           "    full = str(named_path(value, folder))\n    fixed = full",
+           "    full = str(Path(folder) / value)\n    fixed = full", CONFINE,
+           "the check joins the name itself (~ not expanded) while the reader expands it"),
+    # ---- study fingerprint and --restart (issue 18, section 6)
+    Mutant("fingerprint-by-size", "study/inputs.py",
+           "return {p: file_digest(p) for p in paths}",
+           "return {p: str(Path(p).stat().st_size) for p in paths}", FINGERPRINT,
+           "the inputs are fingerprinted by their size, not their content"),
+    Mutant("fingerprint-study-keys-only", "study/inputs.py",
+           "for n in self.named for p in n.paths if p.is_file()",
+           "for n in self.named if n.key.startswith(\"study.\") for p in n.paths "
+           "if p.is_file()", FINGERPRINT,
+           "the files an assembly names (gauge, texture) are left out of the fingerprint"),
+    Mutant("resume-ignores-input-digests", "study/store.py",
+           "same = meta.get(\"fingerprint\") == fp and meta.get(\"input_digests\") == digests",
+           "same = meta.get(\"fingerprint\") == fp", FINGERPRINT,
+           "a store resumes whatever the inputs' digests say"),
+    Mutant("restart-keeps-cases", "study/store.py",
+           "con.execute(\"DROP TABLE IF EXISTS cases\")\n            con.execute(\"DROP TABLE "
+           "IF EXISTS meta\")\n        con.execute(\"CREATE TABLE meta (key TEXT PRIMARY KEY, "
+           "value TEXT)\")\n        con.execute(f\"CREATE TABLE cases (",
+           "con.execute(\"DROP TABLE IF EXISTS meta\")\n        con.execute(\"CREATE TABLE "
+           "meta (key TEXT PRIMARY KEY, value TEXT)\")\n        con.execute(f\"CREATE TABLE "
+           "IF NOT EXISTS cases (", FINGERPRINT,
+           "--restart replaces the study's meta but keeps the stored cases (a mixed store)"),
+    Mutant("restart-not-one-transaction", "study/store.py",
+           "con.execute(\"BEGIN IMMEDIATE\")", "con.execute(\"SELECT 1\")", FINGERPRINT,
+           "the restart's drops and creates commit one by one (an interrupt loses the store)"),
+    # ---- web security (issue 18, section 10)
+    Mutant("token-cookie-name-only", "web/security.py",
+           "if name == cookie and secrets.compare_digest(value, self.token):",
+           "if name == cookie:", WEB_SECURITY, "any value of the token's cookie is let in"),
+    Mutant("host-begins-with-localhost", "web/settings.py",
+           "    if host == \"localhost\":", "    if host.startswith(\"localhost\"):",
+           WEB_SECURITY, "a Host header that begins with localhost counts as loopback"),
+    Mutant("upload-limit-per-chunk", "web/security.py",
+           "seen += len(msg.get(\"body\", b\"\"))", "seen = len(msg.get(\"body\", b\"\"))",
+           WEB_SECURITY, "the upload limit is compared with each chunk, not the whole body"),
+    Mutant("download-undeclared-files", "web/store.py",
+           "if rec is None or name not in rec.get(\"files\", []):", "if rec is None:",
+           WEB_SECURITY, "any file of an existing job's folder is served"),
+    # ---- issue 18: the Python API's bad arguments, the Abaqus block, the spike filter
+    Mutant("api-psi-2d-unchecked", "friction/reservoir.py",
+           "    if a.ndim != 1:\n        raise InputError(f\"{name} must be a number or a 1-d",
+           "    if a.ndim > 2:\n        raise InputError(f\"{name} must be a number or a 1-d",
+           ("test_hostile_api.py",), "a 2-D psi reaches the reservoir (IndexError inside)"),
+    Mutant("api-empty-psi-accepted", "friction/reservoir.py",
+           "a = np.atleast_1d(check_array(name, psi, min_size=1))",
+           "a = np.atleast_1d(check_array(name, psi, min_size=0))",
+           ("test_hostile_api.py",), "an empty psi gives an empty reservoir instead of a refusal"),
+    Mutant("api-facet-shapes-unchecked", "surface/facet_checks.py",
+           "        if a.shape != (n,):\n            raise InputError(f\"{name} must have the shape",
+           "        if a.ndim != 1:\n            raise InputError(f\"{name} must have the shape",
+           ("test_hostile_api.py",), "FacetSurface of arrays of different shapes accepted"),
+    Mutant("api-x3p-overflow-warns", "surface/readers/_x3p_points.py",
+           'with np.errstate(over="ignore", invalid="ignore"):\n            if axis.increment',
+           'with np.errstate(invalid="ignore"):\n            if axis.increment',
+           ("test_hostile_api.py",), "an overflowing x3p Increment warns before its refusal"),
+    Mutant("api-huge-int-in-message", "errors.py",
+           "    if abs(n) < 10**30:\n        return str(n)\n",
+           "    if abs(n) < 10**30:\n        return str(n)\n    return f\"{float(n):g}\"\n",
+           ("test_hostile_api.py",), "10**400 as a whole number: OverflowError building the message"),
+    Mutant("abaqus-fits-the-data", "laws/export.py",
+           "e = fit_truncated_ellipse(polar, theta, symmetric=True)",
+           "e = fit_truncated_ellipse(gl.data, theta, symmetric=True)",
+           ("test_abaqus_block.py",),
+           "Abaqus ellipse of the data (the star's polar) whatever the law: one block for both"),
+    Mutant("abaqus-own-axes-swapped", "laws/export.py",
+           "TruncatedEllipse(C.mu_a_plus, C.mu_a_plus, C.mu_b_plus, C.mu_b_plus, theta=theta)",
+           "TruncatedEllipse(C.mu_b_plus, C.mu_b_plus, C.mu_a_plus, C.mu_a_plus, theta=theta)",
+           ("test_abaqus_block.py",), "an orthotropic ellipse law's own mu1 and mu2 swapped"),
+    Mutant("abaqus-asymmetry-b-from-a", "laws/export.py",
+           "asymmetry_b=abs(t[2] - t[3]) / (0.5 * (t[2] + t[3])),",
+           "asymmetry_b=abs(t[0] - t[1]) / (0.5 * (t[0] + t[1])),",
+           ("test_abaqus_block.py",), "LOSES line: the asymmetry along t_b is t_a's"),
+    Mutant("abaqus-axes-in-source-frame", "laws/export.py",
+           "t = gl.force(theta + np.array([0.0, np.pi, 0.5 * np.pi, 1.5 * np.pi])).tangential",
+           "t = gl.force(np.array([0.0, np.pi, 0.5 * np.pi, 1.5 * np.pi])).tangential",
+           ("test_abaqus_block.py",), "LOSES line: mu+- along x and y, not the principal axes"),
+    Mutant("abaqus-radial-error-absolute", "laws/export.py",
+           "rad = (e.radial(phi) - r) / r", "rad = e.radial(phi) - r",
+           ("test_abaqus_block.py",), "LOSES line: absolute, not relative, radial error"),
+    Mutant("spike-window-one-row-short", "surface/_spike_kernels.py",
+           "for ii in range(max(0, i - r), min(nr, i + r + 1)):",
+           "for ii in range(max(0, i - r), min(nr, i + r)):",
+           ("test_spike_filter.py",), "spike filter window one row short (its last row)"),
+    Mutant("spike-window-one-column-short", "surface/_spike_kernels.py",
+           "for jj in range(max(0, j - r), min(nc, j + r + 1)):",
+           "for jj in range(max(0, j - r + 1), min(nc, j + r + 1)):",
+           ("test_spike_filter.py",), "spike filter window one column short (its first column)"),
+    Mutant("spike-min-neighbours-one-fewer", "surface/_spike_kernels.py",
+           "if n < min_neighbours:", "if n < min_neighbours - 1:",
+           ("test_spike_filter.py",), "pixels with W - 1 defined neighbours judged"),
+    Mutant("spike-mad-unscaled", "surface/_spike_kernels.py",
+           "s = 1.4826 * _median(dev, n)", "s = _median(dev, n)",
+           ("test_spike_filter.py",), "robust standard deviation without the 1.4826 factor"),
+    # ---- web page as a new user meets it (issue 18, section 8)
+    Mutant("web-download-name-fixed", "web/app.py",
+           "return FileResponse(path, filename=shown)",
+           "return FileResponse(path, filename=name.rsplit(\"/\", 1)[-1])", WEB_PAGES,
+           "every law downloads as gauge.json / law.csv / law.inp again"),
+    Mutant("web-unit-always-um", "web/units.py",
+           "return Unit(pick + base, SCALE[pick])", "return Unit(\"u\" + base, 1e-6)",
+           WEB_PAGES, "the engineering-unit chooser answers um whatever the values"),
+    Mutant("web-colour-bar-um", "web/figures.py",
+           "up = choose([float(np.nanmax(np.abs(zm)))])", "up = choose(1e-6)", WEB_PAGES,
+           "the height map's colour bar in um whatever the heights"),
+    Mutant("web-risk-figure-in-m", "web/figures.py",
+           "un = choose([float(np.max(np.abs(u))) for _, u, _ in h[\"nodes\"]])",
+           "un = choose(1.0)", WEB_PAGES, "the risk figure's node displacements in m"),
+    Mutant("web-tolerance-mm-again", "web/pages_motion.py",
+           "\"tolerance\": tol}", "\"tolerance\": None if tol is None else tol * 1e-3}",
+           WEB_PAGES, "the risk form's tolerance read in mm while its label says m"),
+    Mutant("web-delete-leaves-files", "web/store.py",
+           "folder.rename(trash)", "(folder / \"job.json\").rename(trash)", WEB_PAGES,
+           "deleting a result removes its record but leaves its files"),
+    Mutant("web-token-page-path", "web/app.py",
+           "kept={}, bare=True)", "kept={}, bare=False)", WEB_PAGES,
+           "the token-refused page shows the data folder's path"),
+    Mutant("web-elapsed-restarts", "web/store.py",
+           "t0 = rec.get(\"started_at\") if running else rec.get(\"created_at\")",
+           "t0 = now", WEB_PAGES, "a job's elapsed time starts at 0 on every reload"),
+    Mutant("web-time-left-wrong", "web/store.py",
+           "left = elapsed * (1.0 - f) / f", "left = elapsed / f", WEB_PAGES,
+           "time left estimated as the whole run's time"),
+    Mutant("web-duplicate-ids", "web/templates/surface.html",
+           "values, fid='f-file-contact', form='file') }}", "values, form='file') }}",
+           WEB_PAGES,
+           "the Surface page's two forms give one id to two fields again"),
+    Mutant("web-settings-miss-max-slope", "web/labels.py",
+           "(\"max_slope\", lambda v: f\"max slope {_num(v)} deg\"),", "", WEB_PAGES,
+           "results that differ only by their max slope look alike in the lists"),
+    Mutant("web-slide-law-of-a-gauge-file", "web/tasks_motion.py",
+           "return params.get(\"law_text\") or f\"the {law.name} law of result "
+           "{spec['job']}\", name",
+           "return law.description, name", WEB_PAGES,
+           "a slide on a fitted law titled 'law of a gauge file'"),
+    Mutant("web-home-numbered-twice", "web/static/style.css",
+           ".steps { list-style: none; padding-left: 0; }", ".steps { padding-left: 0; }",
+           WEB_PAGES + WEB_BROWSER, "the home list shows '1. 1. Surface'"),
+    Mutant("web-long-cells-overflow", "web/static/style.css",
+           "main h1, main p, main td, main li, main small, main legend, .card "
+           "{ overflow-wrap: anywhere; }", "", WEB_BROWSER,
+           "long values run out of their cards at 1280 px"),
+    Mutant("web-prose-cells-nowrap", "web/static/style.css",
+           "table.numbers.prose td:nth-child(2) { white-space: normal; }", "", WEB_BROWSER,
+           "the data-quality notes kept on one line, past the card's edge"),
+    Mutant("web-title-under-toolbar", "web/static/app.js",
+           "delete fig.layout.title;", "", WEB_BROWSER,
+           "Plotly's toolbar covers the plot titles again"),
+    Mutant("web-risk-figure-static", "web/templates/result_risk.html",
+           "{% if result.figures %}{{ plot('risk-plot', result.figures.history) }}",
+           "{% if false %}", WEB_PAGES + WEB_BROWSER,
+           "the risk figure is a static image again"),
+    # ---- study statistics (issue 18)
+    Mutant("sobol-min-samples-removed", "study/sampling.py",
+           "    if samples < MIN_SOBOL_BASE:", "    if samples < 1:",
+           ("test_study_distributions.py",),
+           "a Sobol study of base sample 1 (zero-width intervals) is accepted"),
+    Mutant("sd-below-resolution-accepted", "study/sampling.py",
+           "    if sd < least:", "    if sd < 0:", ("test_study_distributions.py",),
+           "an sd that rounds every sample to the mean passes its check"),
+    Mutant("truncnorm-tail-unchecked", "study/sampling.py",
+           "    if lo > mean + MAX_TAIL_SD * sd:", "    if lo > mean + 1e6 * sd:",
+           ("test_study_distributions.py",),
+           "a truncated normal whose interval lies 50 sd from its mean is accepted"),
+    Mutant("constant-output-ranked", "study/influence.py",
+           "    if np.ptp(vals) <= CONSTANT_RTOL * np.max(np.abs(vals)):",
+           "    if np.ptp(vals) < 0:",
+           ("test_study_statistics.py", "test_study_web_summary.py"),
+           "the zero-variance branch skipped: a constant output names a parameter"),
+    Mutant("sobol-missing-not-counted", "study/influence.py",
+           "    missing = n_cases - ok.size", "    missing = 0", ("test_study_statistics.py",),
+           "an interrupted Saltelli design is not reported as waiting for its cases"),
+    Mutant("bootstrap-collapse-shown", "study/influence.py",
+           "            if not (math.isfinite(c) and c > COLLAPSED):",
+           "            if not math.isfinite(c):", ("test_study_statistics.py",),
+           "a collapsed bootstrap is printed as an interval of zero width"),
+    Mutant("bootstrap-seed-zero", "study/influence.py",
+           "conf_level=0.95, seed=int(seed) + 1)", "conf_level=0.95, seed=int(seed))",
+           ("test_study_statistics.py",),
+           "SALib's bootstrap unseeded for seed = 0: intervals change on every summary"),
+    Mutant("rank-interval-ignored", "study/influence.py",
+           "        if ci is None or ci[0] > 0.0 or ci[1] < 0.0:", "        if True:",
+           ("test_study_statistics.py",),
+           "a parameter whose rank correlation's interval holds 0 is named as mattering"),
+    Mutant("rank-min-cases-2", "study/influence.py",
+           "MIN_RANK_CASES = 5", "MIN_RANK_CASES = 2", ("test_study_statistics.py",),
+           "rank correlations of 2 cases (+-1 always) name a parameter"),
+    Mutant("grid-share-with-interval", "study/summary.py",
+           '        if st["kind"] == "grid":', "        if False:",
+           ("test_study_statistics.py",),
+           "a grid's share of ratchet gets a Wilson interval as if it were a sample"),
+    Mutant("export-drops-file-column", "study/store.py",
+           "    cols = store.columns()\n    with atomic_path(path) as tmp:",
+           '    cols = [c for c in store.columns() if c != "file"]\n'
+           "    with atomic_path(path) as tmp:",
+           ("test_study_statistics.py", "test_study_web_summary.py"),
+           "the export of a scan library without its file column"),
+    Mutant("export-file-as-resolved", "study/store.py",
+           '    if "file" not in store.inputs:\n        return rows',
+           "    if True:\n        return rows",
+           ("test_study_statistics.py", "test_study_web_summary.py"),
+           "the export names files by the resolved (server) path, not as the study does"),
+    # ---- web forms (issue 18): hostile fields, kept forms, quiet logs, self-locking pages
+    Mutant("web-whole-int-float", "web/forms.py",
+           "return _read(name, check_int, label, _read(name, number_from_text, label, t), "
+           "low, high)", "return int(float(t))", ("test_web_forms.py",),
+           "a whole-number field parsed with int(float()) (inf: OverflowError, a 500)"),
+    Mutant("web-refusal-drops-the-form", "web/common.py",
+           "values=values, kept=kept,", "values={}, kept=kept,", ("test_web_forms.py",),
+           "a refused form comes back empty (what was typed lost)"),
+    Mutant("web-refusal-drops-uploads", "web/common.py",
+           "values=values, kept=kept,", "values=values, kept={},", ("test_web_forms.py",),
+           "a refused form forgets the files it stored (the user must choose them again)"),
+    Mutant("web-bug-reraised", "web/app.py",
+           "except Exception:                  # answered (and logged) by the bug handler\n"
+           "            pass",
+           "except Exception:                  # answered (and logged) by the bug handler\n"
+           "            raise", ("test_web_forms.py",),
+           "an exception answered with a 500 goes on to the server (uvicorn logs its traceback)"),
+    Mutant("web-disconnect-is-a-bug", "web/app.py",
+           "@app.exception_handler(ClientDisconnect)", "@app.exception_handler(ConnectionError)",
+           ("test_web_forms.py",),
+           "a client gone mid-upload is handled as a bug (an internal error in the log)"),
+    Mutant("web-library-refusal-not-placed", "web/words.py",
+           "            field = field or f\n", "            field = field\n",
+           ("test_web_http.py", "test_web_forms.py"),
+           "a job refused by the library comes back without the field it is about"),
+    Mutant("web-share-the-worst-direction", "web/templates/result_derive.html",
+           "{% set share = q.load_share_above_locking_limit if surface else "
+           "d.self_locking_load_share %}", "{% set share = d.self_locking_load_share %}",
+           ("test_web_new_user.py",),
+           "the page's load share is the worst direction's while the rest say the steep facets'"),
+    Mutant("web-locked-all-not-seen", "web/templates/result_derive.html",
+           "{% set locked_all = d.self_locking and d.self_locking | length == d.directions | "
+           "length %}", "{% set locked_all = false %}", ("test_web_new_user.py",),
+           "a result locked in every direction shows anisotropy 0, admissible yes, a fit button"),
+    Mutant("x3p-unit-not-on-the-spacing", "surface/readers/x3p.py",
+           "        dx, dy = dx * factor, dy * factor\n", "        dx, dy = dx, dy\n",
+           ("test_surface_readers.py", "test_web_new_user.py"),
+           "an x3p read in another unit converts its heights but not its spacing"),
     # ---- processes, locks, workers, schedulers (issue 18, sections 3 and 4)
     Mutant("lifeline-no-death-signal", "lifeline.py",
            "return prctl is not None and prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0",
@@ -303,13 +574,14 @@ def plant(root: Path, m: Mutant) -> str | None:
     return None
 
 
-def run_tests(root: Path, tests, timeout: float) -> tuple[bool, str, float]:
-    """(passed, first failing test or '', seconds) of pytest on ``tests`` with root first."""
+def run_tests(root: Path, tests, timeout: float, extra=()) -> tuple[bool, str, float]:
+    """(passed, first failing test or '', seconds) of pytest on ``tests`` with root first
+    (``extra``: more pytest arguments)."""
     env = dict(os.environ, PYTHONPATH=str(root) + os.pathsep + os.environ.get("PYTHONPATH", ""),
                PYTHONDONTWRITEBYTECODE="1")
     env.pop("PYTEST_XDIST_WORKER", None)
     cmd = [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "-p", "no:xdist",
-           "--no-header", "-rfE", "--tb=no", *[str(TESTS / t) for t in tests]]
+           "--no-header", "-rfE", "--tb=no", *extra, *[str(TESTS / t) for t in tests]]
     t0 = time.perf_counter()
     try:
         out = subprocess.run(cmd, cwd=root, env=env, capture_output=True, text=True,
@@ -341,6 +613,9 @@ def main(argv=None) -> int:
     ap.add_argument("--no-baseline", action="store_true",
                     help="skip the run of the test files on the unmutated copy")
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per mutant")
+    ap.add_argument("--pytest-args", default="",
+                    help="more pytest arguments, e.g. \"-k 'not ctrl_c'\" to leave out the "
+                         "timed Ctrl-C tests on a loaded machine")
     ap.add_argument("--from-head", action="store_true",
                     help="mutate the committed package (git HEAD) instead of the working "
                          "tree, e.g. while others have unfinished edits in it")
@@ -370,7 +645,7 @@ def main(argv=None) -> int:
         check_import(base)
         if not a.no_baseline:
             files = sorted({t for m in todo for t in m.tests})
-            ok, first, dt = run_tests(base, files, a.timeout)
+            ok, first, dt = run_tests(base, files, a.timeout, shlex.split(a.pytest_args))
             print(f"baseline ({len(files)} test files, unmutated): "
                   f"{'pass' if ok else 'FAIL ' + first} ({dt:.0f} s)", flush=True)
             if not ok:
@@ -383,7 +658,7 @@ def main(argv=None) -> int:
             if why:
                 status, first, dt = "stale", why, 0.0
             else:
-                ok, first, dt = run_tests(root, m.tests, a.timeout)
+                ok, first, dt = run_tests(root, m.tests, a.timeout, shlex.split(a.pytest_args))
                 status = "missed" if ok else "caught"
             shutil.rmtree(root, ignore_errors=True)
             results.append({"name": m.name, "file": f"asperity/{m.path}", "status": status,

@@ -11,14 +11,29 @@ import sys
 import time
 from pathlib import Path
 
+import asperity
+
 ROOT = Path(__file__).resolve().parents[1]
 SURF = ROOT / "surfaces"
 NON_FINITE = re.compile(r"\b(NaN|-?Infinity|nan|-?inf)\b")
+#: the folder holding the package under test (the one these tests imported: the working
+#: tree's, or the mutated copy of benchmarks/mutants.py), not necessarily ROOT
+PACKAGE_PARENT = Path(asperity.__file__).resolve().parents[1]
+
+
+def package_env(env=None) -> dict:
+    """The environment of a child ``python -m asperity``: the package under test first
+    on its path (give the child a cwd that holds no other ``asperity/``)."""
+    e = dict(os.environ, **(env or {}))
+    e["PYTHONPATH"] = os.pathsep.join([str(PACKAGE_PARENT)] + [
+        p for p in e.get("PYTHONPATH", "").split(os.pathsep) if p])
+    return e
 
 
 def cli(*argv, cwd=None, timeout=120, env=None, preexec_fn=None, stdin=None):
-    """(exit status, stdout, stderr) of ``python -m asperity ARGV`` in a child process."""
-    e = dict(os.environ, **(env or {}))
+    """(exit status, stdout, stderr) of ``python -m asperity ARGV`` in a child process
+    (the package under test, whatever the cwd)."""
+    e = package_env(env)
     e.pop("ASPERITY_DEBUG", None)
     p = subprocess.run([sys.executable, "-m", "asperity", *map(str, argv)], cwd=cwd,
                        capture_output=True, text=True, timeout=timeout, env=e,
@@ -48,7 +63,8 @@ def interrupt(*argv, after=1.5, cwd=None, timeout=60):
     """Start ``asperity ARGV``, send SIGINT ``after`` seconds, and return (exit status,
     stderr, seconds from SIGINT to exit)."""
     p = subprocess.Popen([sys.executable, "-m", "asperity", *map(str, argv)], cwd=cwd,
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=package_env())
     time.sleep(after)
     if p.poll() is not None:
         out, err = p.communicate()

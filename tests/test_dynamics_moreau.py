@@ -347,5 +347,5 @@ def test_gauge_file_laws(tmp_path):
         np.testing.assert_array_equal(a.q, b.q)
         c = L.from_gauge(path, "collinear")
         assert abs(M.deflection_deg(40.0, M.slide(c, 1.0, 40.0, dt=1e-3).q_final)) < 1e-9
-    with pytest.raises(InputError, match="--law"):
+    with pytest.raises(InputError, match="kind must be one of ellipse, collinear, got 'star'"):
         L.from_gauge(path, "star")

@@ -125,7 +125,7 @@ def test_windward_no_loaded_face_is_an_input_error():
             impl([1.0], [0.0], 0.1, [1.0], [0.0, math.pi], "windward")
 
 
-def test_progress_batches_and_empty_psi():
+def test_progress_batches_and_empty_psi_refused():
     gx, gy, mu, w = random_facets(500, 4)
     seen = []
     r = compute_facet_reservoir(gx, gy, mu, w, PSI, progress=seen.append, batch=10)
@@ -134,8 +134,8 @@ def test_progress_batches_and_empty_psi():
     seen.clear()
     numpy_facet_reservoir(gx, gy, mu, w, PSI, progress=seen.append, batch=73)
     assert seen == [1.0]
-    e = compute_facet_reservoir(gx, gy, mu, w, [])
-    assert e.p.shape == (0, 2) and e.locked.shape == (0,)
+    with pytest.raises(InputError, match="psi must hold at least 1 value, got 0"):
+        compute_facet_reservoir(gx, gy, mu, w, [])    # as the spring model's reservoir
 
 
 def test_scalar_psi_and_lists():
@@ -173,19 +173,21 @@ def test_hypothesis_random_facets(n, seed, contact, uniform, m):
     (dict(gx=[0.0, np.nan]), "gx and gy must be finite"),
     (dict(gy=[0.0, np.inf]), "gx and gy must be finite"),
     (dict(gy=[0.0]), "gy must have the shape"),
-    (dict(gx=[[0.0, 1.0]]), "gx must be a 1-d array"),
+    (dict(gx=[[0.0, 1.0]]), r"gx must have 1 dimension\(s\)"),
     (dict(gx=["a", "b"]), "gx must be an array of numbers"),
-    (dict(mu=-0.1), "mu must be finite and >= 0"),
-    (dict(mu=[0.1, np.nan]), "mu must be finite and >= 0"),
+    (dict(mu=-0.1), r"mu must be in \[0, 100\], got -0.1"),
+    (dict(mu=[0.1, np.nan]), r"mu must be in \[0, 100\] \(1 facets"),
     (dict(mu=[0.1, 0.2, 0.3]), r"mu must be a number or an array of shape \(2,\)"),
     (dict(mu="x"), "mu must be a number"),
     (dict(weight=[1.0, -1.0]), "weight must be finite, >= 0"),
     (dict(weight=[0.0, 0.0]), "not all zero"),
     (dict(weight=[1.0]), r"weight must have shape \(2,\)"),
     (dict(psi=[0.0, np.nan]), "psi must be finite"),
+    (dict(psi=[[0.0, 1.0]]), "psi must be a number or a 1-d array"),
+    (dict(mu=[0.1, 1e300]), "mu must be in"),
     (dict(contact="leeward"), "contact must be one of"),
-    (dict(batch=0), "batch must be a positive integer"),
-    (dict(batch=1.5), "batch must be a positive integer"),
+    (dict(batch=0), "batch must be a whole number in"),
+    (dict(batch=1.5), "batch must be a whole number"),
     (dict(progress=3), "progress must be a callable"),
 ])
 @pytest.mark.parametrize("impl", IMPLS)

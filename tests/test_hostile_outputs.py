@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from hostile import SURF, assert_refused, cli, read_only
+from hostile import SURF, assert_refused, cli, package_env, read_only
 
 WEDGE = str(SURF / "wedge-asymmetric.toml")
 TWO_NODE = str(SURF / "two-node-spec.toml")
@@ -193,7 +193,8 @@ def test_report_out_onto_a_file_or_a_read_only_folder(tmp_path):
 
 def test_output_piped_into_head_ends_quietly():
     p = subprocess.Popen([sys.executable, "-m", "asperity", "derive", WEDGE, "--directions",
-                          "20000", "--json"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                          "20000", "--json"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         env=package_env())
     first = p.stdout.readline()
     p.stdout.close()                              # `| head -1` has read its line and left
     err = p.stderr.read().decode()

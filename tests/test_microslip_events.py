@@ -215,3 +215,52 @@ def test_a_whole_sliding_strip_says_when_its_nodes_decide_the_drift(n):
     assert two["resolution"] is None and two["asymmetry"] == pytest.approx(1e-4 / 1.0001)
     two["assembly"] = {"model": "two-node"}
     assert "ratchets by the full amount" in near_symmetric_notes(two)[0]
+
+
+def test_the_increment_is_refused_when_a_sliding_slider_stops_in_it():
+    """Guards of the one-increment path, on chains outside the uniform class (random
+    element, contact and threshold values, where sliders do stop inside segments): where a
+    slider sliding as the segment starts is not sliding in the backward-Euler increment,
+    segment_increment refuses it and leaves the state untouched (the increment would be
+    wrong: the event-by-event march ends elsewhere); and such chains are marched event by
+    event by simulate, equal to events_only."""
+    from asperity.microslip._chain_kernels import rate_statuses, solve_lcp
+    from asperity.microslip._march_kernels import segment_events, segment_increment
+    from asperity.microslip.chains import Chain, is_uniform
+    rng = np.random.default_rng(7)
+    refused = wrong = 0
+    for attempt in range(40):
+        n = int(rng.integers(3, 10))
+        kb, le = 10 ** rng.uniform(4, 8, n - 1), rng.uniform(0.5, 2, n - 1) * 0.01
+        kt, cp, cm = 10 ** rng.uniform(4, 8, n), rng.uniform(1, 20, n), rng.uniform(1, 20, n)
+        fw, aT = np.full(n, 1 / n), 1e-5
+        u, q = np.zeros(n), np.zeros(n)
+        st, w, w2, acc = np.zeros(n, np.int64), np.empty((7, n)), np.empty((7, n)), np.zeros(n)
+        for seg in range(8):
+            th = aT * le * rng.uniform(-1, 1) * 10 ** rng.uniform(1, 3.5)
+            st0 = np.zeros(n, np.int64)
+            rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, st0, w)
+            hi, lo = (cp - q) / kt, (-cm - q) / kt
+            g, v = np.zeros(n, np.int64), np.empty(n)
+            solve_lcp(kb, kt, cp, cm, th, np.zeros(n), lo, hi, g, np.empty(n), np.empty(n),
+                      np.empty(n), v, 4 * n + 20)
+            stops = any(st0[i] != 0 and g[i] != st0[i] for i in range(n))
+            u0, q0 = u.copy(), q.copy()
+            if stops:
+                took = segment_increment(kb, kt, cp, cm, fw, th, 0.0, u, q, acc, st,
+                                         np.zeros(n, np.int64), w, w2)
+                assert not took and np.array_equal(u, u0) and np.array_equal(q, q0)
+                refused += 1
+            segment_events(kb, kt, cp, cm, fw, th, 0.0, u, q, acc, st, w, 10_000, np.zeros(2),
+                           1e18)
+            if stops and np.abs(u - (u0 + v)).max() > 1e-9 * np.abs(u).max():
+                wrong += 1
+        if attempt < 5:
+            c = Chain("random", np.r_[0.0, np.cumsum(le)], kb, le, kt, cp, cm, fw, fw, aT,
+                      1.0, 1.0, {})
+            assert not is_uniform(c)
+            L = Loading(np.array([0.0, 800.0, -300.0, 0.0]), np.zeros(4))
+            a, b = simulate(c, L, 3, until_stable=False), simulate(c, L, 3, tol=EVENTS,
+                                                                   until_stable=False)
+            np.testing.assert_array_equal(a.u_end, b.u_end)
+    assert refused >= 5 and wrong >= 1, (refused, wrong)

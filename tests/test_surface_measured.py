@@ -181,3 +181,17 @@ def test_gauge_of_a_measured_surface_reloads_bit_for_bit(tmp_path, name, law):
     for a in psi:
         assert np.array_equal(again.law.force(a).p, gl.law.force(a).p)
     assert gl.fit.min_dissipation > 0
+
+
+def test_an_instrument_file_read_in_another_unit_than_it_states():
+    """unit reads the numbers of mi-1.mi (stated in micrometres) in nanometres: every
+    length 1000 times smaller; pixel_size replaces the spacing."""
+    pytest.importorskip("SurfaceTopography")
+    from asperity.surface.readers import read_surface
+    a = read_surface(DATA / "mi-1.mi")
+    b = read_surface(DATA / "mi-1.mi", unit="nm")
+    c = read_surface(DATA / "mi-1.mi", unit="nm", pixel_size=(2, 3))
+    assert (b.dx, b.dy) == pytest.approx((a.dx * 1e-3, a.dy * 1e-3), rel=1e-12)
+    np.testing.assert_allclose(b.heights, a.heights * 1e-3, rtol=1e-12, equal_nan=True)
+    assert (c.dx, c.dy) == pytest.approx((2e-9, 3e-9), rel=1e-15)
+    np.testing.assert_array_equal(np.isnan(c.heights), np.isnan(a.heights))

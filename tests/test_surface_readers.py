@@ -280,8 +280,11 @@ def test_builtin_x3p_float_offset_nan_and_inf(tmp_path):
     assert hm.n_undefined == 2
     ok = np.isfinite(raw)
     np.testing.assert_allclose(hm.heights[ok], raw[ok] + 1e-6)
-    with pytest.raises(InputError, match="x3p file states its unit"):
-        read_surface(tmp_path / "f.x3p", unit="um")
+    um = read_surface(tmp_path / "f.x3p", unit="um")     # a file written in micrometres
+    np.testing.assert_allclose(um.heights[ok], (raw[ok] + 1e-6) * 1e-6)
+    assert (um.dx, um.dy) == pytest.approx((hm.dx * 1e-6, hm.dy * 1e-6))
+    with pytest.raises(InputError, match="needs its unit: pass unit too"):
+        read_surface(tmp_path / "f.x3p", pixel_size=0.5)
 
 
 def test_builtin_x3p_errors(tmp_path):
@@ -461,3 +464,29 @@ def test_every_reader_of_the_registry_reads_its_sample(tmp_path):
         assert reader_for(str(path) + ".gz")[0].name == name
         assert all(not r.can_read(suffix) for r in READERS[:READERS.index(reader)])
         assert isinstance(read_surface(path, **opts), kind), name
+
+
+def test_x3p_written_in_micrometres_is_read_with_the_unit_given(tmp_path):
+    """An x3p whose numbers are micrometres (the standard has metres: a pixel of 2 "m") is
+    refused with the way forward, and read with unit (and pixel_size) given, whole and
+    streamed in tiles alike."""
+    from asperity.friction.derive import derive
+    from asperity.friction.tiled import derive_scan
+    from asperity.surface.facets import load_surface
+    x = np.arange(40.0)
+    raw = np.add.outer(0.4 * (x % 8) - 0.05 * (x % 8) ** 2, 0.01 * np.arange(30.0))  # um
+    p = tmp_path / "um.x3p"
+    write_x3p(p, raw, "D", inc=None, dx=2.0, dy=2.0)
+    with pytest.raises(TextureFileError, match=r"states a pixel size dx of 2 m, outside "
+                       r"\[1e-12, 1\] m: if its numbers are not in metres, pass unit"):
+        read_surface(p)
+    hm = read_surface(p, unit="um")
+    assert (hm.dx, hm.dy) == pytest.approx((2e-6, 2e-6), rel=1e-15)
+    np.testing.assert_allclose(hm.heights, raw * 1e-6, rtol=1e-15)
+    hm = read_surface(p, unit="um", pixel_size=(0.5, 0.25))
+    assert (hm.dx, hm.dy) == pytest.approx((0.5e-6, 0.25e-6), rel=1e-15)
+    for kw in ({"unit": "um"}, {"unit": "um", "pixel_size": 0.5}):
+        whole = derive(load_surface(p, **kw), n_directions=8)
+        tiled = derive_scan(p, **kw, n_directions=8, tile_lines=7)
+        np.testing.assert_allclose(tiled.reservoir.p, whole.reservoir.p, rtol=1e-12,
+                                   atol=1e-15)

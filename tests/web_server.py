@@ -3,6 +3,7 @@ free port and a data folder of the test's, stopped at the end (shared by the bro
 HTTP tests)."""
 from __future__ import annotations
 
+import importlib.util
 import os
 import signal
 import subprocess
@@ -12,6 +13,9 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+#: the folder holding the package under test (a mutant's copy in benchmarks/mutants.py):
+#: the server starts there, so that ``-m asperity`` imports that package, not the tree's
+PACKAGE_ROOT = Path(importlib.util.find_spec("asperity").origin).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data" / "surfaces"
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -24,9 +28,10 @@ class Server:
     def __init__(self, data_dir, *args, timeout: float = 60.0):
         cmd = [sys.executable, "-m", "asperity", "serve", "--port", "0", "--data-dir",
                str(data_dir), *args]
+        self.data_dir = Path(data_dir)
         env = {**os.environ, "PYTHONUNBUFFERED": "1"}
         self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                     text=True, env=env, cwd=str(ROOT))
+                                     text=True, env=env, cwd=str(PACKAGE_ROOT))
         self.err: list[str] = []
         threading.Thread(target=self._drain, daemon=True).start()
         line = self._first_line(timeout)

@@ -18,8 +18,9 @@ def add_parser(sub) -> None:
                     "way: p is the point on the ray of the middle of D's flat edge and the "
                     "segment's ends are given. Exports: --csv (psi_deg,p_a,p_b in the "
                     "principal frame, t_a along the gauge's principal direction) and --abaqus "
-                    "(*FRICTION, ANISOTROPIC block of the best symmetric orthotropic ellipse, "
-                    "with a comment line stating what it loses).",
+                    "(*FRICTION, ANISOTROPIC block of the best symmetric orthotropic ellipse of "
+                    "the gauge's own law, with comment lines naming the law and its source and "
+                    "stating what the ellipse loses).",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("gauge", metavar="GAUGE.json", help="gauge file written by asperity fit")
     p.add_argument("--psi", type=float, metavar="DEG", help="sliding direction in degrees")
@@ -30,7 +31,7 @@ def add_parser(sub) -> None:
                    help="directions of the CSV table (4 to 1000000)")
     p.add_argument("--abaqus", metavar="FILE.inp",
                    help="write an Abaqus *FRICTION, ANISOTROPIC block (symmetric orthotropic "
-                        "approximation)")
+                        "approximation of the gauge's own law)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False),
                                        ("--abaqus", "abaqus", False)],
                    inputs=["gauge"])

@@ -36,6 +36,9 @@ def add_parser(sub) -> None:
                    help="cases per task (default: sized to about 1 s of work per task)")
     p.add_argument("--retry-failed", action="store_true",
                    help="run the stored failed cases again (e.g. after fixing a scan)")
+    p.add_argument("--restart", action="store_true",
+                   help="discard the cases stored in DIR and start over (needed when the "
+                        "study file or a file it names changed since DIR was started)")
     p.add_argument("--export", metavar="FILE.parquet|FILE.csv", default=None,
                    help="also write one row per case (case_id, inputs, status, outputs)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
@@ -57,7 +60,7 @@ def run(args) -> dict:
     if os.path.isdir(target):
         _check_study_folder(target)
         if args.output is not None or args.scheduler or workers is not None or batch \
-                or args.retry_failed:
+                or args.retry_failed or args.restart:
             raise InputError(f"{target} is a study folder: it is summarised, not run; give "
                              f"the study file to run or resume it")
         summary = summarise_folder(target, plot=args.plot)
@@ -67,7 +70,8 @@ def run(args) -> dict:
             raise InputError(f"{target!r}: give a study file (.toml) or a study folder")
         summary = run_study_file(target, args.output, scheduler=args.scheduler,
                                  workers=workers, batch_size=batch,
-                                 retry_failed=args.retry_failed, plot=args.plot)
+                                 retry_failed=args.retry_failed, plot=args.plot,
+                                 restart=args.restart)
         folder = os.path.dirname(summary["store"])
     if args.export:
         summary["export"] = {"path": args.export, "rows": export_folder(folder, args.export)}
@@ -100,6 +104,9 @@ def main(args) -> int:
     if "run" in summary:
         r = summary["run"]
         text = (f"ran {r['ran']} cases in {r['seconds']:.1f} s ({r['where']})\n" + text)
+        if args.restart:
+            text = (f"--restart: discarded the {r['discarded']} cases stored in "
+                    f"{os.path.dirname(summary['store'])}\n" + text)
     written = [("summary", os.path.join(os.path.dirname(summary["store"]), "summary.md"))]
     written += [("figure", f) for f in summary.get("figures", [])]
     if "export" in summary:

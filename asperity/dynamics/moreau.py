@@ -281,7 +281,7 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
     g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
     n_steps = int(round(t_end / dt))
     check_work(n_steps, MAX_STEPS, "this simulation (t_end / dt)", "raise dt or lower t_end")
-    record_every = check_int("record_every", record_every, 1, None)
+    record_every = check_int("record_every", record_every, 1, int(MAX_STEPS))
     check_memory((n_steps // record_every + 2) * (1 + 2 * ndof) * 8.0,
                  f"recording {n_steps // record_every + 2:.3g} states",
                  "raise record_every (the CLI records at most 20000 rows)")

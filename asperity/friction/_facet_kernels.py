@@ -274,9 +274,9 @@ def facet_sweep(gx, gy, a, mu, mu_uniform, w, cs, ss, mode, tol, stol,
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def prepare(gx, gy, mu, w, a):
+def prepare(gx, gy, mu, w, a, mu_max):
     """Fill ``a = 1/sqrt(1 + gx*gx + gy*gy)`` (rounded as the NumPy reference) and count
-    (non-finite gradients, bad mu (non-finite or < 0), bad weights (non-finite or < 0),
+    (non-finite gradients, bad mu (not in [0, mu_max]), bad weights (non-finite or < 0),
     positive weights).  ``mu`` has one element or n."""
     n = gx.size
     bad_g = 0
@@ -296,7 +296,7 @@ def prepare(gx, gy, mu, w, a):
     bad_mu = 0
     for i in prange(mu.size):
         m = mu[i]
-        if not (math.isfinite(m) and m >= 0.0):
+        if not (m >= 0.0 and m <= mu_max):
             bad_mu += 1
     return bad_g, bad_mu, bad_w, npos
 

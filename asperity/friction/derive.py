@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import __version__
-from ..errors import InputError, check_int
+from ..errors import InputError, check_choice, check_instance, check_int
 from .diagnostics import (
     DERIVATIVE_STEP,
     SURFACE_DERIVATIVE_STEP,
@@ -26,7 +26,7 @@ from .diagnostics import (
     locking_share,
 )
 from .faces import compute_faces_reservoir, faces_source
-from .reservoir import Reservoir, check_contact, directions, locked_runs
+from .reservoir import Reservoir, check_contact, check_progress, directions, locked_runs
 
 METHODS = ("closed-form", "springs")
 
@@ -64,12 +64,13 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
     TriangleMesh is taken as its facets (default friction, mean slope removed).
     """
     texture = faces_source(texture)
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable or None, got {progress!r}")
+    check_progress(progress)
     check_contact(contact)
-    if method not in METHODS:
-        raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    check_choice("method", method, METHODS)
     n = check_int("directions", n_directions, 8, 100_000)
+    if model is not None:
+        from ..texture.spring_model import SpringModel
+        check_instance("model", model, SpringModel)
     surface = getattr(texture, "kind", "") == "surface"
     if surface and method != "closed-form":
         raise InputError("method springs needs a wedge texture; surfaces use the facet closed form")
@@ -207,11 +208,13 @@ def format_text(d: Derivation) -> str:
         return "inf (self-locking)" if not math.isfinite(x) else f"{x:.6f}"
     tex = d.texture
     surface = getattr(tex, "kind", "") == "surface"
+    locked_all = len(d.self_locking) == d.reservoir.psi.size
     if surface:
         th = d.principal_direction_deg
         head = [tex.describe(),
                 f"contact: {d.contact}   directions: {d.reservoir.psi.size}",
-                f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
+                "principal direction t_a, anisotropy: none (no direction slides)" if locked_all
+                else f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
                 f"from +x; anisotropy (max T - min T)/mean T = {d.anisotropy:.4f}"]
         dirs = [f"towards {(th + k) % 360:.1f} deg" for k in (0, 180, 90, 270)]
     else:
@@ -226,9 +229,14 @@ def format_text(d: Derivation) -> str:
              f"  mu_b- (slide {dirs[3]}) = {f(d.axes['mu_b_minus'])}",
              ""]
     a = d.admissibility
-    lines.append(f"admissible (p.s >= 0 for all directions): {'yes' if a.admissible else 'NO'}"
-                 + (f"  (min p.s = {a.min_dissipation:.4g} at psi = {a.psi_min_deg:g} deg)"
-                    if math.isfinite(a.min_dissipation) else ""))
+    if locked_all:
+        lines.append("admissible (p.s >= 0 for all directions): nothing to check (no "
+                     "direction slides)")
+    else:
+        lines.append(f"admissible (p.s >= 0 for all directions): "
+                     f"{'yes' if a.admissible else 'NO'}"
+                     + (f"  (min p.s = {a.min_dissipation:.4g} at psi = {a.psi_min_deg:g} deg)"
+                        if math.isfinite(a.min_dissipation) else ""))
     s = d.associativity
     if not s.defined.any():
         lines.append("associated (L = dT/dpsi): not defined (no direction with a finite, "
@@ -241,11 +249,12 @@ def format_text(d: Derivation) -> str:
         lines.append(f"SELF-LOCKING in {len(d.self_locking)} of {d.reservoir.psi.size} directions, "
                      f"psi in {locked_runs(d.reservoir)} ({'facet' if surface else 'face'} {', '.join(faces)}): "
                      "the tips cannot climb, friction is unbounded there")
-        lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g} % "
-                     "of the load")
-        if surface:
+        if surface:                  # one load share: the facets steeper than the limit
             from .quality import locking_advice
             lines += locking_advice(d)
+        else:
+            lines.append(f"  faces that cannot be climbed carry up to {100 * d.locking_share:.3g}"
+                         " % of the load")
     else:
         lines.append("self-locking: none")
     if d.reservoir.set_valued.any():

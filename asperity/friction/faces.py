@@ -32,7 +32,15 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .reservoir import LEVEL_SLOPE_TOL, LOCK_TOL, NO_WINDWARD_FACE, Reservoir, check_contact
+from .reservoir import (
+    LEVEL_SLOPE_TOL,
+    LOCK_TOL,
+    NO_WINDWARD_FACE,
+    Reservoir,
+    check_contact,
+    check_progress,
+    check_psi,
+)
 
 
 def compute_face_reservoir(gradient, mu, weight, psi, contact: str = "all-faces") -> Reservoir:
@@ -50,15 +58,15 @@ def compute_face_reservoir(gradient, mu, weight, psi, contact: str = "all-faces"
     g = np.atleast_2d(np.asarray(gradient, dtype=float))
     mu = np.atleast_1d(np.asarray(mu, dtype=float))
     w = np.atleast_1d(np.asarray(weight, dtype=float))
-    psi = np.atleast_1d(np.asarray(psi, dtype=float))
+    psi = check_psi(psi)
     if g.ndim != 2 or g.shape[1] != 2:
         raise InputError(f"gradient must have shape (n, 2), got {g.shape}")
     if mu.shape != (g.shape[0],) or w.shape != (g.shape[0],):
         raise InputError(f"mu and weight must have shape ({g.shape[0]},), got {mu.shape} and {w.shape}")
     if np.any(w < 0) or not np.any(w > 0):
         raise InputError("weight must be >= 0 and not all zero")
-    if not (np.all(np.isfinite(g)) and np.all(np.isfinite(mu)) and np.all(np.isfinite(psi))):
-        raise InputError("gradient, mu and psi must be finite")
+    if not (np.all(np.isfinite(g)) and np.all(np.isfinite(mu))):
+        raise InputError("gradient and mu must be finite")
 
     sx, sy = np.cos(psi)[:, None], np.sin(psi)[:, None]          # (m, 1)
     gx, gy = g[None, :, 0], g[None, :, 1]                         # (1, n)
@@ -107,6 +115,7 @@ def compute_faces_reservoir(faces, psi, contact: str = "all-faces", progress=Non
     faces (wedge textures), the parallel streamed kernel for many (surfaces); both give
     the same result.  ``progress(fraction)`` is called during long kernel runs."""
     n = faces.gradient.shape[0]
+    check_progress(progress)
     if n < FACET_KERNEL_MIN_FACES:
         return compute_face_reservoir(faces.gradient, faces.mu, faces.weight, psi, contact)
     from .facet_reservoir import compute_facet_reservoir

@@ -17,12 +17,19 @@ classified differently by the kernel, which evaluates ``fz`` as ``(a q - mu g.s)
 """
 from __future__ import annotations
 
-import operator
-
 import numpy as np
 
-from ..errors import InputError
-from .reservoir import LEVEL_SLOPE_TOL, LOCK_TOL, NO_WINDWARD_FACE, Reservoir, check_contact
+from ..errors import InputError, check_array, check_int, check_mu, is_array
+from .reservoir import (
+    LEVEL_SLOPE_TOL,
+    LOCK_TOL,
+    MU_MAX,
+    NO_WINDWARD_FACE,
+    Reservoir,
+    check_contact,
+    check_progress,
+    check_psi,
+)
 
 #: facets per cache chunk of the numba kernel (5 float64 streams of 1024 = 40 kB: L1/L2)
 CHUNK = 1024
@@ -30,6 +37,8 @@ CHUNK = 1024
 BATCH_WORK = 1 << 30
 #: below this many facets per thread the kernel splits directions instead of facets
 MIN_FACETS_PER_WORKER = 8192
+#: most directions per kernel call a caller may ask for
+MAX_BATCH = 1 << 31
 #: facet-directions per kernel call (~0.05-0.2 s): a pass runs in pieces, and Ctrl-C is
 #: honoured between them
 PIECE_WORK = 1 << 26
@@ -49,17 +58,9 @@ class _Facets:
         w = _vector("weight", weight)
         if w.shape != (n,):
             raise InputError(f"weight must have shape ({n},), got {w.shape}")
-        mu_uniform = np.ndim(mu) == 0
+        mu_uniform = not is_array(mu)
         if mu_uniform:
-            if isinstance(mu, (str, bytes, bool, np.bool_)) or mu is None:
-                raise InputError(f"mu must be a number or an array of shape ({n},), "
-                                 f"got {mu!r}")
-            try:
-                m = float(mu)
-            except (TypeError, ValueError):
-                raise InputError(f"mu must be a number or an array of shape ({n},), "
-                                 f"got {mu!r}") from None
-            mu_arr = np.array([m])
+            mu_arr = np.array([check_mu("mu", mu, MU_MAX)])
         else:
             mu_arr = _vector("mu", mu)
             if mu_arr.shape != (n,):
@@ -72,10 +73,10 @@ class _Facets:
         if engine == "numba":
             from ._facet_kernels import prepare
             a = np.empty(n)
-            bad_g, bad_mu, bad_w, npos = prepare(gx, gy, mu_arr, w, a)
+            bad_g, bad_mu, bad_w, npos = prepare(gx, gy, mu_arr, w, a, MU_MAX)
         else:
             bad_g = int(np.count_nonzero(~(np.isfinite(gx) & np.isfinite(gy))))
-            bad_mu = int(np.count_nonzero(~(np.isfinite(mu_arr) & (mu_arr >= 0))))
+            bad_mu = int(np.count_nonzero(~((mu_arr >= 0) & (mu_arr <= MU_MAX))))
             bad_w = int(np.count_nonzero(~(np.isfinite(w) & (w >= 0))))
             npos = int(np.count_nonzero(w > 0))
             a = np.empty(n)
@@ -88,7 +89,7 @@ class _Facets:
         if bad_g:
             raise InputError(f"gx and gy must be finite ({bad_g} facets are not)")
         if bad_mu:
-            raise InputError("mu must be finite and >= 0")
+            raise InputError(f"mu must be in [0, {MU_MAX:g}] ({bad_mu} facets are not)")
         if bad_w or npos == 0:
             raise InputError("weight must be finite, >= 0 and not all zero")
         if npos == n:
@@ -117,39 +118,12 @@ class _Facets:
 
 
 def _vector(name, x) -> np.ndarray:
-    try:
-        v = np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be an array of numbers") from None
-    if v.ndim != 1:
-        raise InputError(f"{name} must be a 1-d array, got shape {v.shape}")
-    return v
-
-
-def _psi(psi) -> np.ndarray:
-    try:
-        p = np.atleast_1d(np.asarray(psi, dtype=np.float64))
-    except (TypeError, ValueError):
-        raise InputError("psi must be an array of numbers (radians)") from None
-    if p.ndim != 1:
-        raise InputError(f"psi must be a number or a 1-d array, got shape {p.shape}")
-    if not np.isfinite(p).all():
-        raise InputError("psi must be finite")
-    return p
+    return check_array(name, x, ndim=1, finite=False)      # the kernel counts non-finite
 
 
 def _check_callables(progress, batch):
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable or None, got {progress!r}")
-    if batch is not None:
-        try:
-            b = operator.index(batch)
-        except TypeError:
-            raise InputError(f"batch must be a positive integer or None, got {batch!r}") from None
-        if b < 1:
-            raise InputError(f"batch must be a positive integer or None, got {batch!r}")
-        return b
-    return None
+    check_progress(progress)
+    return None if batch is None else check_int("batch", batch, 1, MAX_BATCH)
 
 
 def _auto_batch(n: int, m: int) -> int:
@@ -266,7 +240,7 @@ def compute_facet_reservoir(gx, gy, mu, weight, psi, contact: str = "all-faces",
     check_contact(contact)
     b = _check_callables(progress, batch)
     fac = _Facets(gx, gy, mu, weight)
-    psi = _psi(psi)
+    psi = check_psi(psi)
     return _run(fac, psi, contact, progress, b, _numba_pass)
 
 
@@ -360,5 +334,5 @@ def numpy_facet_reservoir(gx, gy, mu, weight, psi, contact: str = "all-faces", *
     check_contact(contact)
     b = _check_callables(progress, batch)
     fac = _Facets(gx, gy, mu, weight, engine="numpy")
-    psi = _psi(psi)
+    psi = check_psi(psi)
     return _run(fac, psi, contact, progress, b, _numpy_pass)

@@ -73,7 +73,7 @@ def locking_advice(d) -> list[str]:
     fw = None if q is None else q["finite_with"]
     if fw is None:
         return []
-    return [f"  that load sits on {fw['facets_dropped']} facets steeper than "
+    return [f"  it comes from {fw['facets_dropped']} facets steeper than the locking limit "
             f"{fw['max_slope_deg']:g} deg ({_pct(fw['load_share'])} of the load), typically "
             "instrument artefacts at dropout edges and spikes, slopes the instrument cannot "
             "have measured;",

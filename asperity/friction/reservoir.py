@@ -9,11 +9,12 @@ self-locking and set-valued flags.  The contact regimes and the tolerances that 
 """
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, _kind, _show, check_array, check_choice, check_range
 
 
 @dataclass(frozen=True)
@@ -41,6 +42,10 @@ NO_WINDWARD_FACE = ("windward contact: in some sliding direction every face desc
                     "is climbed (a tilted surface? remove the tilt, e.g. --detrend slope)")
 #: vertical force share below which a face is taken as self-locking
 LOCK_TOL = 1e-12
+#: largest |psi| (rad) taken as a sliding direction (beyond, cos and sin lose precision)
+MAX_PSI = 1e4
+#: largest local friction coefficient of a face (as errors.check_mu)
+MU_MAX = 100.0
 
 
 @dataclass(frozen=True)
@@ -92,11 +97,35 @@ class Reservoir:
         return out
 
 
-def check_contact(contact: str) -> str:
+def check_contact(contact: str, name: str = "contact") -> str:
     """Return ``contact`` if it is a known contact regime, else raise InputError."""
-    if contact not in CONTACT_REGIMES:
-        raise InputError(f"contact must be one of {', '.join(CONTACT_REGIMES)}, got {contact!r}")
-    return contact
+    return check_choice(name, contact, CONTACT_REGIMES)
+
+
+def check_progress(progress):
+    """``progress`` if it is None or a callable(fraction), else InputError."""
+    if progress is not None and not callable(progress):
+        raise InputError(f"progress must be a callable or None, got {_show(progress)} "
+                         f"({_kind(progress)})")
+    return progress
+
+
+def check_psi(psi, name: str = "psi") -> np.ndarray:
+    """Sliding directions (rad): a number or a 1-d array of at least one finite angle within
+    +-MAX_PSI, as a (m,) float array; else one InputError line naming ``name``."""
+    if isinstance(psi, (numbers.Real, np.generic)):
+        return np.array([check_range(name, psi, -MAX_PSI, MAX_PSI, unit="rad")])
+    if psi is None or isinstance(psi, (str, bytes, dict)):
+        raise InputError(f"{name} must be a number or a 1-d array of angles (rad), got "
+                         f"{_show(psi)} ({_kind(psi)})")
+    a = np.atleast_1d(check_array(name, psi, min_size=1))
+    if a.ndim != 1:
+        raise InputError(f"{name} must be a number or a 1-d array of angles, got shape {a.shape}")
+    far = np.abs(a) > MAX_PSI
+    if far.any():
+        raise InputError(f"{name} must be angles within +-{MAX_PSI:g} rad, got "
+                         f"{a[far][0]:g} at index {int(np.flatnonzero(far)[0])}")
+    return a
 
 
 def directions(n: int) -> np.ndarray:

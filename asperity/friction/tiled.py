@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_int, check_mu
+from ..errors import InputError, check_choice, check_instance, check_int, check_mu
 from ..progress import report
 from .tile_tasks import run_tiles
 
@@ -115,24 +115,31 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
     ``other_contact``: also the reservoir of that regime (``d.texture.other``);
     ``source``: the file already opened by :func:`asperity.surface.tiles.open_scan`."""
     from ..surface import quality as Q
-    from ..surface.facets import DEFAULT_MU, DETREND, _check_options
+    from ..surface.facet_checks import check_options
+    from ..surface.facets import DEFAULT_MU, DETREND
     from ..surface.friction_map import MAX_MU
     from ..surface.tiles import TilePlan, open_friction_map, open_scan
     from .reservoir import check_contact
     check_choice("detrend", detrend, tuple(DETREND))
-    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, False, None)
+    rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, False, None)
     despike = Q.check_despike(despike, despike_window)
     max_slope = Q.check_max_slope(max_slope)
     check_contact(contact)
     if other_contact is not None:
-        check_contact(other_contact)
+        check_contact(other_contact, "other_contact")
     n = check_int("directions", n_directions, 8, 100_000)
+    if client is not None:
+        from distributed import Client
+        check_instance("client", client, Client, "dask.distributed Client")
+    if source is not None:
+        from ..surface.readers._lines import LineSource
+        check_instance("source", source, LineSource, "scan opened by open_scan")
     if mu is not None and friction_map is not None:
         raise InputError("give mu or a friction map, not both")
     if friction_map is None:
         mu = check_mu("mu", DEFAULT_MU if mu is None else mu, MAX_MU)
-    src = source or open_scan(path, unit=unit, pixel_size=pixel_size,
-                              height_scale=height_scale)
+    src = source if source is not None else open_scan(
+        path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
     if min(src.shape) < 2:
         raise InputError(f"{src.source}: a height map needs at least 2 x 2 pixels, got "
                          f"{src.shape}")

@@ -335,8 +335,9 @@ def fit_derivation(d, kind: str = "star", holdout: bool = True) -> GaugeLaw:
     from ..friction.derive import Derivation
     check_instance("derivation", d, Derivation)
     from ..friction.faces import compute_reservoir
-    if kind not in LAW_KINDS:
-        raise InputError(f"law must be one of {', '.join(LAW_KINDS)}, got {kind!r}")
+    from ..errors import check_choice, check_flag
+    check_choice("kind", kind, LAW_KINDS)
+    check_flag("holdout", holdout)
 
     def evaluate(psi):
         return compute_reservoir(d.texture, psi, d.contact)

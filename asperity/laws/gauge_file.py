@@ -87,7 +87,8 @@ def write_gauge(path, gl: GaugeLaw) -> dict:
     """Write the gauge file of ``gl`` atomically; returns its JSON object."""
     from ..errors import check_instance
     check_instance("path", path, (str, Path), "file name")
-    from ..io import write_text_atomic
+    from ..io import check_output, write_text_atomic
+    check_output(path, "path")
     obj = to_dict(gl)
     try:
         text = dumps(obj)

@@ -33,7 +33,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError, as_number, check_range
+from ..errors import InputError, as_number, check_choice, check_range
 from .convex_set import ConvexSet
 from .geometry import points_array, polar_angle, psi_array, unit
 from .sets import Disc, StarSet, TruncatedEllipse
@@ -108,8 +108,9 @@ class PlanarLaw:
 
     def __post_init__(self):
         from ..errors import check_instance, check_text
-        check_text("name", self.name, 64)
+        check_choice("name", self.name, LAW_NAMES)
         check_instance("law", self.law, WalkerLeineLaw)
+        check_text("description", self.description, 1000)
         C, D = self.law.C, self.law.D
         assoc = C is D or (type(C) is type(D) and C == D and not isinstance(C, ConvexSet))
         if not assoc:
@@ -216,6 +217,12 @@ def collinear_law(C=None, mu1: float | None = None, mu2: float | None = None) ->
                      f"function of the {what}")
 
 
+def _directions(n) -> int:
+    """Directions of a star law's fit: as ``derive``'s."""
+    from ..errors import check_int
+    return check_int("directions", n, 8, 100_000)
+
+
 @lru_cache(maxsize=4)
 def _windward_fit(alpha_deg: float, beta_deg: float, mu_alpha: float, mu_beta: float,
                   directions: int):
@@ -231,8 +238,9 @@ def windward_star_law(alpha_deg: float = 30.0, beta_deg: float = 30.0, mu_alpha:
                       mu_beta: float = 0.3, directions: int = 360) -> PlanarLaw:
     """The star-shaped Walker-Leine law fitted to a windward (rigid-asperity) wedge texture
     (non-convex C, convex D with a flat edge: set-valued along the ridges)."""
-    gl = _windward_fit(float(alpha_deg), float(beta_deg), float(mu_alpha), float(mu_beta),
-                       int(directions))
+    from ..texture.wedges import WedgeTexture
+    t = WedgeTexture(alpha_deg, beta_deg, mu_alpha, mu_beta)          # checks the numbers
+    gl = _windward_fit(t.alpha_deg, t.beta_deg, t.mu_alpha, t.mu_beta, _directions(directions))
     return PlanarLaw("star", gl.law,
                      f"star-shaped law of the windward wedge texture alpha = {alpha_deg:g}, "
                      f"beta = {beta_deg:g} deg, mu = {mu_alpha:g}/{mu_beta:g}")
@@ -247,7 +255,7 @@ def star_law(mu1: float, mu2: float, directions: int = 360) -> PlanarLaw:
     (fit_star: C the polygon, D integrated from the mapped sliding rule)."""
     from .fitting import ReservoirData, fit_star
     mu1, mu2 = _mu("mu1", mu1), _mu("mu2", mu2)
-    gl = _windward_fit(30.0, 30.0, 0.3, 0.3, int(directions))
+    gl = _windward_fit(30.0, 30.0, 0.3, 0.3, _directions(directions))
     data = gl.data
     C = gl.law.C
     sa = mu1 / float(C.radial(np.array([0.0]))[0])
@@ -273,14 +281,11 @@ def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
         from .gauge_file import read_gauge
         gauge = read_gauge(gauge)
     own = "ellipse" if gauge.kind == "truncated-ellipse" else "star"
-    kind = own if kind is None else kind
+    kind = own if kind is None else check_choice("kind", kind, (own, "collinear"))
     src = gauge.source.get("texture", {})
     what = src.get("kind", "?") if isinstance(src, dict) else "?"
     if kind == "collinear":
         return collinear_law(gauge.law.C)
-    if kind != own:
-        raise InputError(f"--law must be {own} or collinear for a {gauge.kind} gauge file, "
-                         f"got {kind}")
     if own == "ellipse":
         return PlanarLaw("truncated-ellipse", gauge.law,
                          f"truncated ellipse of a gauge file ({what}, {gauge.source.get('contact')})")

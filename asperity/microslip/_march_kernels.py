@@ -9,13 +9,14 @@ along a segment:
   (which sliders at a threshold slide, which stick), advance to the next event, repeat;
 * in one increment (:func:`segment_increment`): the backward-Euler increment to the
   segment's end is the exact end state when no slider stops sliding inside the segment (the
-  set of sliding sliders only grows).  It is taken when that is certain: the external force
-  does not change over the segment (then no slider of a uniform chain stops inside it: a
-  theorem for the sliders of the end zones, and 0 stops in 453 364 events of fuzzed chains
-  and load histories), the sliders sliding at the start all slip in the increment, some
-  slider sticks (else the chain's translation is a rate's least motion), and all that
-  slipped still slide at its end (the rate problem there); else the segment is marched
-  event by event.
+  set of sliding sliders only grows).  The wrapper takes it only where that holds: a
+  uniform chain (:func:`asperity.microslip.chains.is_uniform`: the two-node model, the
+  strip) under a segment whose external force does not change -- a theorem for the sliders
+  of the end zones, and no stop in 453 364 events of fuzzed uniform chains and histories
+  (random chains do stop: 8 081 stops in 8 255 segments) -- and after a check: the
+  sliders sliding at the start all slip in the increment, some slider sticks (else the
+  chain's translation is a rate's least motion), and all that slipped still slide at its
+  end (the rate problem there); else the segment is marched event by event.
 
 Array-in/array-out loops, no Python objects, no validation; failures come back as the
 status codes of :mod:`._chain_kernels`.

@@ -86,8 +86,8 @@ class MicroslipTolerances:
             checked[name] = check_int(f"tol.{name}", getattr(self, name), 1, 100_000)
         checked["prox_r_factor"] = check_range("tol.prox_r_factor", self.prox_r_factor, 0.0,
                                                2.0, low_open=True, high_open=True)
-        if not isinstance(self.events_only, (bool, np.bool_)):
-            raise InputError(f"tol.events_only must be True or False, got {self.events_only!r}")
+        from ..errors import check_flag
+        checked["events_only"] = check_flag("tol.events_only", self.events_only)
         for name, value in checked.items():
             object.__setattr__(self, name, value)
 
@@ -248,6 +248,30 @@ def strip_chain(h, E, p, l, k_t, alpha_T, n, mu_plus, mu_minus) -> Chain:
                   np.full(n - 1, dx), k_t * trib, mp, mm, Nn, trib / l, alpha_T,
                   {"h": h, "E": E, "p": p, "l": l, "k_t": k_t, "alpha_T": alpha_T, "n": n,
                    "normal_loads": Nn})
+
+
+def is_uniform(chain: Chain) -> bool:
+    """The chain is uniform: every element has the same kb le (so the same thermal force),
+    and each node's contact stiffness and thresholds are in one proportion to its tributary
+    length (the half-lengths of its elements), as in the two-node model and the strip.
+    Along a load segment whose external force does not change, no slider of such a chain
+    stops sliding inside the segment, so the march takes the segment in one increment
+    (:mod:`._march_kernels`); other chains are marched event by event."""
+    memo = chain.__dict__.get("_uniform")
+    if memo is not None:
+        return memo
+    kl = chain.kb * chain.le
+    trib = np.zeros(chain.n)
+    trib[:-1] += 0.5 * chain.le
+    trib[1:] += 0.5 * chain.le
+
+    def even(a):
+        a = a[np.isfinite(a)] if np.isinf(a).any() else a
+        return a.size == 0 or bool(np.ptp(a) <= 1e-9 * np.abs(a).max())
+    ok = bool(even(kl) and all(even(a / trib) for a in (chain.kt, chain.cp, chain.cm))
+              and all(np.isinf(a).all() or np.isfinite(a).all() for a in (chain.cp, chain.cm)))
+    chain.__dict__["_uniform"] = ok
+    return ok
 
 
 def elastic_limit(chain: Chain, sign: float = 1.0) -> float:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..friction.sources import load_texture_or_surface
+from ..paths import named_path
 from .assembly import Assembly, AssemblyFileError
 
 
@@ -62,10 +63,24 @@ def friction_from_texture(texture, contact: str = "all-faces", slip_axis_deg=Non
     T = np.where(res.locked, np.inf, res.tangential)
     L = np.where(res.locked, np.nan, res.lateral)
     plus, minus = (1, 0) if textured == "part" else (0, 1)
+    _check_some_friction(T[plus], T[minus], source_name or "the texture")
     detail = {"slip_axis_deg": psi_deg, "slip_axis": axis, "textured": textured,
               "contact": contact, "texture": source_name or texture.to_dict().get("kind", ""),
               "lateral_plus": _num(L[plus]), "lateral_minus": _num(L[minus])}
     return Friction(float(T[plus]), float(T[minus]), "texture", detail)
+
+
+def _check_some_friction(mu_plus: float, mu_minus: float, name: str) -> None:
+    """A texture without friction along the slip axis (local friction 0: its forces cancel
+    to rounding, 1e-18 either side of 0) is refused as such, not as a coefficient out of
+    range."""
+    from ..errors import InputError
+    from .limits import MU
+    if min(mu_plus, mu_minus) < MU[0]:
+        raise InputError(f"{name} gives no friction along the slip axis (mu+ = "
+                         f"{max(mu_plus, 0.0):.3g}, mu- = {max(mu_minus, 0.0):.3g}, less than "
+                         f"{MU[0]:g}): a part on it is held by nothing; give the faces a local "
+                         f"friction mu above 0")
 
 
 def friction_from_gauge(law, slip_axis_deg=None, textured: str = "support",
@@ -87,7 +102,9 @@ def friction_from_gauge(law, slip_axis_deg=None, textured: str = "support",
 
 
 def resolve_friction(asm: Assembly) -> Friction:
-    """The friction of an assembly file's [friction] table (files relative to it)."""
+    """The friction of an assembly file's [friction] table (file names relative to it,
+    ``~`` expanded: :func:`asperity.paths.named_path`, as a study that names the assembly
+    finds them)."""
     fr = asm.friction_table
     if "mu_plus" in fr:
         return Friction(float(fr["mu_plus"]), float(fr["mu_minus"]), "explicit")
@@ -95,10 +112,10 @@ def resolve_friction(asm: Assembly) -> Friction:
     textured = fr.get("textured", "support")
     if "gauge" in fr:
         from ..laws.gauge_file import read_gauge
-        path = asm.folder / fr["gauge"]
+        path = named_path(fr["gauge"], asm.folder)
         return friction_from_gauge(read_gauge(path), axis, textured, str(path))
     if "texture" in fr:
-        path = asm.folder / fr["texture"]
+        path = named_path(fr["texture"], asm.folder)
         return friction_from_texture(load_texture_or_surface(path), fr.get("contact", "all-faces"),
                                      axis, textured, str(path))
     raise AssemblyFileError("no friction: give a texture on the command line, or mu_plus and "

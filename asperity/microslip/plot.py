@@ -6,15 +6,14 @@ from __future__ import annotations
 import numpy as np
 
 
-def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int = 6,
-                          substeps: int = 24) -> None:
-    """Node displacement against cycles (Antoni et al. figure 3 redrawn from the model,
-    temperature on a second axis); for a strip also the displacement profiles u(x) at the
-    end of each cycle and at the hottest point of the last one."""
-    from ..io import pyplot, save_figure_atomic
+def assembly_history(chain, loading, *, cycles: int = 6, substeps: int = 24) -> dict:
+    """What :func:`plot_assembly_history` draws, as arrays (the web page draws the same
+    with Plotly): ``t`` (cycles), ``dT`` (K), ``nodes`` -- ``(label, u, x)`` of the nodes
+    shown, u and x in m --, ``drift`` (m per cycle) and, for a strip, ``x`` (m),
+    ``profiles`` -- ``(label, u(x))`` at the end of each cycle -- and ``hot`` (the last
+    cycle at its hottest point)."""
     from .loading import Loading
     from .quasi_static import simulate
-    plt = pyplot()
     L = Loading(loading.dT, loading.F, max(loading.substeps, substeps))
     n = chain.n
     strip = chain.kind == "strip"
@@ -25,36 +24,57 @@ def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int 
     r = simulate(chain, L, cycles, until_stable=False, record_nodes=nodes)
     tr = r.trace
     show = [0, n // 2, n - 1] if strip else list(range(n))
-    cols = {k: c for k, c in zip(show, ["tab:blue", "tab:green", "tab:red"])}
+    out = {"t": np.asarray(tr["t"]), "dT": np.asarray(tr["dT"]), "drift": r.drift_per_cycle,
+           "strip": strip, "nodes": [], "profiles": []}
+    for k in show:
+        j = int(np.searchsorted(nodes, k))
+        out["nodes"].append((f"node {k + 1} (x = {chain.x[k]:.3g} m)", tr["u"][:, j],
+                             float(chain.x[k])))
+    if strip:
+        out["x"] = np.asarray(chain.x)
+        out["x_nodes"] = np.asarray(chain.x[nodes])
+        for c in range(1, r.cycles_run + 1):
+            out["profiles"].append((f"end of cycle {c}", np.asarray(r.u_end[c])))
+        per = L.cycle_points()[0].size
+        hot = int(np.argmax(L.cycle_points()[0]))
+        j = 1 + (r.cycles_run - 1) * per + hot + (len(tr["t"]) - 1 - r.cycles_run * per)
+        out["hot"] = (f"cycle {r.cycles_run} at dT = {tr['dT'][j]:g} K", tr["u"][j])
+    return out
+
+
+def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int = 6,
+                          substeps: int = 24, history: dict | None = None) -> None:
+    """Node displacement against cycles (Antoni et al. figure 3 redrawn from the model,
+    temperature on a second axis); for a strip also the displacement profiles u(x) at the
+    end of each cycle and at the hottest point of the last one (``history``: what
+    :func:`assembly_history` gave, else it is computed)."""
+    from ..io import pyplot, save_figure_atomic
+    plt = pyplot()
+    h = history or assembly_history(chain, loading, cycles=cycles, substeps=substeps)
+    strip = h["strip"]
     if strip:
         fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12.5, 4.6))
     else:
         fig, ax = plt.subplots(figsize=(7.5, 4.6))
-    for k in show:
-        j = int(np.searchsorted(nodes, k))
-        lab = f"node {k + 1} (x = {chain.x[k]:.3g} m)"
-        ax.plot(tr["t"], tr["u"][:, j] * 1e6, color=cols[k], lw=1.6, label=lab)
+    for (lab, u, _), col in zip(h["nodes"], ["tab:blue", "tab:green", "tab:red"] * chain.n):
+        ax.plot(h["t"], u * 1e6, color=col, lw=1.6, label=lab)
     ax.set_xlabel("cycles")
     ax.set_ylabel("node displacement u (um)")
     ax.grid(alpha=0.3)
     axT = ax.twinx()
-    axT.plot(tr["t"], tr["dT"], color="0.6", lw=0.8, ls=":")
+    axT.plot(h["t"], h["dT"], color="0.6", lw=0.8, ls=":")
     axT.set_ylabel("dT (K, dotted)", color="0.4")
-    d = r.drift_per_cycle
+    d = h["drift"]
     ax.set_title((title + ": " if title else "") + f"mu+={chain.mu_plus:.4g}, "
                  f"mu-={chain.mu_minus:.4g}; drift {d * 1e6:+.4g} um/cycle", fontsize=10)
     ax.legend(fontsize=8, loc="best")
     if strip:
-        x = chain.x[nodes] * 1e3
         cmap = plt.get_cmap("viridis")
-        for c in range(1, r.cycles_run + 1):
-            ax2.plot(chain.x * 1e3, r.u_end[c] * 1e6, color=cmap(c / (r.cycles_run + 1)),
-                     lw=1.4, label=f"end of cycle {c}")
-        per = L.cycle_points()[0].size
-        hot = int(np.argmax(L.cycle_points()[0]))
-        j = 1 + (r.cycles_run - 1) * per + hot + (len(tr["t"]) - 1 - r.cycles_run * per)
-        ax2.plot(x, tr["u"][j] * 1e6, color="tab:red", ls="--", lw=1.2,
-                 label=f"cycle {r.cycles_run} at dT = {tr['dT'][j]:g} K")
+        k = len(h["profiles"])
+        for c, (lab, u) in enumerate(h["profiles"], 1):
+            ax2.plot(h["x"] * 1e3, u * 1e6, color=cmap(c / (k + 1)), lw=1.4, label=lab)
+        lab, u = h["hot"]
+        ax2.plot(h["x_nodes"] * 1e3, u * 1e6, color="tab:red", ls="--", lw=1.2, label=lab)
         ax2.set_xlabel("x (mm)")
         ax2.set_ylabel("displacement u(x) (um)")
         ax2.set_title("strip displacement profiles", fontsize=10)

@@ -10,8 +10,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_instance, check_int
-from .chains import TOL, Chain, MicroslipTolerances, SlideOffError, SolverError, elastic_limit
+from ..errors import InputError, check_flag, check_instance, check_int
+from .chains import (
+    TOL,
+    Chain,
+    MicroslipTolerances,
+    SlideOffError,
+    SolverError,
+    elastic_limit,
+    is_uniform,
+)
 from .limits import MARGIN, check_cycles
 from .loading import Loading
 from .pacing import Pacer
@@ -203,12 +211,12 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     check_inputs(chain, loading, tol)
     cycles = check_int("cycles", cycles, 1, 100_000_000)
     min_cycles = check_int("min_cycles", min_cycles, 1, 100_000_000)
-    if not isinstance(until_stable, (bool, np.bool_)):
-        raise InputError(f"until_stable must be True or False, got {until_stable!r}")
+    until_stable = check_flag("until_stable", until_stable)
     rec = record_indices(chain, record_nodes)
     check_margin(chain, loading)
     check_capacity(chain, loading)
-    check_march(chain, loading, cycles, rec.size, tol.events_only)
+    events_only = tol.events_only or not is_uniform(chain)
+    check_march(chain, loading, cycles, rec.size, events_only)
     n = chain.n
     u = np.zeros(n)
     q = np.zeros(n)
@@ -234,7 +242,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
             code, k, ev, work = march(*args, load[0], load[1], dT[j0:], F[j0:], u, q,
                                       guess[j0:], state, acc, slip[j0:], held[j0:], rec,
                                       ru[j0:],
-                                      max_events, tol.events_only, pacer.size())
+                                      max_events, events_only, pacer.size())
             pacer.done(work)
             ev_sum += ev
             j = j0 + k

@@ -5,6 +5,8 @@ one code path for sweeps -- in this process by default, or on a Dask cluster.
 """
 from __future__ import annotations
 
+import os
+
 from ..errors import InputError, check_array, check_choice, check_instance, check_int
 from ..microslip.assembly import Assembly
 from ..microslip.risk import (
@@ -39,6 +41,8 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
 
     from .. import __version__
     check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
+    if folder is not None:
+        check_instance("folder", folder, (str, os.PathLike), "folder name (text or a Path)")
     (px, xs), (py, ys) = (_map_axis(name, a) for name, a in (("x", x), ("y", y)))
     if px == py:
         raise InputError(f"a risk map needs two different parameters, got {px} twice")
@@ -54,7 +58,8 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
             raise InputError("a risk map needs a wedge texture: a texture file, the wedge flags, or "
                              "a texture in the assembly's [friction] table")
         from ..friction.sources import load_texture_or_surface
-        texture = load_texture_or_surface(asm.folder / fr["texture"])
+        from ..paths import named_path
+        texture = load_texture_or_surface(named_path(fr["texture"], asm.folder))
         contact = contact or fr.get("contact", "all-faces")
     contact = contact or "all-faces"
     if getattr(texture, "kind", "") not in ("wedge", "gaussian-wedge"):

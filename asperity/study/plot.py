@@ -24,8 +24,10 @@ def figures(store, summary: dict, folder, prefix: str = "") -> list[str]:
         _drift(store, ok, folder / f"{prefix}drift.png")
         out.append(f"{prefix}drift.png")
         top = most_influential(summary)
-        if len(top) >= 2:
-            _verdict_map(store, ok, top[:2], summary, folder / f"{prefix}verdicts.png")
+        names = (top + [n for n in summary.get("parameters") or {} if n not in top])[:2]
+        if len(names) == 2:
+            _verdict_map(store, ok, names, summary, folder / f"{prefix}verdicts.png",
+                         ranked=min(len(top), 2))
             out.append(f"{prefix}verdicts.png")
     if summary.get("sobol"):
         _sobol(summary, folder / f"{prefix}sobol.png")
@@ -62,7 +64,9 @@ def _drift(store, ok, path) -> None:
     plt.close(fig)
 
 
-def _verdict_map(store, ok, names, summary, path) -> None:
+def _verdict_map(store, ok, names, summary, path, ranked: int = 2) -> None:
+    """The verdicts over two parameters: the two most influential (``ranked`` = 2), the
+    most influential and another (1), or two with no ranking to claim (0)."""
     plt = pyplot()
     x, y = (store.column(n)[ok] for n in names)
     verdict = store.column("verdict", dtype=object)[ok]
@@ -77,7 +81,14 @@ def _verdict_map(store, ok, names, summary, path) -> None:
     ax.set_xlabel(names[0])
     ax.set_ylabel(names[1])
     how = "Sobol ST" if summary.get("sobol") else "rank correlation"
-    ax.set_title(f"Verdict over the two most influential parameters ({how})", fontsize=10)
+    if ranked == 2:
+        title = f"Verdict over the two most influential parameters ({how})"
+    elif ranked == 1:
+        title = f"Verdict over {names[0]}, the only parameter shown to matter ({how})"
+    else:
+        why = summary.get("influence_note") or "no influence ranking"
+        title = f"Verdict over two parameters ({why})"
+    ax.set_title(_wrap(title), fontsize=9)
     ax.legend(fontsize=8, markerscale=2)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)
@@ -90,10 +101,15 @@ def _sobol(summary, path) -> None:
     names = sorted(s, key=lambda n: -s[n]["ST"])
     i = np.arange(len(names))
     fig, ax = plt.subplots(figsize=(6.4, 0.6 * len(names) + 1.6))
-    ax.barh(i - 0.2, [s[n]["S1"] for n in names], 0.4, xerr=[s[n]["S1_conf"] for n in names],
-            label="first order S1", color="tab:blue")
-    ax.barh(i + 0.2, [s[n]["ST"] for n in names], 0.4, xerr=[s[n]["ST_conf"] for n in names],
-            label="total ST", color="tab:orange")
+    for k, dy, label, colour in (("S1", -0.2, "first order S1", "tab:blue"),
+                                 ("ST", 0.2, "total ST", "tab:orange")):
+        ax.barh(i + dy, [s[n][k] for n in names], 0.4, label=label, color=colour,
+                xerr=[s[n][f"{k}_conf"] or 0.0 for n in names])
+        for j, n in enumerate(names):      # no error bar is not a zero-width interval
+            if s[n][f"{k}_conf"] is None:
+                ax.annotate("exactly 0" if (s[n].get("note") or "").startswith("exactly")
+                            else "no interval", (max(s[n][k], 0.0), j + dy), fontsize=7,
+                            xytext=(3, -3), textcoords="offset points")
     ax.set_yticks(i, names)
     ax.invert_yaxis()
     ax.set_xlabel(f"Sobol index of {summary['output']} (95 % intervals)")
@@ -101,6 +117,11 @@ def _sobol(summary, path) -> None:
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)
     plt.close(fig)
+
+
+def _wrap(text: str, width: int = 80) -> str:
+    import textwrap
+    return "\n".join(textwrap.wrap(text, width))
 
 
 def _ranking(rows, path, top: int = 40) -> None:

@@ -18,12 +18,15 @@ def default_folder(study_file) -> Path:
 
 def run_study_file(path, folder=None, *, scheduler: str | None = None,
                    workers: int | None = None, batch_size: int | None = None,
-                   retry_failed: bool = False, plot: bool = False) -> dict:
+                   retry_failed: bool = False, plot: bool = False,
+                   restart: bool = False) -> dict:
     """Run (or resume) the study of file ``path`` into ``folder``; its summary.
 
     workers: local worker processes (default one per core; 0: in this process);
     scheduler: an existing Dask cluster's scheduler address or scheduler file (default
-    $ASPERITY_SCHEDULER, else a LocalCluster); retry_failed: run the failed cases again.
+    $ASPERITY_SCHEDULER, else a LocalCluster); retry_failed: run the failed cases again;
+    restart: discard the cases the folder holds (of this study or of another, or of inputs
+    that changed since) and start over -- without it such a folder is refused.
     Writes ``study.sqlite``, ``summary.json``, ``summary.md`` (and with ``plot`` the
     figures) into the folder."""
     from .engine import resolve_scheduler, run_study
@@ -35,7 +38,7 @@ def run_study_file(path, folder=None, *, scheduler: str | None = None,
                          "not both")
     if scheduler is not None or workers is None:    # checked before anything is created
         scheduler = resolve_scheduler(scheduler)
-    store = open_store(folder or default_folder(study.source), study)
+    store = open_store(folder or default_folder(study.source), study, restart=restart)
     try:
         if retry_failed:
             store.forget_failed()
@@ -43,7 +46,7 @@ def run_study_file(path, folder=None, *, scheduler: str | None = None,
                            batch_size=batch_size)
         summary = finish(store, plot)
         summary["run"] = {"ran": report.ran, "seconds": report.seconds, "where": report.where,
-                          "workers": report.workers}
+                          "workers": report.workers, "discarded": store.discarded}
     except BaseException:
         store.discard()            # nothing stored: the folder as it was before the run
         raise
@@ -89,7 +92,8 @@ def summarise_folder(folder, *, plot: bool = False) -> dict:
 
 
 def export_folder(folder, path) -> int:
-    """Write the cases of the study in ``folder`` to ``path`` (.parquet or .csv)."""
+    """Write the cases of the study in ``folder`` to ``path`` (.parquet or .csv); a scan
+    library's files as its study names them."""
     from .store import export, read_store
     store = read_store(folder)
     try:

@@ -34,7 +34,6 @@ refused in one line naming the field).
 from __future__ import annotations
 
 import copy
-import glob
 import hashlib
 import json
 import os
@@ -42,6 +41,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, check_choice, check_int, check_range, check_text
+from .inputs import StudyFiles, assembly_key, read_input_toml, study_files
 from .sampling import KINDS, Parameter, case_count, check_sobol_base, parse_parameter
 
 STAGES = ("derive", "fit", "risk")
@@ -51,8 +51,6 @@ _STUDY = {"kind", "samples", "seed", "stages", "texture", "assembly", "files", "
           "pixel_size", "height_scale", "detrend", "mu", "max_slope", "despike",
           "despike_window", "contact", "directions", "law",
           "cycles", "tolerance", "output", "batch_size"}
-#: most files of a scan library
-MAX_FILES = 1_000_000
 
 
 class StudyFileError(InputError):
@@ -75,6 +73,7 @@ class Study:
     batch_size: int | None
     source: str                        # the study file
     text: str = field(default="", repr=False)   # its contents, kept in the store
+    inputs: tuple[str, ...] = ()       # every file it names (asperity.study.inputs)
 
     @property
     def n_cases(self) -> int:
@@ -87,14 +86,20 @@ class Study:
         return [p.name for p in self.parameters]
 
     def fingerprint(self) -> str:
-        """A hash of everything that decides the cases and their results (not the batch
-        size or the file's comments): a changed study cannot resume a store."""
+        """A hash of everything the study file decides (not the batch size or the file's
+        comments); with :meth:`input_digests`, what a store must match to be resumed."""
         data = {"kind": self.kind, "samples": self.samples, "seed": self.seed,
                 "parameters": [(p.name, p.distribution, p.args, p.values)
-                               for p in self.parameters],
-                "files": [(f, _size(f)) for f in self.files], "spec": self.spec}
+                               for p in self.parameters], "spec": self.spec}
         text = json.dumps(data, sort_keys=True, default=str)
         return hashlib.sha256(text.encode()).hexdigest()
+
+    def input_digests(self) -> dict[str, str]:
+        """{path: SHA-256 of its content} of every file the study names (the scans of a
+        library, the texture, assembly and gauge files): their content, not their names
+        or sizes, decides the results."""
+        from .inputs import digests
+        return digests(self.inputs)
 
     def matrix(self):
         """(cases, parameters) values of every case (files: (files, 0))."""
@@ -113,15 +118,11 @@ class Study:
                 "source": self.source}
 
 
-def _size(path: str) -> int:
-    try:
-        return os.stat(path).st_size
-    except OSError:
-        return -1
+def load_study(path, confine=None) -> Study:
+    """Read and check a study file; one-line StudyFileError naming the field.
 
-
-def load_study(path) -> Study:
-    """Read and check a study file; one-line StudyFileError naming the field."""
+    ``confine``: an :class:`asperity.study.inputs.Confine` to refuse every file name (of
+    the study or its assembly) that resolves outside its folder."""
     from ..io import parse_toml, read_text_file
     if not isinstance(path, (str, os.PathLike)) or not str(path):
         raise StudyFileError(f"a study file must be a path, got {path!r}")
@@ -129,15 +130,16 @@ def load_study(path) -> Study:
     text = read_text_file(p, "study file", StudyFileError)
     data = parse_toml(text, p, StudyFileError)
     try:
-        return study_from_dict(data, p, text)
+        return study_from_dict(data, p, text, confine)
     except StudyFileError:
         raise
     except InputError as exc:
         raise StudyFileError(f"{p}: {exc}") from None
 
 
-def study_from_dict(data: dict, path, text: str = "") -> Study:
-    """A study from the tables of a study file; ``path`` resolves the files it names."""
+def study_from_dict(data: dict, path, text: str = "", confine=None) -> Study:
+    """A study from the tables of a study file; ``path`` resolves the files it names
+    (``confine`` as :func:`load_study`)."""
     p = Path(path)
     folder = p.parent
     unknown = sorted(set(data) - _TOP)
@@ -158,12 +160,13 @@ def study_from_dict(data: dict, path, text: str = "") -> Study:
     batch = None if "batch_size" not in st else check_int("study.batch_size", st["batch_size"],
                                                           1, 1_000_000)
     params = _parameters(data.get("parameters", {}), kind)
-    files = _files(st, folder) if kind == "files" else ()
+    named = study_files(st, folder, kind, confine)
     if kind != "files" and "files" in st:
         raise InputError("study.files belongs to kind = \"files\" (a scan library)")
-    spec = _spec(st, data, folder, kind, params)
+    files = named.scans if kind == "files" else ()
+    spec = _spec(st, data, kind, params, named)
     study = Study(name, description, kind, samples, seed, tuple(params), files, spec, batch,
-                  str(p), text)
+                  str(p), text, named.existing)
     from .sampling import MAX_CASES
     if kind != "files" and study.n_cases > MAX_CASES:
         raise InputError(f"the study has {study.n_cases:.3g} cases, at most {MAX_CASES:.0e}: "
@@ -202,33 +205,7 @@ def _parameters(table, kind: str) -> list[Parameter]:
     return out
 
 
-def _files(st: dict, folder: Path) -> tuple[str, ...]:
-    pats = st.get("files")
-    if isinstance(pats, str):
-        pats = [pats]
-    if not isinstance(pats, list) or not pats:
-        raise InputError("study.files must be a list of file names or patterns, e.g. "
-                         "[\"scans/*.x3p\"] (relative to the study file)")
-    seen, out = set(), []
-    for i, pat in enumerate(pats):
-        check_text(f"study.files[{i}]", pat, 4096)
-        full = pat if os.path.isabs(pat) else str(folder / pat)
-        hits = sorted(glob.glob(full, recursive=True)) if glob.has_magic(full) else \
-            ([full] if os.path.exists(full) else [])
-        hits = [h for h in hits if os.path.isfile(h)]
-        if not hits:
-            raise InputError(f"study.files[{i}] {pat!r} matches no file (relative to "
-                             f"{folder or '.'})")
-        for h in hits:
-            if h not in seen:
-                seen.add(h)
-                out.append(h)
-    if len(out) > MAX_FILES:
-        raise InputError(f"study.files: at most {MAX_FILES} files, got {len(out)}")
-    return tuple(out)
-
-
-def _spec(st: dict, data: dict, folder: Path, kind: str, params) -> dict:
+def _spec(st: dict, data: dict, kind: str, params, named: StudyFiles) -> dict:
     """The work of one case, as plain data (the workers rebuild texture and assembly)."""
     from ..microslip.risk import CONTACTS
     stages = st.get("stages", ["risk"] if "assembly" in st else ["derive"])
@@ -242,15 +219,12 @@ def _spec(st: dict, data: dict, folder: Path, kind: str, params) -> dict:
     spec = {"stages": stages, "texture": None, "texture_name": "", "assembly": None,
             "assembly_path": "", "contact": None, "directions": 72, "law": "star",
             "cycles": None, "tolerance": None, "output": None, "surface": {}}
-    asm_data, asm_path = None, None
-    if "assembly" in st:
-        asm_path = _path(st, "assembly", folder)
-        asm_data = _read_toml(asm_path, "assembly file")
-        spec["assembly"], spec["assembly_path"] = asm_data, str(asm_path)
+    asm_data = named.assembly
+    if asm_data is not None:
+        spec["assembly"], spec["assembly_path"] = asm_data, str(named.path("study.assembly"))
     elif "risk" in stages:
         raise InputError("study.assembly missing: the risk stage needs an assembly file")
-    spec["texture"], spec["texture_name"], contact = _texture(st, data, folder, asm_data,
-                                                                 asm_path, kind)
+    spec["texture"], spec["texture_name"], contact = _texture(st, data, named, kind)
     if kind != "files" and spec["texture"] is None and ("derive" in stages or "fit" in stages):
         raise InputError("derive and fit need a texture: study.texture, a [texture] table or "
                          "an assembly whose [friction] table names one")
@@ -276,23 +250,10 @@ def _spec(st: dict, data: dict, folder: Path, kind: str, params) -> dict:
     return spec
 
 
-def _path(st: dict, key: str, folder: Path) -> Path:
-    v = check_text(f"study.{key}", st[key], 4096)
-    if not v:
-        raise InputError(f"study.{key} must be a file name")
-    return Path(v) if os.path.isabs(v) else folder / v
-
-
-def _read_toml(path: Path, what: str) -> dict:
-    from ..io import read_toml
-    return read_toml(path, what, {"name", "description", "assembly", "friction", "loading",
-                                  "texture", "springs"}, InputError)
-
-
-def _texture(st, data, folder, asm_data, asm_path, kind):
+def _texture(st, data, named: StudyFiles, kind):
     """(texture table or surface file name or None, its name, contact of the assembly)."""
     contact = "all-faces"
-    fr = (asm_data or {}).get("friction", {})
+    fr = (named.assembly or {}).get("friction", {})
     if isinstance(fr, dict) and isinstance(fr.get("contact"), str):
         contact = fr["contact"]
     if kind == "files":
@@ -306,15 +267,13 @@ def _texture(st, data, folder, asm_data, asm_path, kind):
         if not isinstance(data["texture"], dict):
             raise InputError("texture must be a table [texture]")
         return copy.deepcopy(data["texture"]), "[texture] of the study file", contact
-    if "texture" in st:
-        tp = _path(st, "texture", folder)
-    elif isinstance(fr, dict) and isinstance(fr.get("texture"), str):
-        tp = Path(fr["texture"]) if os.path.isabs(fr["texture"]) else \
-            asm_path.parent / fr["texture"]
-    else:
+    tp = named.path("study.texture")
+    if tp is None and isinstance(fr, dict) and isinstance(fr.get("texture"), str):
+        tp = named.path(assembly_key(st["assembly"], "texture"))
+    if tp is None:
         return None, "", contact
     if str(tp).lower().endswith(".toml"):
-        t = _read_toml(tp, "texture file")
+        t = read_input_toml(tp, "texture file")
         if "texture" not in t or not isinstance(t["texture"], dict):
             raise InputError(f"{tp}: missing table [texture]")
         return t["texture"], str(tp), contact
@@ -378,7 +337,8 @@ def _check_one_case(study: Study) -> None:
     try:
         build_inputs(study.spec, values, None)
     except InputError as exc:
-        raise InputError(f"parameters at their medians ({_show(values)}): {exc}") from None
+        at = "the grid's first values" if study.kind == "grid" else "their medians"
+        raise InputError(f"parameters at {at} ({_show(values)}): {exc}") from None
 
 
 def _show(values: dict) -> str:

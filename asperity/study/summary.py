@@ -2,13 +2,16 @@
 
 * How likely is a ratchet?  ``p_ratchet``: the share of completed cases whose verdict is
   ratchet, with a 95 % Wilson score interval (binomial: the cases are independent draws;
-  for grids and Sobol designs the share is over the design, not a probability).
+  for Sobol designs the share is over the design).  A grid is a design, not a sample: its
+  share has no interval (``low`` and ``high`` are None).
 * How far does it creep?  Quantiles of the signed drift per cycle, of its magnitude, of
   the drift after the assessed life, and of the cycles until the tolerance is reached
   (a case that never reaches it counts as never).
 * What matters most?  Sobol first-order and total indices with bootstrap confidence
   intervals (kind = "sobol", through SALib); for other samples the Spearman rank
-  correlation of each parameter with the output.
+  correlation of each parameter with the output -- or why no parameter can be named
+  (an output that does not vary, too few cases, an interrupted design): see
+  :mod:`asperity.study.influence`.
 * Scan libraries: a table ranked by ratchet risk (verdict, then drift magnitude), with
   anisotropy and asymmetry.
 """
@@ -17,6 +20,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from .influence import sobol_indices  # noqa: F401  (the summary's API since issue 12)
 
 SEVERITY = {"slides-off": 3, "ratchet": 2, "alternating-slip": 1, "shakedown": 0}
 Z95 = 1.959963984540054
@@ -45,40 +50,6 @@ def _q(x: np.ndarray, qs=(0.05, 0.5, 0.95)) -> dict | None:
     return out
 
 
-def sobol_indices(Y: np.ndarray, names: list[str], seed: int = 0) -> dict:
-    """First-order and total Sobol indices of the outputs Y of a Saltelli design (case
-    order), with 95 % bootstrap confidence half-widths, through SALib."""
-    import warnings
-
-    from SALib.analyze import sobol
-
-    from .sampling import sobol_problem
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        si = sobol.analyze(sobol_problem(len(names)), np.asarray(Y, dtype=float),
-                           calc_second_order=False, conf_level=0.95, seed=seed)
-    return {n: {"S1": float(si["S1"][j]), "S1_conf": float(si["S1_conf"][j]),
-                "ST": float(si["ST"][j]), "ST_conf": float(si["ST_conf"][j])}
-            for j, n in enumerate(names)}
-
-
-def rank_correlations(X: np.ndarray, y: np.ndarray, names: list[str]) -> dict:
-    """Spearman rank correlation of each input column with y (None where undefined)."""
-    from scipy.stats import rankdata
-    ok = np.isfinite(y)
-    out = {}
-    if ok.sum() < 3:
-        return {n: None for n in names}
-    ry = rankdata(y[ok])
-    for j, n in enumerate(names):
-        rx = rankdata(X[ok, j])
-        if np.ptp(rx) == 0 or np.ptp(ry) == 0:
-            out[n] = None
-            continue
-        out[n] = float(np.corrcoef(rx, ry)[0, 1])
-    return out
-
-
 def summarise(store) -> dict:
     """The summary of a study store (the JSON object of ``asperity study --json``)."""
     meta = store.meta
@@ -101,7 +72,12 @@ def summarise(store) -> dict:
         verdict = store.column("verdict", dtype=object)[ok]
         out["verdicts"] = {v: int(np.sum(verdict == v)) for v in SEVERITY
                            if np.any(verdict == v)}
-        out["p_ratchet"] = wilson(out["verdicts"].get("ratchet", 0), completed)
+        k = out["verdicts"].get("ratchet", 0)
+        if st["kind"] == "grid":
+            out["p_ratchet"] = {"estimate": k / completed, "low": None, "high": None} \
+                if completed else None
+        else:
+            out["p_ratchet"] = wilson(k, completed)
         drift = store.column("drift_per_cycle_m")[ok]
         out["drift_per_cycle_m"] = _q(drift)
         out["creep_per_cycle_m"] = _q(np.abs(drift), (0.5, 0.95, 0.99))
@@ -132,33 +108,21 @@ def _failures(store, top: int = 5) -> list[dict]:
 
 
 def _influence(store, meta, ok, out) -> None:
-    names = meta["inputs"] if meta["study"]["kind"] != "files" else []
+    from .influence import influence
+    kind = meta["study"]["kind"]
+    names = meta["inputs"] if kind != "files" else []
     output = meta["spec"].get("output")
     if not names or output is None:
         return
-    y_all = store.column(output)
-    out["output"] = output
-    if meta["study"]["kind"] == "sobol":
-        n = meta["n_cases"]
-        bad = int(np.sum(~ok)) + int(np.sum(~np.isfinite(y_all[ok]))) + (n - ok.size)
-        if bad:
-            out["sobol"] = None
-            out["sobol_note"] = (f"{bad} of {n} cases have no finite {output} (failed, "
-                                 f"missing or slides-off): Sobol indices need every case of "
-                                 f"the design")
-        else:
-            out["sobol"] = sobol_indices(y_all, names, seed=int(meta["study"]["seed"]))
-    if meta["study"]["kind"] in ("monte-carlo", "latin-hypercube", "sobol", "grid"):
-        X = np.stack([store.column(n) for n in names], axis=1)[ok]
-        out["rank_correlation"] = rank_correlations(X, y_all[ok], names)
+    X = np.stack([store.column(n) for n in names], axis=1)
+    out.update(influence(kind, names, X, store.column(output), ok, store.done_ids(),
+                         meta["n_cases"], output, int(meta["study"]["seed"])))
 
 
 def most_influential(summary: dict) -> list[str]:
-    """Parameters ordered by influence: Sobol ST when known, else |rank correlation|."""
-    if summary.get("sobol"):
-        return sorted(summary["sobol"], key=lambda n: -summary["sobol"][n]["ST"])
-    rc = summary.get("rank_correlation") or {}
-    return sorted(rc, key=lambda n: -(abs(rc[n]) if rc[n] is not None else -1.0))
+    """Parameters that can be said to matter, most first (Sobol ST, else |rank
+    correlation|); empty when none can (see ``influence_note``)."""
+    return list(summary.get("most_influential") or [])
 
 
 def ranking(store, stages, limit: int | None = None) -> list[dict]:

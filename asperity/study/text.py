@@ -39,7 +39,10 @@ def lines(s: dict) -> list[str]:
         out.append("verdicts: " + (", ".join(f"{k} {n} ({_pct(n, s['completed'])})"
                                               for k, n in v.items()) or "none"))
         p = s["p_ratchet"]
-        if p is not None:
+        if p is not None and p["low"] is None:
+            out.append(f"share of the grid's cases that ratchet: {p['estimate']:.4f} (a grid "
+                       f"is a design, not a random sample: no probability, no interval)")
+        elif p is not None:
             out.append(f"probability of ratchet: {p['estimate']:.4f} (95 % interval "
                        f"{p['low']:.4f} - {p['high']:.4f})")
         d = s["drift_per_cycle_m"]
@@ -62,6 +65,9 @@ def lines(s: dict) -> list[str]:
             out.append(f"cycles until the tolerance of {_mm(s['tolerance_m'])} is reached: p05 "
                        f"{_cycles(t['p05'])}, p50 {_cycles(t['p50'])} (5 % of the cases reach "
                        f"it within the p05)")
+    note = _quantile_note(s)
+    if note:
+        out.append(note)
     for k, label in (("anisotropy", "anisotropy"), ("asymmetry", "asymmetry (mu_a+ - mu_a-)/mean"),
                      ("principal_direction_deg", "principal direction (deg)")):
         q = s.get(k)
@@ -83,8 +89,11 @@ def _answer(s: dict) -> str:
     p = s.get("p_ratchet")
     if not p or "risk" not in s["stages"]:
         return ""
-    words = [f"answer: {100 * p['estimate']:.1f} % of the cases ratchet (95 % interval "
-             f"{100 * p['low']:.1f}-{100 * p['high']:.1f} %)"]
+    if p["low"] is None:
+        words = [f"answer: {100 * p['estimate']:.1f} % of the grid's cases ratchet"]
+    else:
+        words = [f"answer: {100 * p['estimate']:.1f} % of the cases ratchet (95 % interval "
+                 f"{100 * p['low']:.1f}-{100 * p['high']:.1f} %)"]
     c = s.get("creep_per_cycle_m")
     if c and c.get("p95"):
         words.append(f"the 95th percentile creeps {_um_abs(c['p95'])} per cycle")
@@ -97,28 +106,69 @@ def _answer(s: dict) -> str:
     if top:
         how = "Sobol ST" if s.get("sobol") else "rank correlation"
         words.append(f"{top[0]} matters most ({how})")
+    elif s.get("output_varies") is False:
+        words.append(s["influence_note"])
     return "; ".join(words)
+
+
+def _quantile_note(s: dict) -> str:
+    """With few cases the outer quantiles are the sample's extremes: say so."""
+    n = s.get("completed") or 0
+    if not (s.get("drift_per_cycle_m") or s.get("anisotropy")) or n >= 100:
+        return ""
+    if n < 20:
+        return (f"  (with {n} completed cases, p05 and p95 are the smallest and largest values "
+                f"and p99 the largest: quantiles need 20 cases, p99 100)")
+    return f"  (with {n} completed cases, p99 is the largest value: it needs 100 cases)"
 
 
 def _g(x) -> str:
     return "n/a" if x is None else f"{x:.4g}"
 
 
+def _conf(v: dict, k: str) -> str:
+    c = v[f"{k}_conf"]
+    if c is None:
+        return "(no interval)"
+    return f"+- {c:.3f}" if c >= 0.0005 else f"+- {c:.1e}"     # never "+- 0.000"
+
+
 def _influence_lines(s: dict) -> list[str]:
     out = []
-    if s.get("sobol"):
+    so = s.get("sobol")
+    if so:
         out.append(f"Sobol indices of {s['output']} (first order S1, total ST, 95 % intervals):")
-        for n, v in sorted(s["sobol"].items(), key=lambda kv: -kv[1]["ST"]):
-            out.append(f"  {n:<28} S1 {v['S1']:+.3f} +- {v['S1_conf']:.3f}   ST "
-                       f"{v['ST']:.3f} +- {v['ST_conf']:.3f}")
-    elif s.get("sobol_note"):
-        out.append(f"Sobol indices: none ({s['sobol_note']})")
+        for n, v in sorted(so.items(), key=lambda kv: -kv[1]["ST"]):
+            line = (f"  {n:<28} S1 {v['S1']:+.3f} {_conf(v, 'S1')}   ST {v['ST']:.3f} "
+                    f"{_conf(v, 'ST')}")
+            out.append(line + (f"  ({v['note']})" if v.get("note") else ""))
+        out += [f"  warning: {w}" for w in s.get("sobol_warnings") or []]
     rc = s.get("rank_correlation")
-    if rc and not s.get("sobol"):
+    if rc and not so and s.get("output_varies"):
+        ci = s.get("rank_correlation_interval")
+        how = "95 % intervals" if ci is not None else "over the grid, a design: no intervals"
         ranked = sorted(rc.items(), key=lambda kv: -(abs(kv[1]) if kv[1] is not None else -1))
-        out.append(f"most influential on {s['output']} (Spearman rank correlation): "
-                   + ", ".join(f"{n} {_g(v)}" for n, v in ranked))
+        out.append(f"rank correlation with {s['output']} (Spearman, {how}): "
+                   + ", ".join(f"{n} {_rank(v, (ci or {}).get(n), ci is not None)}"
+                               for n, v in ranked))
+    if s.get("influence_note"):
+        out.append(s["influence_note"] if s.get("output_varies") is False else
+                   f"which parameter matters: {s['influence_note']}")
+    elif s.get("most_influential"):
+        how = "Sobol ST" if so else "rank correlation"
+        out.append(f"which parameter matters: {', '.join(s['most_influential'])} (by {how}, "
+                   f"most first)")
     return out
+
+
+def _rank(v, ci, random: bool) -> str:
+    if v is None:
+        return "n/a (does not vary)"
+    if not random:
+        return f"{v:+.3f}"
+    if ci is None:
+        return f"{v:+.3f} (every case in this order)" if abs(v) == 1.0 else f"{v:+.3f}"
+    return f"{v:+.3f} ({ci['low']:+.2f} to {ci['high']:+.2f})"
 
 
 def short_path(path: str) -> str:
@@ -146,6 +196,12 @@ def _rank_line(r: dict) -> str:
     return f"{r['rank']:>4}. {short_path(r['file'])}: " + ", ".join(bits)
 
 
+def _md_conf(c) -> str:
+    if c is None:
+        return "no interval"
+    return f"+- {c:.4f}" if c >= 0.00005 else f"+- {c:.1e}"
+
+
 def markdown(s: dict, figures: list[str]) -> str:
     """summary.md: the text lines, the Sobol table and the figures."""
     md = [f"# Study {s['name']}", "", "```", *lines(s), "```", ""]
@@ -157,8 +213,8 @@ def markdown(s: dict, figures: list[str]) -> str:
         md += ["## Sobol indices", "", f"Output: `{s['output']}`.", "",
                "| parameter | S1 | S1 95 % | ST | ST 95 % |", "|---|---|---|---|---|"]
         for n, v in sorted(s["sobol"].items(), key=lambda kv: -kv[1]["ST"]):
-            md.append(f"| `{n}` | {v['S1']:.4f} | {v['S1_conf']:.4f} | {v['ST']:.4f} | "
-                      f"{v['ST_conf']:.4f} |")
+            md.append(f"| `{n}` | {v['S1']:.4f} | {_md_conf(v['S1_conf'])} | {v['ST']:.4f} | "
+                      f"{_md_conf(v['ST_conf'])} |")
         md.append("")
     if s.get("ranking"):
         md += ["## Ranking", "", "| rank | file | status | verdict | drift per cycle (um) | "

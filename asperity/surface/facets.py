@@ -32,15 +32,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_instance, check_mu, check_range
+from ..errors import InputError, check_choice, check_instance, check_mu
 from ..friction.reservoir import Faces
 from ..resources import check_memory
 from ._previews import height_preview, mesh_preview
 from .friction_map import MAX_MU, check_friction_map
 from . import grid_facets as grid
 from . import quality as Q
+from .facet_checks import check_fields, check_options
 from .grid_facets import rest_level_for_bearing  # noqa: F401  (re-exported)
-from .topography import MAX_COORDINATE, HeightMap, TriangleMesh
+from .topography import HeightMap, TriangleMesh
 
 #: default local friction coefficient of a surface when no --mu or friction map is given
 DEFAULT_MU = 0.1
@@ -78,6 +79,12 @@ class FacetSurface:
     quality: dict | None = field(default=None, repr=False, compare=False)
 
     kind = "surface"
+
+    def __post_init__(self):
+        gx, gy, mu, w = check_fields(self.gx, self.gy, self.mu, self.weight, self.info,
+                                     self.preview, self.extent, self.quality)
+        for name, v in (("gx", gx), ("gy", gy), ("weight", w), ("mu", mu)):
+            object.__setattr__(self, name, v)
 
     @property
     def n_facets(self) -> int:
@@ -199,20 +206,6 @@ def facet_bytes(rest_level: bool) -> float:
     return float(FACET_BYTES_PER_PIXEL + (REST_LEVEL_BYTES_PER_PIXEL if rest_level else 0))
 
 
-def _check_options(rest_level, bearing_fraction, level_slope, info):
-    if rest_level is not None:
-        rest_level = check_range("rest_level", rest_level, -MAX_COORDINATE, MAX_COORDINATE,
-                                 unit="m")
-    if bearing_fraction is not None:
-        bearing_fraction = check_range("bearing_fraction", bearing_fraction, 0.0, 1.0,
-                                       low_open=True)
-    if not isinstance(level_slope, (bool, np.bool_)):
-        raise InputError(f"level_slope must be True or False, got {level_slope!r}")
-    if info is not None and not isinstance(info, dict):
-        raise InputError(f"info must be a dict or None, got {type(info).__name__}")
-    return rest_level, bearing_fraction
-
-
 def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
                      bearing_fraction=None, level_slope=False, info=None,
                      max_slope=None) -> FacetSurface:
@@ -227,7 +220,7 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     with the homogenisation); a map that does not fit in memory is refused first.
     """
     check_instance("surface", hm, HeightMap, "HeightMap")
-    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, level_slope,
+    rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, level_slope,
                                                   info)
     max_slope = Q.check_max_slope(max_slope)
     z = hm.heights
@@ -296,7 +289,7 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
     for :func:`heightmap_facets`.
     """
     check_instance("surface", mesh, TriangleMesh, "TriangleMesh")
-    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, level_slope,
+    rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, level_slope,
                                                   info)
     max_slope = Q.check_max_slope(max_slope)
     v = np.asarray(mesh.vertices, dtype=float)
@@ -363,7 +356,7 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
     from .quality import remove_spikes
     from .readers import read_surface
     check_choice("detrend", detrend, tuple(DETREND))
-    rest_level, bearing_fraction = _check_options(rest_level, bearing_fraction, False, None)
+    rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, False, None)
     despike = Q.check_despike(despike, despike_window)
     max_slope = Q.check_max_slope(max_slope)
     if mu is not None:

@@ -12,7 +12,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, TextureFileError, check_array, check_int, check_range, check_text
+from ..errors import (
+    InputError,
+    TextureFileError,
+    _show,
+    check_array,
+    check_int,
+    check_range,
+    check_text,
+)
 
 #: length units accepted for ``unit`` (and in text headers): name -> metres
 UNITS = {
@@ -180,18 +188,19 @@ def unit_factor(unit, what: str = "unit") -> float:
 def pixel_pair(pixel_size, factor: float) -> tuple[float, float]:
     """(dx, dy) in metres from a number or a pair, given in a unit of ``factor`` metres;
     each within :data:`PIXEL_SIZE_RANGE` once in metres."""
-    if isinstance(pixel_size, (str, bytes, dict)) or pixel_size is None:
-        raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
-    try:
-        shape = np.shape(pixel_size)
-    except ValueError:
-        shape = None
+    shape = None
+    if not (isinstance(pixel_size, (str, bytes, dict)) or pixel_size is None):
+        try:
+            shape = np.shape(pixel_size)
+        except ValueError:                # ragged
+            pass
     if shape == ():
         vals = [pixel_size]
     elif shape == (2,):
         vals = list(pixel_size)
     else:
-        raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {pixel_size!r}")
+        got = _show(pixel_size) if shape is None else f"shape {shape}"
+        raise InputError(f"pixel_size must be a number or a pair (dx, dy), got {got}")
     labels = ("pixel_size",) if len(vals) == 1 else ("pixel_size (dx)", "pixel_size (dy)")
     lo, hi = PIXEL_SIZE_RANGE
     out = []
@@ -241,3 +250,28 @@ def finish_heightmap(z: np.ndarray, dx: float, dy: float, source: str, height_sc
         z *= height_scale
     check_coordinates(np.array([lo * height_scale, hi * height_scale]), f"{name}: heights")
     return HeightMap(heights=z, dx=dx, dy=dy, source=source, n_undefined=n_undef)
+
+
+def given_sizes(name, unit, pixel_size) -> tuple[float, tuple[float, float] | None]:
+    """For a file that states its sizes (x3p, instrument files): (metres per number of the
+    file, (dx, dy) in metres or None).  ``unit`` reads the file's numbers in that unit
+    instead of the one it states (a file written in the wrong unit); ``pixel_size``, in
+    ``unit``, replaces its spacing (and needs ``unit``)."""
+    if pixel_size is not None and unit is None:
+        raise InputError(f"{name}: a pixel size given for a file that states its own replaces "
+                         f"it and needs its unit: pass unit too")
+    f = None if unit is None else unit_factor(unit)
+    return f, (None if pixel_size is None else pixel_pair(pixel_size, f))
+
+
+def check_stated_pixel(name, dx: float, dy: float, stated_unit: str = "metres") -> None:
+    """The spacing a file states, within :data:`PIXEL_SIZE_RANGE`; else one line that says
+    how to read the file anyway (see :func:`given_sizes`)."""
+    lo, hi = PIXEL_SIZE_RANGE
+    for label, d in (("dx", dx), ("dy", dy)):
+        if not lo <= d <= hi:
+            raise TextureFileError(f"{name}: the file states a pixel size {label} of {d:g} m, "
+                                   f"outside [{lo:g}, {hi:g}] m: if its numbers are not in "
+                                   f"{stated_unit}, pass unit (the unit they are in; on the "
+                                   f"command line --unit) and, to replace its spacing, "
+                                   f"pixel_size (on the command line --pixel-size)")

@@ -4,7 +4,8 @@
 :class:`~asperity.web.security.Guard`).  Every error reaches the user as one line on the
 page with a 4xx status: a form field that is not a number (400), an upload refused (400,
 413), input the library refuses (422, its own one-line message), an unknown page (404);
-a bug is one line too (500, the traceback only in the server's log).
+a bug is one line too (500, its traceback in the server's log only with ASPERITY_DEBUG=1);
+a client that goes away mid-request is no error at all.
 """
 from __future__ import annotations
 
@@ -15,16 +16,18 @@ from pathlib import Path
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse, Response
 from fastapi.templating import Jinja2Templates
 from starlette.exceptions import HTTPException
+from starlette.requests import ClientDisconnect
 
 from .. import __version__
 from ..errors import AsperityError, InputError, one_line
 from .common import form_again, status_of
 from .runner import Runner
 from .security import Guard, TooLarge
-from .store import Store
+from . import labels, units
+from .store import JOB_ID, Store, clock, duration
 
 HERE = Path(__file__).resolve().parent
 STATIC = {"app.js": "text/javascript", "style.css": "text/css"}
@@ -52,10 +55,14 @@ class Web:
     def __init__(self, settings):
         self.settings = settings
         self.store = Store(settings.data_dir)
+        self.store.sweep()
         self.runner = Runner(self.store, settings.workers)
         self.templates = Jinja2Templates(directory=str(HERE / "templates"))
         self.templates.env.globals.update(version=__version__, data_dir=str(settings.data_dir))
         self.templates.env.filters["abs"] = abs
+        self.templates.env.filters["duration"] = duration
+        self.templates.env.globals.update(settings_of=labels.settings)
+        units.register(self.templates.env)
         self.renderers: dict = {}           # job kind -> its form's page (pages register)
 
     def page(self, request: Request, name: str, status: int = 200, **context) -> HTMLResponse:
@@ -72,9 +79,11 @@ class Web:
         return self.page(request, "error.html", status, error=one_line(message), page="")
 
     def render_bare(self, status: int, message: str) -> tuple[str, bytes]:
-        """The error page without a request (for the Guard middleware)."""
+        """The error page without a request (for the Guard middleware): shown to anyone,
+        also a visitor without the token, so it says nothing about the server (``bare``:
+        no data folder in the footer)."""
         tpl = self.templates.env.get_template("error.html")
-        html = tpl.render(error=one_line(message), page="", values={}, kept={})
+        html = tpl.render(error=one_line(message), page="", values={}, kept={}, bare=True)
         return "text/html; charset=utf-8", html.encode("utf-8")
 
 
@@ -99,7 +108,27 @@ def create_app(settings):
     _jobs(app, web)
     pages.register(app, web)
     pages_motion.register(app, web)
-    return Guard(app, settings, web.render_bare)
+    return Guard(Quiet(app), settings, web.render_bare)
+
+
+class Quiet:
+    """The application with no exception escaping to the server.  Starlette answers a bug
+    with the ``bug`` handler's page (500, one line, logged in one line) and then raises it
+    again for the server to log: uvicorn would print its traceback for every such request
+    ("Exception in ASGI application").  The traceback is printed only with
+    ASPERITY_DEBUG=1 (by the ``bug`` handler)."""
+
+    def __init__(self, app):
+        self.app = app
+
+    def __getattr__(self, name):           # the application's state, routes, ...
+        return getattr(self.app, name)
+
+    async def __call__(self, scope, receive, send):
+        try:
+            await self.app(scope, receive, send)
+        except Exception:                  # answered (and logged) by the bug handler
+            pass
 
 
 def _errors(app: FastAPI, web: Web) -> None:
@@ -125,6 +154,12 @@ def _errors(app: FastAPI, web: Web) -> None:
 
     async def refused(request: Request, exc: Exception):
         return web.error_page(request, status_of(exc), str(exc))
+
+    @app.exception_handler(ClientDisconnect)
+    async def gone(request: Request, exc: ClientDisconnect):
+        """The client went away during its request (a closed tab, a lost connection
+        mid-upload): nobody reads the answer, nothing to log."""
+        return Response(status_code=400)
 
     app.add_exception_handler(TooLarge, refused)
     app.add_exception_handler(AsperityError, refused)
@@ -171,7 +206,11 @@ def _jobs(app: FastAPI, web: Web) -> None:
 
     @app.get("/jobs", response_class=HTMLResponse)
     async def jobs(request: Request):
-        return web.page(request, "jobs.html", page="jobs", jobs=store.jobs(limit=500))
+        gone = request.query_params.get("deleted", "")
+        notice = f"result {gone} deleted, with its files" if JOB_ID.match(gone) and \
+            store.read(gone) is None else None
+        return web.page(request, "jobs.html", page="jobs", jobs=store.jobs(limit=500),
+                        notice=notice, delete=True)
 
     @app.get("/api/jobs/{jid}")
     async def job_status(jid: str):
@@ -180,7 +219,7 @@ def _jobs(app: FastAPI, web: Web) -> None:
         return {"id": jid, "kind": rec["kind"], "status": rec["status"],
                 "fraction": 1.0 if rec["status"] == "done" else prog.get("fraction", 0.0),
                 "label": prog.get("label", ""), "error": rec.get("error"),
-                "files": rec.get("files", [])}
+                "files": rec.get("files", []), **clock(rec, prog)}
 
     @app.get("/api/jobs/{jid}/result")
     async def job_result(jid: str):
@@ -194,8 +233,9 @@ def _jobs(app: FastAPI, web: Web) -> None:
         rec = job_or_404(jid)
         page = PAGE_OF.get(rec["kind"], "")
         if rec["status"] in ("queued", "running"):
-            return web.page(request, "progress.html", page=page, job=rec,
-                            progress=store.progress(jid))
+            prog = store.progress(jid)
+            return web.page(request, "progress.html", page=page, job=rec, progress=prog,
+                            clock=clock(rec, prog))
         if rec["status"] == "done":
             result = store.result(jid)
             if result is not None:
@@ -211,7 +251,24 @@ def _jobs(app: FastAPI, web: Web) -> None:
         path = store.job_file(jid, name)
         if path is None:
             raise HTTPException(404, f"result {jid} has no file {name[:80]!r}")
-        return FileResponse(path, filename=name.rsplit("/", 1)[-1])
+        shown = labels.download_name((store.result(jid) or {}).get("downloads"), name)
+        return FileResponse(path, filename=shown)
+
+    @app.get("/jobs/{jid}/delete", response_class=HTMLResponse)
+    async def delete_page(request: Request, jid: str):
+        rec = job_or_404(jid)
+        return web.page(request, "delete.html", page="jobs", job=rec,
+                        busy=rec["status"] in ("queued", "running"))
+
+    @app.post("/jobs/{jid}/delete")
+    async def delete(jid: str):
+        rec = job_or_404(jid)
+        if rec["status"] in ("queued", "running"):
+            raise HTTPException(409, f"result {jid} is {rec['status']}: stop it first (the "
+                                     f"button on its page), then delete it")
+        if not store.delete(jid):
+            raise HTTPException(404, f"no result {jid!r} (it may have been deleted)")
+        return RedirectResponse(f"/jobs?deleted={jid}", status_code=303)
 
     @app.post("/jobs/{jid}/cancel")
     async def cancel(jid: str):

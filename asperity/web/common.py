@@ -8,13 +8,12 @@ import os
 from fastapi import Request
 from fastapi.responses import HTMLResponse, RedirectResponse
 
-from .forms import Form, FormError
+from ..errors import AsperityError
+from .forms import Form, FormError, at, field_of
 from .security import TooLarge
 from .store import JOB_ID, UploadError, display_name
+from .words import FILE_FIELDS, MULTIPLE, WEDGE, page_words
 
-#: form fields of a wedge -> label in messages
-WEDGE = {"alpha_deg": "alpha (deg)", "beta_deg": "beta (deg)", "mu_alpha": "mu_alpha",
-         "mu_beta": "mu_beta"}
 MAX_FIELDS = 200
 MAX_FILES = 200
 
@@ -55,13 +54,52 @@ async def save_upload(web, upload) -> dict:
     return web.store.finish_upload(uid, upload.filename, size)
 
 
-async def upload_or_kept(web, form: Form, field: str, kept_field: str) -> dict | None:
-    """The file of ``field`` (saved now), else the one uploaded before (``kept_field``)."""
-    up = form.file(field)
+async def keep_uploads(web, form: Form, kept: dict, saved: list) -> None:
+    """Every file of the form stored now, before any field is read (a refusal then keeps
+    it: the page offers it again and the next submission reuses it), else the one stored
+    before (sent back in its hidden field); ``kept``: key -> metadata, a list for a field
+    of several files (a file chosen again replaces the kept one of the same name);
+    ``saved``: the metadata of the files stored by this request."""
+    first = None
+    for name, (key, hidden) in FILE_FIELDS.items():
+        try:
+            with at(name):
+                await _keep(web, form, kept, saved, name, key, hidden)
+        except (AsperityError, TooLarge) as exc:     # the other files are kept all the same
+            first = first or exc
+    if first is not None:
+        raise first
+
+
+async def _keep(web, form: Form, kept: dict, saved: list, name: str, key: str,
+                hidden: str) -> None:
+    if name in MULTIPLE:
+        old = {}
+        for uid in form.form.getlist(hidden):
+            meta = web.store.upload_meta(str(uid))
+            old[meta["name"]] = meta
+        try:
+            for up in form.files(name):
+                meta = await save_upload(web, up)
+                saved.append(meta)
+                old[meta["name"]] = meta
+        finally:
+            if old:
+                kept[key] = list(old.values())
+        return
+    up = form.file(name)
     if up is not None:
-        return await save_upload(web, up)
-    uid = form.text(kept_field)
-    return web.store.upload_meta(uid) if uid else None
+        kept[key] = await save_upload(web, up)
+        saved.append(kept[key])
+    elif form.text(hidden):
+        kept[key] = web.store.upload_meta(form.text(hidden))
+
+
+def drop_upload(web, uid: str) -> None:
+    """Remove a stored upload (and its metadata) from the data folder."""
+    path = web.store.upload_path(uid)
+    for p in (path, path.with_name(path.name + ".json")):
+        p.unlink(missing_ok=True)
 
 
 async def submit(web, request: Request, kind: str, params: dict, title: str):
@@ -76,17 +114,22 @@ async def submit(web, request: Request, kind: str, params: dict, title: str):
 
 
 async def post_form(web, request: Request, kind: str, build, render):
-    """A form's POST: ``build(web, form, kept) -> (params, title)`` checks it (``kept``:
-    uploads to keep if the form comes back); a refusal redraws the form with ``render`` and
-    its one-line error (4xx), else the job is submitted with the form's values."""
-    from ..errors import AsperityError
+    """A form's POST: its files stored (:func:`keep_uploads`), then ``build(web, form,
+    kept) -> (params, title)`` checks it; a refusal redraws the form with ``render``, what
+    was typed and the files kept, and its one-line error next to its field (4xx), else
+    the job is submitted with the form's values."""
     form = await read_form(request)
-    values, kept = form.values(), {}
+    values, kept, saved = form.values(), {}, []
     try:
+        await keep_uploads(web, form, kept, saved)
         params, title = await build(web, form, kept)
     except (AsperityError, TooLarge) as exc:
+        if getattr(exc, "discard", False):    # refused for what its files hold: none kept
+            kept = {}
+            for meta in saved:
+                drop_upload(web, meta["id"])
         return render(web, request, status=status_of(exc), values=values, kept=kept,
-                      error=str(exc))
+                      error=str(exc), error_field=field_of(exc))
     params.update(form=values, kept=kept)
     return await submit(web, request, kind, params, title)
 
@@ -100,7 +143,8 @@ async def form_again(web, request: Request, rec: dict) -> HTMLResponse:
         ctx["notice"] = f"result {rec['id']} was stopped ({rec.get('error') or 'stopped'})"
         status = 200
     else:
-        ctx["error"] = rec.get("error") or "the computation failed"
+        ctx["error"], ctx["error_field"] = page_words(
+            rec.get("error") or "the computation failed", rec["kind"], params)
         status = int(rec.get("error_status") or 422)
     render = web.renderers.get(rec["kind"]) or web.renderers["derive"]
     return render(web, request, status=status, **ctx)
@@ -120,12 +164,13 @@ def wedge_title(src: dict) -> str:
             f"{src['mu_alpha']:g}/{src['mu_beta']:g}")
 
 
-def done_job(web, jid: str, kinds, what: str) -> dict:
+def done_job(web, jid: str, kinds, what: str, field: str) -> dict:
+    """The finished job ``jid`` of one of ``kinds`` chosen in the select ``field``."""
     rec = web.store.read(jid) if JOB_ID.match(jid or "") else None
     if rec is None or rec["kind"] not in kinds:
-        raise FormError(f"no {what} {jid[:40]!r}; pick one from the list")
+        raise FormError(f"no {what} {jid[:40]!r}; pick one from the list", field)
     if rec["status"] != "done":
-        raise FormError(f"{what} {jid} is {rec['status']}; pick a finished one")
+        raise FormError(f"{what} {jid} is {rec['status']}; pick a finished one", field)
     return rec
 
 

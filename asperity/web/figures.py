@@ -75,7 +75,9 @@ def reservoir_figures(obj: dict) -> dict:
 
 
 def height_figure(surface, principal_deg: float) -> dict | None:
-    """The height-map preview (um, about 256 x 256 points) with t_a drawn through it."""
+    """The height-map preview (about 256 x 256 points) with t_a drawn through it; heights
+    and sizes each in the unit their magnitude calls for (:func:`.units.choose`)."""
+    from .units import choose
     z = getattr(surface, "preview", None)
     ext = getattr(surface, "extent", None)
     if z is None or ext is None:
@@ -83,17 +85,21 @@ def height_figure(surface, principal_deg: float) -> dict | None:
     z = np.asarray(z, dtype=float)
     if z.size == 0 or not np.isfinite(z).any():
         return None
-    lx, ly = (float(v) * 1e3 for v in ext)
+    side = choose([float(v) for v in ext])
+    lx, ly = (side(v) for v in ext)
     nx, ny = z.shape
-    zz = (z - np.nanmean(z)).T * 1e6
+    zm = (z - np.nanmean(z)).T
+    up = choose([float(np.nanmax(np.abs(zm)))])
+    zz = up(zm)
     x = (np.arange(nx) + 0.5) * lx / nx
     y = (np.arange(ny) + 0.5) * ly / ny
     t = math.radians(principal_deg)
     cx, cy, r = 0.5 * lx, 0.5 * ly, 0.4 * min(lx, ly)
     return {"data": [
         {"type": "heatmap", "x": _r(x, 6), "y": _r(y, 6), "z": _r(zz, 4),
-         "colorscale": "Viridis", "colorbar": {"title": {"text": "height (um)"}},
-         "hovertemplate": "x = %{x:.4g} mm<br>y = %{y:.4g} mm<br>z = %{z:.4g} um<extra></extra>"},
+         "colorscale": "Viridis", "colorbar": {"title": {"text": f"height ({up.name})"}},
+         "hovertemplate": f"x = %{{x:.4g}} {side.name}<br>y = %{{y:.4g}} {side.name}<br>"
+                          f"z = %{{z:.4g}} {up.name}<extra></extra>"},
         {"type": "scatter", "mode": "lines+text",
          "x": [cx - r * math.cos(t), cx + r * math.cos(t)],
          "y": [cy - r * math.sin(t), cy + r * math.sin(t)],
@@ -101,7 +107,7 @@ def height_figure(surface, principal_deg: float) -> dict | None:
          "line": {"color": "#e67e22", "width": 3}, "textfont": {"color": "#e67e22"},
          "name": "t_a", "hoverinfo": "skip", "showlegend": False}],
         "layout": _layout("height map (mean removed) and the principal direction t_a",
-                          "x (mm)", "y (mm)", equal=True)}
+                          f"x ({side.name})", f"y ({side.name})", equal=True)}
 
 
 def law_figures(gl) -> dict:
@@ -174,7 +180,9 @@ def law_figures(gl) -> dict:
 
 
 def path_figure(res, angle_deg: float) -> dict:
-    """The path of a sliding body (hover: time, position, speed), start and rest."""
+    """The path of a sliding body (hover: time, position, speed), start and rest; lengths
+    in the unit the path's size calls for."""
+    from .units import choose
     q, u, t = np.asarray(res.q), np.asarray(res.u), np.asarray(res.t)
     step = max(1, q.shape[0] // 2000)
     idx = np.unique(np.r_[np.arange(0, q.shape[0], step), q.shape[0] - 1])
@@ -182,19 +190,81 @@ def path_figure(res, angle_deg: float) -> dict:
     x, y = (float(v) for v in res.q_final)
     d = math.hypot(x, y) or 1.0
     a = math.radians(angle_deg)
+    un = choose([float(np.max(np.abs(q[idx]))) if idx.size else 0.0, d])
+    n = un.name
     traces = [
-        {"type": "scatter", "mode": "lines", "x": [0.0, d * math.cos(a)],
-         "y": [0.0, d * math.sin(a)], "name": "launch direction",
+        {"type": "scatter", "mode": "lines", "x": [0.0, un(d * math.cos(a))],
+         "y": [0.0, un(d * math.sin(a))], "name": "launch direction",
          "line": {"dash": "dot", "color": "#999"}, "hoverinfo": "skip"},
-        {"type": "scatter", "mode": "lines", "x": _r(q[idx, 0], 9), "y": _r(q[idx, 1], 9),
+        {"type": "scatter", "mode": "lines", "x": _r(un(1) * q[idx, 0], 9),
+         "y": _r(un(1) * q[idx, 1], 9),
          "customdata": np.column_stack([np.round(t[idx], 6), np.round(speed, 6)]).tolist(),
          "name": "path", "line": {"width": 3, "color": "#1f77b4"},
-         "hovertemplate": "t = %{customdata[0]:.4f} s<br>x = %{x:.5g} m<br>y = %{y:.5g} m<br>"
-                          "speed = %{customdata[1]:.4g} m/s<extra></extra>"},
+         "hovertemplate": f"t = %{{customdata[0]:.4f}} s<br>x = %{{x:.5g}} {n}<br>"
+                          f"y = %{{y:.5g}} {n}<br>speed = %{{customdata[1]:.4g}} m/s"
+                          "<extra></extra>"},
         {"type": "scatter", "mode": "markers", "x": [0.0], "y": [0.0], "name": "start",
          "marker": {"size": 10, "color": "#2ca02c"}},
-        {"type": "scatter", "mode": "markers", "x": [x], "y": [y],
+        {"type": "scatter", "mode": "markers", "x": [un(x)], "y": [un(y)],
          "name": "rest point" if res.stop_step is not None else "end (still moving)",
          "marker": {"size": 12, "color": "#d62728", "symbol": "x"}}]
-    return {"data": traces, "layout": _layout("path of the sliding body", "x (m, along t_a)",
-                                              "y (m, along t_b)", equal=True)}
+    return {"data": traces, "layout": _layout("path of the sliding body", f"x ({n}, along t_a)",
+                                              f"y ({n}, along t_b)", equal=True)}
+
+
+def risk_figures(h: dict, chain, title: str = "") -> dict:
+    """What ``asperity risk --plot`` draws, interactive: the node displacements over the
+    first cycles with the temperature (``history``), and for a strip the displacement along
+    it at the end of each cycle (``profiles``); from
+    :func:`asperity.microslip.plot.assembly_history`.  Each quantity in the unit its values
+    call for (the drift in the title as on the page: :func:`.units.show`)."""
+    from .units import choose, show
+    t = np.asarray(h["t"], dtype=float)
+    k = max(1, t.size // 3000)
+    un = choose([float(np.max(np.abs(u))) for _, u, _ in h["nodes"]])
+    xn = choose([x for _, _, x in h["nodes"]])
+    colours = ["#1f77b4", "#2ca02c", "#d62728"]
+    traces = []
+    for i, (lab, u, x) in enumerate(h["nodes"]):
+        lab = f"{lab.split(' (')[0]} (x = {show(x, xn)})"
+        traces.append({"type": "scatter", "mode": "lines", "x": _r(t[::k], 5),
+                       "y": _r(un(1) * np.asarray(u, dtype=float)[::k], 6), "name": lab,
+                       "line": {"width": 1.6, "color": colours[i % 3]},
+                       "hovertemplate": f"{lab}<br>cycle %{{x:.3f}}<br>u = %{{y:.4g}} "
+                                        f"{un.name}<extra></extra>"})
+    traces.append({"type": "scatter", "mode": "lines", "x": _r(t[::k], 5),
+                   "y": _r(np.asarray(h["dT"], dtype=float)[::k], 4), "yaxis": "y2",
+                   "name": "dT (K, dotted)", "line": {"dash": "dot", "color": "#999",
+                                                      "width": 1},
+                   "hovertemplate": "cycle %{x:.3f}<br>dT = %{y:.4g} K<extra></extra>"})
+    d = h["drift"]
+    head = (title + ": " if title else "") + f"mu+ = {chain.mu_plus:.4g}, mu- = " \
+        f"{chain.mu_minus:.4g}; drift {show(d, choose(d), sign=True)} per cycle"
+    lay = _layout(head, "cycles", f"node displacement u ({un.name})")
+    lay["yaxis2"] = {"title": {"text": "dT (K, dotted)"}, "overlaying": "y", "side": "right",
+                     "showgrid": False, "zeroline": False, "tickmode": "auto"}
+    lay["margin"] = {**lay["margin"], "r": 60}
+    out = {"history": {"data": traces, "layout": lay}}
+    if h.get("strip") and h.get("profiles"):
+        xs = choose(float(np.max(np.abs(h["x"]))))
+        us = [u for _, u in h["profiles"]] + [h["hot"][1]]
+        uu = choose([float(np.max(np.abs(u))) for u in us])
+        n = len(h["profiles"])
+        prof = [{"type": "scatter", "mode": "lines", "x": _r(xs(1) * np.asarray(h["x"]), 6),
+                 "y": _r(uu(1) * np.asarray(u, dtype=float), 6), "name": lab,
+                 "line": {"width": 1.4, "color": f"hsl({int(260 - 200 * c / max(n, 1))}, "
+                                                 f"60%, 45%)"},
+                 "hovertemplate": f"{lab}<br>x = %{{x:.4g}} {xs.name}<br>u = %{{y:.4g}} "
+                                  f"{uu.name}<extra></extra>"}
+                for c, (lab, u) in enumerate(h["profiles"], 1)]
+        lab, u = h["hot"]
+        prof.append({"type": "scatter", "mode": "lines",
+                     "x": _r(xs(1) * np.asarray(h["x_nodes"]), 6),
+                     "y": _r(uu(1) * np.asarray(u, dtype=float), 6), "name": lab,
+                     "line": {"dash": "dash", "color": "#d62728", "width": 1.2},
+                     "hovertemplate": f"{lab}<br>x = %{{x:.4g}} {xs.name}<br>u = %{{y:.4g}} "
+                                      f"{uu.name}<extra></extra>"})
+        out["profiles"] = {"data": prof, "layout": _layout(
+            "strip displacement profiles: u(x) at the end of each cycle", f"x ({xs.name})",
+            f"displacement u(x) ({uu.name})")}
+    return out

@@ -6,11 +6,43 @@ that must be a number, a choice among the offered ones, a file of the right size
 """
 from __future__ import annotations
 
-from ..errors import InputError, check_choice, number_from_text
+import contextlib
+import math
+
+from ..errors import AsperityError, InputError, check_choice, check_int, number_from_text
+from .security import TooLarge
 
 
 class FormError(InputError):
     """A form field that cannot be read (HTTP 400)."""
+
+    def __init__(self, message: str, field: str | None = None):
+        super().__init__(message)
+        self.field = field
+
+
+def field_of(exc: BaseException) -> str | None:
+    """The form field an error is about (set where the form was read), else None."""
+    return getattr(exc, "field", None)
+
+
+@contextlib.contextmanager
+def at(field: str):
+    """Errors raised inside are about form field ``field`` (unless they already name one)."""
+    try:
+        yield
+    except (AsperityError, TooLarge) as exc:
+        if field_of(exc) is None:
+            exc.field = field
+        raise
+
+
+def _read(field: str, check, *args):
+    """``check(*args)``; its refusal as a FormError about ``field`` (HTTP 400)."""
+    try:
+        return check(*args)
+    except InputError as exc:
+        raise FormError(str(exc), field) from None
 
 
 class Form:
@@ -27,39 +59,36 @@ class Form:
 
     def number(self, name: str, default: float | None = None, *, label: str | None = None,
                required: bool = True) -> float | None:
-        """The field as a float (``1e-3``, ``0.2``); blank gives ``default`` (or a
+        """The field as a finite float (``1e-3``, ``0.2``); blank gives ``default`` (or a
         FormError when required and there is no default)."""
         t = self.text(name)
+        label = label or name
         if t == "":
             if default is None and required:
-                raise FormError(f"{label or name} is required")
+                raise FormError(f"{label} is required", name)
             return default
-        try:
-            return number_from_text(label or name, t)
-        except InputError as exc:
-            raise FormError(str(exc)) from None
+        x = _read(name, number_from_text, label, t)
+        if not math.isfinite(x):
+            raise FormError(f"{label} must be a finite number, got {t[:40]!r}", name)
+        return x
 
     def optional(self, name: str, *, label: str | None = None) -> float | None:
         return self.number(name, None, label=label, required=False)
 
-    def whole(self, name: str, default: int | None = None, *, low: int = 0,
-              high: int = 10 ** 9, label: str | None = None) -> int | None:
-        x = self.number(name, None if default is None else float(default), label=label,
-                        required=default is not None)
-        if x is None:
-            return None
-        if x != int(x) or not low <= x <= high:
-            raise FormError(f"{label or name} must be a whole number in [{low}, {high}], got "
-                            f"{self.text(name)!r}")
-        return int(x)
+    def whole(self, name: str, default: int | None = None, *, low: int | None = None,
+              high: int | None = None, label: str | None = None) -> int | None:
+        """The field as a whole number in [low, high] (None: the library checks that
+        side), through :func:`asperity.errors.check_int`; blank gives ``default``."""
+        t = self.text(name)
+        if t == "":
+            return default
+        label = label or name
+        return _read(name, check_int, label, _read(name, number_from_text, label, t), low, high)
 
     def choice(self, name: str, choices, default: str | None = None, *,
                label: str | None = None) -> str:
         t = self.text(name) or default
-        try:
-            return check_choice(label or name, t, tuple(choices))
-        except InputError as exc:
-            raise FormError(str(exc)) from None
+        return _read(name, check_choice, label or name, t, tuple(choices))
 
     def file(self, name: str):
         """The uploaded file of field ``name`` (None if no file was chosen)."""

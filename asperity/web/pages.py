@@ -5,23 +5,14 @@ from __future__ import annotations
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
-from ..errors import AsperityError, check_choice
-from .common import (
-    DONE_LIMIT,
-    done_job,
-    post_form,
-    read_form,
-    status_of,
-    submit,
-    upload_or_kept,
-    wedge_source,
-    wedge_title,
-)
+from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
 from .forms import Form, FormError
-from .security import TooLarge
+from .labels import label, surface_options
 
 CONTACTS = ("all-faces", "windward")
 DETREND = ("slope", "none", "mean", "plane", "poly2", "poly3")
+#: the length units the forms offer ("" : the file's own)
+UNITS = ("", "m", "mm", "um", "nm")
 
 
 def render_surface(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
@@ -32,7 +23,7 @@ def render_surface(web, request: Request, status: int = 200, **ctx) -> HTMLRespo
 def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
     surfaces, jobs = web.store.select((("derive",), ("done",), DONE_LIMIT),
                                       (("fit", "gauge"), None, 20))
-    sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {j['title']}")
+    sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {label(j)}")
                                                 for j in surfaces]
     wanted = request.query_params.get("source", "")
     default = wanted if any(s == wanted for s, _ in sources) else \
@@ -47,21 +38,23 @@ def pixel_size(text: str):
     if not parts:
         return None
     if len(parts) > 2:
-        raise FormError(f"pixel size takes one number or two (dx dy), got {text[:40]!r}")
-    form = Form({f"p{i}": p for i, p in enumerate(parts)})
-    vals = [form.number(f"p{i}", label="pixel size") for i in range(len(parts))]
+        raise FormError(f"pixel size takes one number or two (dx dy), got {text[:40]!r}",
+                        "pixel_size")
+    vals = [Form({"pixel_size": p}).number("pixel_size", label="pixel size") for p in parts]
     return vals[0] if len(vals) == 1 else tuple(vals)
 
 
 def surface_source(form: Form, meta: dict, fmap: dict | None) -> dict:
-    opts = {"unit": form.text("unit") or None, "pixel_size": pixel_size(form.text("pixel_size")),
+    from ..surface.quality import DESPIKE_WINDOWS
+    opts = {"unit": form.choice("unit", UNITS, "", label="length unit") or None,
+            "pixel_size": pixel_size(form.text("pixel_size")),
             "mu": None if fmap else form.optional("mu", label="local friction mu"),
             "detrend": form.choice("detrend", DETREND, "slope", label="form removal"),
             "height_scale": form.number("height_scale", 1.0, label="height scale"),
             "max_slope": form.optional("max_slope", label="max slope (deg)"),
             "despike": form.optional("despike", label="spike filter K"),
-            "despike_window": form.whole("despike_window", None, low=-10**9,
-                                         label="spike filter window"),
+            "despike_window": form.whole("despike_window", None, low=DESPIKE_WINDOWS[0],
+                                         high=DESPIKE_WINDOWS[1], label="spike filter window"),
             "rest_level": form.optional("rest_level", label="rest level (m)"),
             "bearing_fraction": form.optional("bearing_fraction", label="bearing fraction")}
     src = {"kind": "file", "upload": meta["id"], "name": meta["name"], "options": opts}
@@ -92,15 +85,7 @@ def register(app, web) -> None:
 
     @app.post("/law/open")
     async def law_open(request: Request):
-        form = await read_form(request)
-        try:
-            meta = await upload_or_kept(web, form, "gauge", "gauge_upload")
-            if meta is None:
-                raise FormError("choose a gauge file (.json) to open")
-        except (AsperityError, TooLarge) as exc:
-            return render_law(web, request, status=status_of(exc), error=str(exc))
-        return await submit(web, request, "gauge", {"upload": meta["id"], "name": meta["name"],
-                                                    "form": {}}, f"gauge file {meta['name']}")
+        return await post_form(web, request, "gauge", _gauge_params, render_law)
 
 
 async def _surface_params(web, form: Form, kept: dict) -> tuple[dict, str]:
@@ -113,12 +98,11 @@ async def _surface_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         src = wedge_source(form)
         title = wedge_title(src)
     else:
-        meta = await upload_or_kept(web, form, "file", "upload")
+        meta = kept.get("file")
         if meta is None:
-            raise FormError("choose a file to upload (or enter a wedge in the other form)")
-        kept["file"] = meta
-        fmap = await upload_or_kept(web, form, "friction_map", "map_upload")
-        src = surface_source(form, meta, fmap)
+            raise FormError("choose a file to upload (or enter a wedge in the other form)",
+                            "file")
+        src = surface_source(form, meta, kept.get("friction_map"))
         title = f"{'texture file' if meta['id'].endswith('.toml') else 'surface'} " \
                 f"{meta['name']}"
     params["source"] = src
@@ -127,19 +111,29 @@ async def _surface_params(web, form: Form, kept: dict) -> tuple[dict, str]:
 
 async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     choice = form.text("source") or "wedge"
-    contact = form.text("contact")
+    contact = form.choice("contact", ("",) + CONTACTS, "")
     if choice == "wedge":
         src = wedge_source(form)
         what = wedge_title(src)
     else:
-        rec = done_job(web, choice, ("derive",), "surface result")
+        rec = done_job(web, choice, ("derive",), "surface result", "source")
         src = {"kind": "job", "job": choice}
-        what = f"result {choice}"
+        what = f"{rec['title'].removeprefix('friction of ')} (result {choice})"
         contact = contact or rec["params"].get("contact", "all-faces")
     kind = form.choice("law", ("star", "ellipse"), "star")
     law = "star" if kind == "star" else "truncated-ellipse"
     params = {"source": src, "law": law,
-              "contact": check_choice("contact", contact or "all-faces", CONTACTS),
+              "contact": contact or "all-faces",
               "directions": form.whole("directions", 720, low=8, high=100_000,
                                        label="sliding directions fitted")}
+    if choice != "wedge":                # the surface's own settings (max slope, ...)
+        params["source_settings"] = ", ".join(surface_options(
+            rec["params"].get("source", {}).get("options") or {}))
     return params, f"{law} law of {what}"
+
+
+async def _gauge_params(web, form: Form, kept: dict) -> tuple[dict, str]:
+    meta = kept.get("gauge")
+    if meta is None:
+        raise FormError("choose a gauge file (.json) to open", "gauge")
+    return {"upload": meta["id"], "name": meta["name"]}, f"gauge file {meta['name']}"

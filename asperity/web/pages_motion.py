@@ -4,27 +4,18 @@ from __future__ import annotations
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
-from .common import (
-    DONE_LIMIT,
-    done_job,
-    post_form,
-    save_upload,
-    upload_or_kept,
-    wedge_source,
-    wedge_title,
-)
-from .forms import Form, FormError
+from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
+from .forms import Form, FormError, at
+from .labels import label
+from .pages import CONTACTS, UNITS
 from .store import UploadError, check_plain_name
+from .words import STRIP, TWO_NODE
 
 BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a, mu2 along t_b)"),
            ("coulomb", "built in: coulomb (isotropic, mu1)"),
            ("collinear", "built in: collinear (force along the sliding direction)"),
            ("star", "built in: star (windward wedge reservoir, mu1 / mu2)"),
            ("upload", "a gauge file (upload below)"))
-STRIP = {"h": "h (m)", "E": "E (Pa)", "p": "p (Pa)", "l": "l (m)", "k_t": "k_t (Pa/m)",
-         "alpha_T": "alpha_T (1/K)"}
-TWO_NODE = {"k": "k (N/m)", "l0": "l0 (m)", "alpha_T": "alpha_T (1/K)", "k_t": "k_t (N/m)",
-            "N": "N (N)"}
 MAX_TOML = 1 << 20
 
 
@@ -33,12 +24,12 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
         (("fit", "gauge"), ("done",), DONE_LIMIT), (("derive",), ("done",), DONE_LIMIT),
         (("slide", "risk"), None, 20))
     q = request.query_params
-    laws = [(f"job:{j['id']}", f"{j['id']}: {j['title']}") for j in laws_done] + list(BUILTIN)
+    laws = [(f"job:{j['id']}", f"{j['id']}: {label(j)}") for j in laws_done] + list(BUILTIN)
     default_law = f"job:{q['law']}" if q.get("law") and any(
         j["id"] == q["law"] for j in laws_done) else (laws[0][0] if laws else "ellipse")
     frictions = [("wedge", "a wedge texture (below)")]
-    frictions += [(f"job:{j['id']}", f"surface {j['id']}: {j['title']}") for j in surfaces]
-    frictions += [(f"law:{j['id']}", f"law {j['id']}: {j['title']}") for j in laws_done]
+    frictions += [(f"job:{j['id']}", f"surface {j['id']}: {label(j)}") for j in surfaces]
+    frictions += [(f"law:{j['id']}", f"law {j['id']}: {label(j)}") for j in laws_done]
     frictions += [("file", "a texture or surface file (upload below)"),
                   ("mu", "two coefficients mu+ and mu- (below)"),
                   ("assembly", "the assembly file's own [friction] (mu_plus, mu_minus)")]
@@ -61,13 +52,12 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     choice = form.text("law") or "ellipse"
     if choice.startswith("job:"):
         jid = choice[4:]
-        done_job(web, jid, ("fit", "gauge"), "law")
-        spec, what = {"kind": "job", "job": jid}, f"the law of result {jid}"
+        rec = done_job(web, jid, ("fit", "gauge"), "law", "law")
+        spec, what = {"kind": "job", "job": jid}, f"the {rec['title']} (law {jid})"
     elif choice == "upload":
-        meta = await upload_or_kept(web, form, "gauge", "gauge_upload")
+        meta = kept.get("gauge")
         if meta is None:
-            raise FormError("choose a gauge file (.json) to upload, or another law")
-        kept["gauge"] = meta
+            raise FormError("choose a gauge file (.json) to upload, or another law", "gauge")
         spec, what = {"kind": "upload", "upload": meta["id"], "name": meta["name"]}, meta["name"]
     elif choice in ("coulomb", "ellipse", "collinear", "star"):
         mu1 = form.number("mu1", label="mu1")
@@ -76,12 +66,12 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         spec = {"kind": "builtin", "law": choice, "mu1": mu1, "mu2": mu2}
         what = f"a {choice} law, mu1 = {mu1:g}" + ("" if mu2 is None else f", mu2 = {mu2:g}")
     else:
-        raise FormError(f"unknown friction law {choice[:40]!r}; pick one from the list")
+        raise FormError(f"unknown friction law {choice[:40]!r}; pick one from the list", "law")
     params = {"law": spec, "u0": form.number("u0", label="u0 (m/s)"),
               "angle_deg": form.number("angle_deg", label="direction (deg)"),
               "mass": form.number("mass", 1.0, label="mass (kg)"),
               "g": form.number("g", 9.81, label="g (m/s^2)"),
-              "dt": form.number("dt", 1e-4, label="time step (s)")}
+              "dt": form.number("dt", 1e-4, label="time step (s)"), "law_text": what}
     return params, f"slide on {what}"
 
 
@@ -89,7 +79,8 @@ def _assembly_from_form(form: Form) -> dict:
     model = form.choice("model", ("strip", "two-node"), "strip")
     if model == "strip":
         a = {k: form.number(f"strip_{k}", label=label) for k, label in STRIP.items()}
-        a["n"] = form.whole("strip_n", 201, low=-10 ** 9, label="nodes")
+        from ..microslip.limits import NODES
+        a["n"] = form.whole("strip_n", 201, low=NODES[0], high=NODES[1], label="nodes")
     else:
         a = {k: form.number(f"two_{k}", label=label) for k, label in TWO_NODE.items()}
     loading = {"dT_min": form.number("dT_min", 0.0, label="dT min (K)"),
@@ -124,14 +115,11 @@ def _value(v) -> str:
 
 async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     from ..io import parse_toml
-    meta = await upload_or_kept(web, form, "assembly_file", "assembly_upload")
+    meta = kept.get("assembly")
     if meta is not None:
-        kept["assembly"] = meta
-        path = web.store.upload_path(meta["id"])
-        if path.stat().st_size > MAX_TOML:
-            raise UploadError(f"{meta['name']!r} is too large for an assembly file (1 MB)")
-        text = path.read_text(encoding="utf-8", errors="replace")
-        data = parse_toml(text, meta["name"], UploadError)
+        with at("assembly_file"):
+            text = _stored_text(web, meta, "an assembly file")
+            data = parse_toml(text, meta["name"], UploadError)
         what = meta["name"]
     else:
         data = _assembly_from_form(form)
@@ -142,19 +130,19 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         spec = wedge_source(form, "r_")
         src_what = wedge_title(spec)
     elif choice.startswith("job:"):
-        done_job(web, choice[4:], ("derive",), "surface result")
+        done_job(web, choice[4:], ("derive",), "surface result", "friction")
         spec, src_what = {"kind": "job", "job": choice[4:]}, f"result {choice[4:]}"
     elif choice.startswith("law:"):
-        done_job(web, choice[4:], ("fit", "gauge"), "law")
+        done_job(web, choice[4:], ("fit", "gauge"), "law", "friction")
         spec, src_what = {"kind": "law", "job": choice[4:]}, f"the law of {choice[4:]}"
     elif choice == "file":
-        tex = await upload_or_kept(web, form, "texture_file", "texture_upload")
+        tex = kept.get("texture")
         if tex is None:
             raise FormError("choose the texture or surface file to upload (or another source "
-                            "of friction)")
-        kept["texture"] = tex
+                            "of friction)", "texture_file")
         spec = {"kind": "file", "upload": tex["id"], "name": tex["name"],
-                "options": {"unit": form.text("r_unit") or None,
+                "options": {"unit": form.choice("r_unit", UNITS, "", label="length unit")
+                            or None,
                             "mu": form.optional("r_mu", label="local friction mu")}}
         src_what = tex["name"]
     elif choice == "mu":
@@ -163,18 +151,30 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         src_what = f"mu+ = {spec['mu_plus']:g}, mu- = {spec['mu_minus']:g}"
     elif choice == "assembly":
         if meta is None:
-            raise FormError("the assembly file's own friction needs an assembly file")
+            raise FormError("the assembly file's own friction needs an assembly file",
+                            "assembly_file")
         spec, src_what = {"kind": "assembly"}, "its own friction"
     else:
-        raise FormError(f"unknown friction source {choice[:40]!r}; pick one from the list")
-    tol = form.optional("tolerance_mm", label="tolerance (mm)")
+        raise FormError(f"unknown friction source {choice[:40]!r}; pick one from the list",
+                        "friction")
+    tol = form.optional("tolerance", label="tolerance (m)")
     params = {"assembly": data, "friction": spec, "assembly_toml": text, "assembly_name": what,
               "slip_axis_deg": form.optional("slip_axis_deg", label="slip axis (deg)"),
-              "textured": form.choice("textured", ("", "support", "part"), "") or None,
-              "contact": form.choice("r_contact", ("", "all-faces", "windward"), "") or None,
+              "textured": form.choice("textured", ("", "support", "part"), "",
+                                      label="texture on the") or None,
+              "contact": form.choice("r_contact", ("",) + CONTACTS, "", label="contact")
+              or None,
               "cycles": form.optional("cycles", label="cycles"),
-              "tolerance": None if tol is None else tol * 1e-3}
+              "tolerance": tol}
     return params, f"risk of {what} on {src_what}"
+
+
+def _stored_text(web, meta: dict, what: str) -> str:
+    """The text of a stored TOML upload (at most 1 MB)."""
+    path = web.store.upload_path(meta["id"])
+    if path.stat().st_size > MAX_TOML:
+        raise UploadError(f"{meta['name']!r} is too large for {what} (1 MB)")
+    return path.read_text(encoding="utf-8", errors="replace")
 
 
 def register(app, web) -> None:
@@ -202,34 +202,28 @@ def register(app, web) -> None:
 
 
 async def _study_params(web, form: Form, kept: dict) -> tuple[dict, str]:
-    from .tasks_study import check_references
-    up = form.file("study")
-    if up is None:
-        raise FormError("choose the study file (.toml) to upload")
-    name = check_plain_name(up.filename, "study file name")
-    if not name.lower().endswith(".toml"):
-        raise UploadError(f"the study file must be a .toml file, got {name!r}")
-    files = form.files("companions")
-    names = [check_plain_name(f.filename) for f in files]
-    if len(set(names) | {name}) != len(names) + 1:
-        raise UploadError("two files with the same name; each file once, please")
+    from .tasks_study import MISSING, OUTSIDE, check_references
+    study = kept.get("study")
+    if study is None:
+        raise FormError("choose the study file (.toml) to upload", "study")
+    with at("study"):
+        name = check_plain_name(study["name"], "study file name")
+        if not name.lower().endswith(".toml"):
+            raise UploadError(f"the study file must be a .toml file, got {name!r}")
+    companions = kept.get("companions", [])
+    with at("companions"):
+        names = [check_plain_name(m["name"]) for m in companions]
+        if name in names:
+            raise UploadError(f"{name!r} is the study file; upload each file once, please")
+        texts = {n: _stored_text(web, m, "a study, texture or assembly file")
+                 if n.lower().endswith(".toml") else None for m, n in zip(companions, names)}
     workers = form.whole("workers", 0, low=0, high=64, label="local worker processes")
-    texts = {n: (await _toml_text(f, n)) if n.lower().endswith(".toml") else None
-             for f, n in zip(files, names)}
-    check_references(await _toml_text(up, name), texts)      # before anything is stored
-    study = await save_upload(web, up)
-    companions = []
-    for f, n in zip(files, names):
-        meta = await save_upload(web, f)
-        companions.append({"upload": meta["id"], "name": n})
-    return ({"study": {"upload": study["id"], "name": name}, "companions": companions,
+    try:
+        check_references(_stored_text(web, study, "a study file"), texts)
+    except UploadError as exc:
+        exc.field = "companions" if MISSING in str(exc) else "study"   # add the file there
+        exc.discard = OUTSIDE in str(exc)     # names a file of its own choosing: none kept
+        raise
+    return ({"study": {"upload": study["id"], "name": name},
+             "companions": [{"upload": m["id"], "name": n} for m, n in zip(companions, names)],
              "workers": workers}, f"study {name}")
-
-
-async def _toml_text(upload, name: str) -> str:
-    """The text of an uploaded TOML file (at most 1 MB), the file rewound for saving."""
-    data = await upload.read(MAX_TOML + 1)
-    await upload.seek(0)
-    if len(data) > MAX_TOML:
-        raise UploadError(f"{name!r} is too large for a study, texture or assembly file (1 MB)")
-    return data.decode("utf-8", errors="replace")

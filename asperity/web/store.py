@@ -8,6 +8,7 @@
     DATA/jobs/<id>/progress.json         fraction done (the worker writes it)
     DATA/jobs/<id>/result.json           the result (the worker writes it)
     DATA/jobs/<id>/...                   files to download (gauge.json, figures, ...)
+    DATA/jobs/.deleted-<id>-<hex>/       a job being deleted (renamed first, then removed)
 
 Every file is written atomically (:func:`asperity.io.write_text_atomic`): a kill at any
 moment leaves the old record or the new one.  Names that come from a request (job ids,
@@ -138,7 +139,8 @@ class Store:
             except FileExistsError:
                 continue
         rec = {"id": jid, "kind": kind, "title": title, "status": "queued",
-               "created": now_iso(), "started": None, "finished": None, "seconds": None,
+               "created": now_iso(), "created_at": time.time(), "started": None,
+               "finished": None, "seconds": None,
                "params": params, "error": None, "error_status": None,
                "needs_units": False, "attempts": 0, "files": []}
         self.write(rec)
@@ -165,6 +167,32 @@ class Store:
         rec.update(changes)
         self.write(rec)
         return rec
+
+    def delete(self, jid: str) -> bool:
+        """Remove job ``jid`` and all its files: its folder is first renamed out of the
+        list in one step (a kill at any moment leaves the whole job or none of it listed),
+        then removed.  False if there is no such job."""
+        import shutil
+        try:
+            folder = self.job_dir(jid)
+        except KeyError:
+            return False
+        trash = self.jobs_dir / f".deleted-{jid}-{secrets.token_hex(4)}"
+        try:
+            folder.rename(trash)
+        except FileNotFoundError:
+            return False
+        shutil.rmtree(trash, ignore_errors=True)
+        return True
+
+    def sweep(self) -> None:
+        """Finish deletions that a kill interrupted (folders renamed, not yet removed)."""
+        import shutil
+        try:
+            for p in self.jobs_dir.glob(".deleted-*"):
+                shutil.rmtree(p, ignore_errors=True)
+        except OSError:
+            pass
 
     def progress(self, jid) -> dict:
         try:
@@ -210,3 +238,38 @@ class Store:
                         (not status or rec["status"] in status):
                     o.append(rec)
         return outs
+
+
+def clock(rec: dict, progress: dict, now: float | None = None) -> dict:
+    """How long job ``rec`` has waited or run, from the times stored in its record (so a
+    page reloaded shows the same), and the time left estimated from its progress: the
+    elapsed time scaled by what is left, once the job is 2 % done and ran 2 s.
+    ``{"elapsed_s", "left_s" (None: no estimate yet), "since": "queued" | "running"}``."""
+    now = time.time() if now is None else now
+    running = rec.get("status") == "running" and rec.get("started_at")
+    t0 = rec.get("started_at") if running else rec.get("created_at")
+    if not isinstance(t0, (int, float)):
+        try:
+            t0 = time.mktime(time.strptime(str(rec.get("created")), "%Y-%m-%d %H:%M:%S"))
+        except (TypeError, ValueError, OverflowError):
+            t0 = now
+    elapsed = max(0.0, now - float(t0))
+    left = None
+    try:
+        f = float(progress.get("fraction") or 0.0)
+    except (TypeError, ValueError):
+        f = 0.0
+    if running and 0.02 <= f < 1.0 and elapsed >= 2.0:
+        left = elapsed * (1.0 - f) / f
+    return {"elapsed_s": round(elapsed, 1), "left_s": None if left is None else round(left, 1),
+            "since": "running" if running else "queued"}
+
+
+def duration(seconds) -> str:
+    """``75`` -> ``1 min 15 s``; ``4000`` -> ``1 h 07 min``."""
+    s = int(round(float(seconds or 0)))
+    if s < 60:
+        return f"{s} s"
+    if s < 3600:
+        return f"{s // 60} min {s % 60:02d} s"
+    return f"{s // 3600} h {s % 3600 // 60:02d} min"

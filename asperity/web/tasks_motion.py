@@ -75,8 +75,26 @@ def slide_task(params: dict, ctx: dict, bar) -> dict:
     obj = slide_summary(law, res, u0=u0, angle_deg=params["angle_deg"], mass=params["mass"],
                         g=g, dt=dt, t_end=None, tol=Settings().tol)
     write_text_atomic(ctx["job_dir"] / "path.csv", path_csv(res))
+    text, name = _law_words(params["law"], law, params, ctx)
     return {"slide": obj, "figure": path_figure(res, params["angle_deg"]),
-            "files": ["path.csv"]}
+            "law_text": text, "files": ["path.csv"],
+            "downloads": {"path.csv": f"{name}_slide-path.csv"}}
+
+
+def _law_words(spec: dict, law, params: dict, ctx: dict) -> tuple[str, str]:
+    """What the page calls the law of a slide, and the stem of its download names: the
+    fitted law's own title (``law_text`` of the form), the gauge file's name, or the
+    built-in law with its coefficients."""
+    from .labels import clean, law_stem, stem
+    kind = spec.get("kind")
+    if kind == "job":
+        name = _law_job_stem(ctx, spec.get("job"))
+        return params.get("law_text") or f"the {law.name} law of result {spec['job']}", name
+    if kind == "upload":
+        shown = str(spec.get("name"))
+        return f"the {law.name} law of gauge file {shown}", law_stem(stem(shown), law.name)
+    mu = f"mu{spec.get('mu1'):g}" + ("" if spec.get("mu2") is None else f"-{spec['mu2']:g}")
+    return law.description, clean(f"{spec.get('law')}-{mu}")
 
 
 def _friction_table(asm: dict, spec: dict, ctx: dict, extra: dict) -> dict:
@@ -88,17 +106,54 @@ def _friction_table(asm: dict, spec: dict, ctx: dict, extra: dict) -> dict:
         shutil.copyfile(_gauge_of_job(ctx, spec.get("job")), ctx["job_dir"] / "gauge.json")
         return {"gauge": "gauge.json", **extra}
     fr = asm.get("friction", {})
-    if not isinstance(fr, dict) or any(k in fr for k in ("texture", "gauge")):
-        raise InputError("the assembly file names its texture or gauge file; choose that "
-                         "texture (or law) as the friction source on this form")
+    if not isinstance(fr, dict):
+        raise InputError("friction of the assembly file must be a table [friction]")
+    for k in ("texture", "gauge"):       # an uploaded assembly comes alone: never read them
+        if k in fr:
+            raise InputError(f"friction.{k} = {str(fr[k])[:80]!r}: on this page an assembly "
+                             f"file may not name other files; upload that file as the "
+                             f"friction source (or fit that law) and choose it on this form")
     return fr
+
+
+def _law_job_stem(ctx: dict, jid) -> str:
+    """The stem of a Law result's download names (its source and law kind)."""
+    import json
+
+    from .labels import stem
+    if not isinstance(jid, str) or not JOB_ID.match(jid):
+        return "law"
+    try:
+        res = json.loads((ctx["jobs"] / jid / "result.json").read_text("utf-8"))
+        return stem(res["downloads"]["gauge.json"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return clean(f"law-of-{jid}")
+
+
+def _friction_stem(spec: dict, ctx: dict) -> str:
+    """The friction source of a risk verdict in its download names ('' for the assembly
+    file's own friction)."""
+    from .labels import clean, source_stem
+    from .tasks_surface import source_job
+    kind = spec.get("kind")
+    if kind in ("wedge", "file"):
+        return source_stem(spec)
+    if kind == "job":
+        return source_stem(source_job(ctx, spec.get("job")))
+    if kind == "law":
+        return _law_job_stem(ctx, spec.get("job"))
+    if kind == "mu":
+        return clean(f"mu{spec['mu_plus']:g}-{spec['mu_minus']:g}")
+    return ""
 
 
 def risk_task(params: dict, ctx: dict, bar) -> dict:
     from .. import assembly_friction, assess_assembly
     from ..microslip.assembly import assembly_from_dict
-    from ..microslip.plot import plot_assembly_history
-    from ..microslip.risk_text import format_text
+    from ..microslip.plot import assembly_history, plot_assembly_history
+    from ..microslip.risk_text import format_text, near_symmetric_notes
+    from .figures import risk_figures
+    from .labels import stem
     data = dict(params["assembly"])
     spec = params["friction"]
     opts = {k: params[k] for k in ("slip_axis_deg", "textured") if params.get(k) is not None}
@@ -123,8 +178,10 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     out = assess_assembly(asm, friction, cycles=params.get("cycles"),
                           tolerance=params.get("tolerance"))
     bar(0.8, "plot")
+    hist = assembly_history(out["_chain"], asm.loading)
     plot_assembly_history(out["_chain"], asm.loading, ctx["job_dir"] / "risk.png",
-                          title=asm.name)
+                          title=asm.name, history=hist)
+    figures = risk_figures(hist, out["_chain"], asm.name)
     text = format_text(out)
     public = {k: v for k, v in out.items() if not k.startswith("_")}
     public = rename(public, {str(ctx["job_dir"]) + "/": "", **ctx["names"]})
@@ -136,8 +193,15 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     if params.get("assembly_toml"):
         write_text_atomic(ctx["job_dir"] / "assembly.toml", params["assembly_toml"])
         files.append("assembly.toml")
+    asm_stem = stem(params.get("assembly_name") or asm.name)
+    fr_stem = _friction_stem(spec, ctx)
+    base = f"{asm_stem}_{fr_stem}" if fr_stem else asm_stem
     return {"risk": public, "text": rename(text, {str(ctx["job_dir"]) + "/": "",
-                                                  **ctx["names"]}), "files": files}
+                                                  **ctx["names"]}), "files": files,
+            "figures": figures,
+            "notes": [x.strip().removeprefix("NOTE: ") for x in near_symmetric_notes(out)],
+            "downloads": {"risk.png": f"{base}_risk.png", "risk.json": f"{base}_risk.json",
+                          "assembly.toml": f"{asm_stem}.toml"}}
 
 
 TASKS = {"slide": slide_task, "risk": risk_task}

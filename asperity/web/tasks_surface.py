@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..io import json_ready
+from .labels import law_downloads, source_stem, stem
 from .results import rename
 from .store import UPLOAD_ID
 
@@ -132,12 +133,14 @@ def derive_task(params: dict, ctx: dict, bar) -> dict:
     from ..io import write_text_atomic
     write_text_atomic(ctx["job_dir"] / "derive.json", json.dumps(json_ready(obj), indent=1))
     return {"derive": obj, "text": rename(format_text(d), ctx["names"]),
-            "source": describe(real, d.texture), "figures": figs, "files": ["derive.json"]}
+            "source": describe(real, d.texture), "figures": figs, "files": ["derive.json"],
+            "downloads": {"derive.json": f"{source_stem(real)}_friction.json"}}
 
 
-def _law_outputs(gl, ctx: dict, n_csv: int = 360) -> dict:
-    """The gauge file, CSV table and Abaqus block of a law into the job folder, and what
-    the page shows of it."""
+def _law_outputs(gl, ctx: dict, source: str, n_csv: int = 360) -> dict:
+    """The gauge file, CSV table and Abaqus block of a law into the job folder (they
+    download under names made of ``source``, a stem, and the law kind), and what the page
+    shows of it."""
     from .. import write_gauge
     from ..io import write_text_atomic
     from ..laws.export import abaqus_block, orthotropic_approximation, write_csv
@@ -153,7 +156,8 @@ def _law_outputs(gl, ctx: dict, n_csv: int = 360) -> dict:
     return {"summary": summary(gl), "report": format_fit(gl), "figures": law_figures(gl),
             "kind": gl.kind, "principal_direction_deg": gl.principal_direction_deg,
             "axes": a.axes, "abaqus": abaqus,
-            "files": ["gauge.json", "law.csv", "law.inp"]}
+            "files": ["gauge.json", "law.csv", "law.inp"],
+            "downloads": law_downloads(source, gl.kind)}
 
 
 def fit_task(params: dict, ctx: dict, bar) -> dict:
@@ -162,7 +166,7 @@ def fit_task(params: dict, ctx: dict, bar) -> dict:
                                              "allow_tiles": False}, ctx, bar)
     bar(0.95, "fitting the law")
     gl = fit_derivation(d, params.get("law", "star"))
-    out = _law_outputs(gl, ctx)
+    out = _law_outputs(gl, ctx, source_stem(real))
     out["source"] = describe(real, d.texture)
     return out
 
@@ -170,7 +174,7 @@ def fit_task(params: dict, ctx: dict, bar) -> dict:
 def gauge_task(params: dict, ctx: dict, bar) -> dict:
     from .. import read_gauge
     gl = read_gauge(upload_file(ctx, params["upload"], str(params.get("name"))))
-    out = _law_outputs(gl, ctx)
+    out = _law_outputs(gl, ctx, stem(params.get("name")))
     out["source"] = {"kind": "gauge file", "text": f"gauge file {params.get('name')}"}
     return out
 

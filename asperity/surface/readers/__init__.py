@@ -41,6 +41,9 @@ The instrument formats (``.mi .sur .opd .datx .plu .nms``, ...)
     pixel sizes from the file.  Of a multi-channel file (``.mi``) the first height
     channel is read, and :attr:`HeightMap.source` names it.  A file whose content is not
     a surface in the format of its suffix is refused.
+    A file written in another unit than it states (an x3p in micrometres: a pixel of
+    2 "m") is read with ``unit``: its numbers are taken in that unit; ``pixel_size`` (in
+    ``unit``) replaces its spacing.
 
 Every error a user can cause (missing file, unknown suffix or unit, malformed header or
 matrix, a pixel size or height outside the physical ranges of
@@ -57,7 +60,7 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from ...errors import InputError
+from ...errors import InputError, check_range
 from ..topography import HeightMap, TriangleMesh, check_height_scale, unit_factor
 from ._files import read_bytes, split_suffix, surface_path
 
@@ -114,11 +117,13 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0,
                    names such as 'micrometre' too).  Required for meshes, ``.npy``/``.npz``
                    and text matrices without a value unit in their header; for a text
                    matrix with a header it overrides the header's height unit.  Files
-                   in instrument formats state their own unit and pixel size and reject
-                   both arguments (unless the file lacks them, then both are required).
+                   in instrument formats (x3p too) state their own unit and pixel size;
+                   ``unit`` then reads their numbers in that unit instead (a file written
+                   in another unit than it states), and is required with ``pixel_size``
+                   (both are required when the file lacks them).
     pixel_size   : grid spacing of a height map in ``unit``, a number or (dx, dy).
                    Required for ``.npy``/``.npz`` and headerless text matrices; overrides
-                   a text header's sizes (and then needs ``unit``).
+                   a header's or an instrument file's sizes (and then needs ``unit``).
     height_scale : factor in [1e-6, 1e6] applied to the heights (z) after conversion to
                    metres, e.g. to make nanometre-high AFM relief steep enough for friction
                    work.
@@ -130,10 +135,11 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0,
     """
     p = surface_path(path)
     hs = check_height_scale(height_scale)
+    point_bytes = check_range("point_bytes", point_bytes, 0.0, 1e6, unit="bytes")
     reader, suffix, gz = reader_for(p)
     if unit is not None:
         unit_factor(unit)                 # fail early on an unknown unit
     if pixel_size is not None and not reader.takes_pixel_size:
         raise InputError(f"{p}: pixel_size applies to height maps, not to a mesh file")
     return reader.read(read_bytes(p, gz), suffix=suffix, gz=gz, name=p, unit=unit,
-                       pixel_size=pixel_size, height_scale=hs, point_bytes=float(point_bytes))
+                       pixel_size=pixel_size, height_scale=hs, point_bytes=point_bytes)

@@ -23,7 +23,14 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import TextureFileError
-from ..topography import PIXEL_SIZE_RANGE, one_line, pixel_pair, unit_factor
+from ..topography import (
+    check_height_scale,
+    check_stated_pixel,
+    given_sizes,
+    one_line,
+    pixel_pair,
+    unit_factor,
+)
 from ._files import split_suffix, surface_path
 from ._lines import LineSource
 
@@ -73,16 +80,14 @@ class X3pLines(LineSource):
 
     axis = 1
 
-    def __init__(self, path, name, layout, height_scale):
+    def __init__(self, path, name, layout, height_scale, factor: float = 1.0, pixel=None):
         cx, cy, cz = layout.axes
-        for label, d in (("pixel size dx", cx.increment), ("pixel size dy", cy.increment)):
-            lo, hi = PIXEL_SIZE_RANGE
-            if not lo <= d <= hi:
-                raise TextureFileError(f"{name}: {label} {d:g} m is outside [{lo:g}, {hi:g}] "
-                                       f"m; check the unit and pixel size")
-        super().__init__(path, (layout.nx, layout.ny), cx.increment, cy.increment,
-                         Path(name).name)
-        self.layout, self.height_scale, self.name = layout, float(height_scale), str(name)
+        dx, dy = pixel or (cx.increment * factor, cy.increment * factor)
+        if pixel is None:
+            check_stated_pixel(name, dx, dy, "metres" if factor == 1.0 else "that unit")
+        super().__init__(path, (layout.nx, layout.ny), dx, dy, Path(name).name)
+        self.layout, self.name = layout, str(name)
+        self.height_scale = float(height_scale) * factor
 
     def _member(self, which, start):
         """[open member, position, archive] (``which``: 'data' or 'valid') at or before
@@ -143,7 +148,7 @@ class X3pLines(LineSource):
         nx = lay.nx
         raw = np.frombuffer(self._read("data", a * nx * rec.itemsize, (b - a) * nx *
                                        rec.itemsize), dtype=rec)
-        z = _real(raw["CZ"], lay.axes[2])
+        z = _real(raw["CZ"], lay.axes[2], self.name)
         with np.errstate(invalid="ignore"):
             bad = ~np.isfinite(z)
         if lay.valid_member is not None:
@@ -167,7 +172,7 @@ class X3pLines(LineSource):
                 setattr(self, key, None)
 
 
-def _open_x3p(p: Path, height_scale: float):
+def _open_x3p(p: Path, height_scale: float, factor: float = 1.0, pixel=None):
     import zipfile
     from .x3p import _parse_main
     try:
@@ -201,7 +206,7 @@ def _open_x3p(p: Path, height_scale: float):
             if v.file_size < (layout.n + 7) // 8:
                 raise TextureFileError(f"{p}: {layout.valid_member} holds {v.file_size} "
                                        f"bytes, {layout.n} points need {(layout.n + 7) // 8}")
-    return X3pLines(p, p, layout, height_scale)
+    return X3pLines(p, p, layout, height_scale, factor, pixel)
 
 
 def open_lines(path, *, unit=None, pixel_size=None, height_scale=1.0):
@@ -209,6 +214,7 @@ def open_lines(path, *, unit=None, pixel_size=None, height_scale=1.0):
     whole).  Refuses what the whole-file readers refuse (missing unit, pixel size ...)."""
     from .text import open_text_lines
     p = surface_path(path)
+    height_scale = check_height_scale(height_scale)
     suffix, gz = split_suffix(p)
     if gz or not p.is_file():
         return None
@@ -219,9 +225,8 @@ def open_lines(path, *, unit=None, pixel_size=None, height_scale=1.0):
         dx, dy = pixel_pair(pixel_size, f)
         return NpyLines(p, p, f, height_scale, dx, dy)
     if suffix == ".x3p":
-        if unit is not None or pixel_size is not None:
-            return None
-        return _open_x3p(p, height_scale)
+        factor, pixel = given_sizes(p, unit, pixel_size)
+        return _open_x3p(p, height_scale, factor or 1.0, pixel)
     if suffix in (".txt", ".asc", ".csv", ".dat"):
         return open_text_lines(p, unit, pixel_size, height_scale)
     return None

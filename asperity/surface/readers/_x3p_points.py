@@ -24,6 +24,8 @@ DTYPE_NAMES = "I (int16), L (int32), F (float32), D (float64)"
 PIECE = 1 << 24
 #: Datum entries converted at once
 _BATCH = 1 << 16
+#: values scaled at once
+_SCALE_PIECE = 1 << 20
 #: a regular grid's coordinates may deviate from it by this share of the spacing
 GRID_TOLERANCE = 1e-3
 
@@ -63,13 +65,30 @@ class Layout:
         return np.dtype([(a.label, X3P_DTYPES[a.code]) for a in self.stored])
 
 
-def _real(raw: np.ndarray, axis: Axis) -> np.ndarray:
+def _real(raw: np.ndarray, axis: Axis, name) -> np.ndarray:
     """float64 ``raw * Increment + Offset`` in a fresh array."""
-    v = raw.astype(np.float64)
-    if axis.increment != 1.0:
-        v *= axis.increment
-    if axis.offset != 0.0:
-        v += axis.offset
+    return _scale(raw.astype(np.float64), axis, name)
+
+
+def _scale(v: np.ndarray, axis: Axis, name) -> np.ndarray:
+    """``v * Increment + Offset`` in place (in pieces: no temporary of the whole grid);
+    TextureFileError, and no RuntimeWarning, when a finite value leaves the float range
+    (an Increment or Offset that cannot be right)."""
+    if axis.increment == 1.0 and axis.offset == 0.0:
+        return v
+    for lo in range(0, v.size, _SCALE_PIECE):
+        piece = v[lo:lo + _SCALE_PIECE]
+        finite = np.isfinite(piece)
+        with np.errstate(over="ignore", invalid="ignore"):
+            if axis.increment != 1.0:
+                piece *= axis.increment
+            if axis.offset != 0.0:
+                piece += axis.offset
+        lost = finite & ~np.isfinite(piece)
+        if lost.any():
+            raise TextureFileError(f"{name}: x3p {axis.label} Increment {axis.increment:g} "
+                                   f"and Offset {axis.offset:g} take values beyond the float "
+                                   f"range; check the axis's Increment and Offset")
     return v
 
 
@@ -108,7 +127,7 @@ def read_binary(zf: zipfile.ZipFile, layout: Layout, name) -> dict:
         raise TextureFileError(f"{name}: {member} holds {'more' if pos > need else 'fewer'} "
                                f"bytes than its {need} declared")
     del view
-    out = {a.label: _real(buf[a.label], a) for a in layout.stored}
+    out = {a.label: _real(buf[a.label], a, name) for a in layout.stored}
     del buf
     return out
 
@@ -188,12 +207,7 @@ class InlinePoints:
                                    f"needs {self.layout.n}")
         out = {}
         for c, a in enumerate(self.layout.stored):
-            v = self.values[c]
-            if a.increment != 1.0:
-                v *= a.increment
-            if a.offset != 0.0:
-                v += a.offset
-            out[a.label] = v
+            out[a.label] = _scale(self.values[c], a, self.name)
         self.values = None
         return out
 

@@ -18,7 +18,15 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, TextureFileError
-from ..topography import HeightMap, finish_heightmap, one_line, pixel_pair, unit_factor
+from ..topography import (
+    HeightMap,
+    check_stated_pixel,
+    finish_heightmap,
+    given_sizes,
+    one_line,
+    pixel_pair,
+    unit_factor,
+)
 from ._files import (
     FORMATS_HELP,
     INSTRUMENT_EXAMPLES,
@@ -154,7 +162,7 @@ def _read_channel(reader, channels, name, unit, pixel_size, height_scale, point_
         nxy = None
     if nxy is not None and len(nxy) == 2:
         check_grid(nxy[0], nxy[1], name, READ_BYTES_PER_POINT + 8 + float(point_bytes))
-    kwargs = {}
+    kwargs, given, pixel = {}, None, None
     if pick.physical_sizes is None or pick.unit is None:
         if unit is None or pixel_size is None:
             fmt = getattr(reader, "_format", None) or type(reader).__name__
@@ -163,9 +171,8 @@ def _read_channel(reader, channels, name, unit, pixel_size, height_scale, point_
         f = unit_factor(unit)
         ddx, ddy = pixel_pair(pixel_size, f)
         kwargs = dict(physical_sizes=(nxy[0] * ddx / f, nxy[1] * ddy / f), unit=_st_unit(unit))
-    elif unit is not None or pixel_size is not None:
-        raise InputError(f"{name}: the file states its unit and pixel size; do not pass "
-                         f"unit or pixel_size (height_scale scales the heights)")
+    else:               # unit: the file's numbers read in it; pixel_size: replaces its
+        given, pixel = given_sizes(name, unit, pixel_size)
     try:
         topo = reader.topography(channel_index=pick.index, **kwargs)
         h = topo.heights()
@@ -182,7 +189,7 @@ def _read_channel(reader, channels, name, unit, pixel_size, height_scale, point_
     if not getattr(topo, "is_uniform", True):
         raise InputError(f"{name}: holds a non-uniform grid; a regular height map is needed")
     try:
-        f = float(get_unit_conversion_factor(tunit, "m"))
+        f = given or float(get_unit_conversion_factor(tunit, "m"))
     except Exception:
         raise TextureFileError(f"{name}: unknown length unit {tunit!r} in the file") from None
     z = np.ma.filled(np.ma.asarray(h, dtype=np.float64), np.nan) * f
@@ -193,6 +200,11 @@ def _read_channel(reader, channels, name, unit, pixel_size, height_scale, point_
         dx = dy = float("nan")
     if not (dx > 0 and dy > 0 and math.isfinite(dx * dy)):
         raise TextureFileError(f"{name}: the file states no valid pixel size")
+    if pixel is not None:
+        dx, dy = pixel
+    elif not kwargs:
+        check_stated_pixel(name, dx, dy, f"the {tunit} it states" if given is None else
+                           "that unit")
     return finish_heightmap(z, dx, dy, source, height_scale, name, copy=False)
 
 

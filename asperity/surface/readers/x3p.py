@@ -27,7 +27,14 @@ import math
 from pathlib import Path
 
 from ...errors import InputError, TextureFileError
-from ..topography import HeightMap, check_height_scale, finish_heightmap, one_line
+from ..topography import (
+    HeightMap,
+    check_height_scale,
+    check_stated_pixel,
+    finish_heightmap,
+    given_sizes,
+    one_line,
+)
 from ._files import READ_BYTES_PER_POINT, check_grid, read_bytes, split_suffix, surface_path
 from ._x3p_points import (
     DTYPE_NAMES,
@@ -62,17 +69,21 @@ def read_x3p(path, *, height_scale=1.0) -> HeightMap:
 
 def read(data: bytes, *, suffix: str, gz: bool, name: Path, unit, pixel_size,
          height_scale: float, point_bytes: float = 0.0) -> HeightMap:
-    """The built-in reader (the registry's entry for ``.x3p``)."""
-    if unit is not None or pixel_size is not None:
-        raise InputError(f"{name}: an x3p file states its unit (m) and pixel size; do not "
-                         f"pass unit or pixel_size (height_scale scales the heights)")
-    return read_x3p_bytes(data, name, height_scale, point_bytes)
+    """The built-in reader (the registry's entry for ``.x3p``).  The standard has every
+    number in metres; ``unit`` reads them in that unit instead (a file written in another),
+    ``pixel_size`` (in ``unit``) replaces the file's spacing."""
+    factor, pixel = given_sizes(name, unit, pixel_size)
+    return read_x3p_bytes(data, name, height_scale, point_bytes, factor=factor or 1.0,
+                          pixel=pixel)
 
 
 def read_x3p_bytes(data: bytes, name: Path, height_scale: float,
-                   point_bytes: float = 0.0) -> HeightMap:
+                   point_bytes: float = 0.0, *, factor: float = 1.0,
+                   pixel: tuple | None = None) -> HeightMap:
     """The height map of the x3p archive ``data`` (``point_bytes``: memory per point the
-    caller will need beyond reading, checked with the header)."""
+    caller will need beyond reading, checked with the header); ``factor``: metres per
+    number of the file (1: as the standard has them), ``pixel``: (dx, dy) in metres
+    replacing the file's."""
     import io
     import zipfile
 
@@ -94,7 +105,12 @@ def read_x3p_bytes(data: bytes, name: Path, height_scale: float,
             values, valid = inline, None
     heights, dx, dy = assemble(values, valid, layout, name)
     del values
-    return finish_heightmap(heights, dx, dy, name.name, height_scale, name)
+    if pixel is None:
+        dx, dy = dx * factor, dy * factor
+        check_stated_pixel(name, dx, dy, "metres" if factor == 1.0 else "that unit")
+    else:
+        dx, dy = pixel
+    return finish_heightmap(heights, dx, dy, name.name, height_scale * factor, name)
 
 
 # ----------------------------------------------------------------------------- main.xml

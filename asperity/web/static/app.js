@@ -9,6 +9,11 @@
       var src = document.getElementById(el.getAttribute("data-figure"));
       if (!src) { return; }
       var fig = JSON.parse(src.textContent);
+      // the title is the caption above the plot, where Plotly's toolbar cannot cover it
+      if (document.getElementById(el.getAttribute("data-caption") || "-")) {
+        delete fig.layout.title;
+        fig.layout.margin = Object.assign({}, fig.layout.margin, {t: 34});
+      }
       Plotly.newPlot(el, fig.data, fig.layout, {responsive: true, displaylogo: false});
       el.setAttribute("data-drawn", "1");
     });
@@ -22,7 +27,6 @@
     var pct = document.getElementById("progress-pct");
     var status = document.getElementById("progress-status");
     var clock = document.getElementById("progress-time");
-    var t0 = Date.now();
     function tick() {
       fetch("/api/jobs/" + id, {headers: {"Accept": "application/json"}})
         .then(function (r) { return r.json(); })
@@ -36,12 +40,28 @@
           pct.textContent = Math.round(100 * f) + " %";
           status.textContent = (j.status === "queued" ? "waiting for a free worker" : "computing") +
             (j.label ? ": " + j.label : "");
-          clock.textContent = Math.round((Date.now() - t0) / 1000) + " s";
+          clock.textContent = timeText(j);
           setTimeout(tick, 400);
         })
         .catch(function () { setTimeout(tick, 2000); });
     }
     tick();
+  }
+
+  // "1 min 05 s": as the server's duration() writes it
+  function duration(s) {
+    s = Math.round(s || 0);
+    function two(n) { return (n < 10 ? "0" : "") + n; }
+    if (s < 60) { return s + " s"; }
+    if (s < 3600) { return Math.floor(s / 60) + " min " + two(s % 60) + " s"; }
+    return Math.floor(s / 3600) + " h " + two(Math.floor(s % 3600 / 60)) + " min";
+  }
+
+  // elapsed time from the job's stored start (a reload does not reset it), time left
+  function timeText(j) {
+    if (j.since !== "running") { return "waiting for " + duration(j.elapsed_s); }
+    return duration(j.elapsed_s) + " elapsed" +
+      (j.left_s === null || j.left_s === undefined ? "" : ", about " + duration(j.left_s) + " left");
   }
 
   function dependentFields() {

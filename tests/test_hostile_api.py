@@ -1,0 +1,377 @@
+"""Every public callable of ``asperity.__all__`` fed hostile arguments (issue 18, section 9).
+
+The table :func:`api_table` holds, per public function or class, one valid call and the
+kind of each of its arguments (:mod:`api_walk`); the walker replaces one argument at a
+time by every bad value its kind generates (wrong types, wrong shapes, NaN, +-inf, 10**400,
+out-of-range numbers, missing or malformed files) and asserts that each call ends in a
+one-line InputError naming the argument, with no warning on the way -- never a bare
+NumPy, IndexError or TypeError.  A function added to ``__all__`` fails
+:func:`test_every_public_callable_has_a_row` until it has its row; an argument added to a
+signature fails :func:`test_rows_name_every_argument` until it has its kind."""
+from __future__ import annotations
+
+import collections
+import inspect
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from api_walk import (BIG_INT as BIG, NAN, Kind, address, array, callback, choice, flag, infile, instance, judge, number,
+                      outfile, outfolder, text, whole)
+from hostile import SURF
+
+import asperity as A
+from asperity.errors import InputError
+
+#: public names that are not callables of the API (the version, the error classes)
+NOT_CALLABLES = {"__version__", "AsperityError", "InputError"}
+TEX = A.WedgeTexture(30, 10, 0.1, 0.2)
+Z = 1e-6 * np.random.default_rng(7).normal(size=(12, 10))
+
+
+class Row:
+    """One public callable: its name, a valid call (``args``), the kind of each argument,
+    and the words a message may use for an argument (default: its own name)."""
+
+    def __init__(self, name, fn, args: dict, kinds: dict, words: dict | None = None):
+        self.name, self.fn, self.args, self.kinds = name, fn, args, kinds
+        self.words = words or {}
+
+    def calls(self):
+        """(argument, class, label, call) of every hostile call of this row."""
+        for arg, kind in self.kinds.items():
+            for cls, label, value in kind.bad():
+                yield arg, kind, cls, label, value, self._call(arg, value)
+
+    def _call(self, arg, value):
+        kw = dict(self.args, **{arg: value})
+        return lambda: self.fn(**kw)
+
+
+def _files(folder: Path) -> dict:
+    np.save(folder / "z.npy", Z)
+    gl = A.fit_derivation(A.derive(TEX, n_directions=72), "star")
+    A.write_gauge(folder / "g.json", gl)
+    chain = A.two_node_chain(1e6, 0.1, 1.2e-5, 5e5, 100.0, 0.2, 0.1)
+    loading = A.Loading([0.0, 125.0, 0.0], [0.0, 0.0, 0.0])
+    asm = A.load_assembly(SURF / "two-node-spec.toml")
+    return dict(d=A.derive(TEX, n_directions=72), npy=folder / "z.npy", gauge=folder / "g.json", gl=gl, chain=chain,
+                loading=loading, asm=asm, friction=A.assembly_friction(asm),
+                law=A.ellipse_law(0.2, 0.1), fs=A.load_surface(folder / "z.npy", unit="m",
+                                                               pixel_size=1e-6))
+
+
+def api_table(folder: Path) -> list[Row]:
+    f = _files(folder)
+    npy, gauge = infile(folder, ".npy"), infile(folder, ".json")
+    angle_deg = number(1e-6, 90.0, hi_open=True)
+    mu = number(0.0, 100.0)
+    pos = number(0.0, None, lo_open=True)
+    psi = array(-1e3, 1e3, extra=[("NaN", "NaN", NAN), ("inf", "+inf", math.inf),  # or a number
+                                  ("overflow", "10**400", BIG), ("range", "huge", 1e300)])
+    contact = choice()
+    small = A.SpringModel(n_springs=8, steps_per_period=2000)
+    elastic = A.SpringModel(k_f=1e6, n_springs=8, steps_per_period=2000)
+    scan = dict(unit=choice(none=True), pixel_size=number(1e-12, 1.0, none=True,
+                                                          skip=("1-d",)),
+                height_scale=number(1e-6, 1e6), detrend=choice(), mu=number(0.0, 100.0, none=True),
+                friction_map=array(0.0, 100.0, ndim=2, none=True),
+                rest_level=number(-1e3, 1e3, none=True), bearing_fraction=number(
+                    0.0, 1.0, lo_open=True, none=True), despike=number(2.0, 1e6, none=True),
+                despike_window=whole(3, 15, none=True), max_slope=number(0.0, 90.0, lo_open=True,
+                                                              hi_open=True, none=True))
+    scan_args = dict(path=f["npy"], unit="m", pixel_size=1e-6, height_scale=1.0,
+                     detrend="slope", mu=None, friction_map=None, rest_level=None,
+                     bearing_fraction=None, despike=3.0, despike_window=5, max_slope=None)
+    law_mu = number(1e-6, 100.0)
+    tol_default = A.assess.__kwdefaults__["tol"]
+    nodes = array(0, 1, none=True, skip=("empty",))     # no node recorded: allowed
+    alpha_T = number(-1e-3, 1e-3, extra=[("range", "zero", 0.0), ("range", "subnormal", 5e-324),
+                                         ("range", "-1e-12", -1e-12)])
+    def axis(p):
+        return Kind("pair", extra=[("shape", "one item", (p,)),
+                                   ("choice", "unknown parameter", ("no-such", [20.0, 30.0])),
+                                   ("shape", "one value", (p, [20.0])),
+                                   ("type", "values text", (p, "abc")),
+                                   ("NaN", "NaN value", (p, [NAN, 20.0])),
+                                   ("inf", "inf value", (p, [20.0, math.inf])),
+                                   ("range", "out-of-range value", (p, [20.0, 95.0]))])
+    mu_slider = number(1e-6, 1e4, inf=True)
+    rows = [
+        Row("WedgeTexture", A.WedgeTexture,
+            dict(alpha_deg=30, beta_deg=10, mu_alpha=0.1, mu_beta=0.2, height=1e-6),
+            dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,
+                 height=number(1e-10, 100.0)), {"alpha_deg": ("alpha",), "beta_deg": ("beta",)}),
+        Row("GaussianWedgeTexture", A.GaussianWedgeTexture,
+            dict(alpha_deg=30, beta_deg=10, mu_alpha=0.1, mu_beta=0.2, height_mean=1e-6,
+                 height_std=2e-7, n_wedges=20, seed=0, mean_gap=None),
+            dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,
+                 height_mean=number(1e-10, 100.0), height_std=number(0.0, 3e-6),
+                 n_wedges=whole(1, 1_000_000), seed=whole(0, 2**32 - 1),
+                 mean_gap=number(0.0, 100.0, none=True)),
+            {"alpha_deg": ("alpha",), "beta_deg": ("beta",)}),
+        Row("load_texture", A.load_texture, dict(path=SURF / "wedge-asymmetric.toml"),
+            dict(path=infile(folder, ".toml")), {"path": ("texture file",)}),
+        Row("compute_H", A.compute_H, dict(x=0.1, y=0.2),
+            dict(x=array(0.0, 100.0, ndim=None), y=array(-math.pi / 2, math.pi / 2,
+                                                       lo_open=True, hi_open=True, ndim=None)),
+            {"x": ("x (local friction)",), "y": ("y (slope angle)",)}),
+        Row("compute_reservoir", A.compute_reservoir,
+            dict(texture=TEX, psi=[0.0, 1.0], contact="all-faces", progress=None),
+            dict(texture=instance(), psi=psi, contact=contact, progress=callback())),
+        Row("compute_axis_coefficients", A.compute_axis_coefficients,
+            dict(texture=TEX, contact="all-faces"), dict(texture=instance(), contact=contact)),
+        Row("SpringModel", A.SpringModel,
+            dict(k_n=1e3, k_f=math.inf, density=1e10, preload=0.0, n_springs=8,
+                 steps_per_period=2000),
+            dict(k_n=number(1e-6, 1e12), k_f=number(1e-6, 1e12, inf=True),
+                 density=number(1.0, 1e20), preload=number(-1e6, 1e6),
+                 n_springs=whole(1, 1_000_000), steps_per_period=whole(2, 10**8))),
+        Row("simulate_sliding", A.simulate_sliding,
+            dict(texture=TEX, psi=0.0, model=small, contact="all-faces"),
+            dict(texture=instance(), psi=number(-1e3, 1e3), model=instance(), contact=contact)),
+        Row("simulate_reservoir", A.simulate_reservoir,
+            dict(texture=TEX, psi=[0.0], model=small, contact="all-faces"),
+            dict(texture=instance(), psi=psi, model=instance(), contact=contact)),
+        Row("simulate_loading_curve", A.simulate_loading_curve,
+            dict(texture=TEX, psi=0.0, model=elastic, distance=None, n_steps=200,
+                 contact="all-faces"),
+            dict(texture=instance(), psi=number(-1e3, 1e3), model=instance(),
+                 distance=number(0.0, 1.0, lo_open=True, none=True),
+                 n_steps=whole(2, 10**8), contact=contact)),
+        Row("load_surface", A.load_surface, scan_args, dict(path=npy, **scan),
+            {"path": ("surface file",), "friction_map": ("friction map",)}),
+        Row("FacetSurface", A.FacetSurface,
+            dict(gx=f["fs"].gx, gy=f["fs"].gy, mu=0.1, weight=f["fs"].weight, info={},
+                 preview=None, extent=None, quality=None),
+            dict(gx=array(), gy=array(), mu=number(0.0, 100.0), weight=array(0.0),
+                 info=instance(skip=("dict",)), preview=array(ndim=2, none=True,
+                                                              skip=("NaN inside",)),
+                 extent=array(0.0, None, lo_open=True, none=True),
+                 quality=instance(none=True, skip=("dict",)))),
+        Row("read_surface", A.read_surface,
+            dict(path=f["npy"], unit="m", pixel_size=1e-6, height_scale=1.0, point_bytes=0.0),
+            dict(path=npy, unit=scan["unit"], pixel_size=scan["pixel_size"],
+                 height_scale=scan["height_scale"], point_bytes=number(0.0, 1e6)),
+            {"path": ("surface file",)}),
+        Row("compute_facet_reservoir", A.compute_facet_reservoir,
+            dict(gx=f["fs"].gx, gy=f["fs"].gy, mu=0.1, weight=f["fs"].weight, psi=[0.0, 1.0],
+                 contact="all-faces", progress=None, batch=None),
+            dict(gx=array(), gy=array(), mu=number(0.0, 100.0), weight=array(0.0),
+                 psi=psi, contact=contact, progress=callback(),
+                 batch=whole(1, None, none=True))),
+        Row("derive", A.derive,
+            dict(texture=TEX, contact="all-faces", method="closed-form", n_directions=8,
+                 model=None, progress=None),
+            dict(texture=instance(), contact=contact, method=choice(),
+                 n_directions=whole(8, 100_000), model=instance(none=True),
+                 progress=callback()), {"n_directions": ("directions",)}),
+        Row("derive_scan", A.derive_scan,
+            dict(scan_args, contact="all-faces", n_directions=8, tile_lines=None, client=None,
+                 other_contact=None, source=None),
+            dict(path=npy, **scan, contact=contact, n_directions=whole(8, 100_000),
+                 tile_lines=whole(1, None, none=True), client=instance(none=True),
+                 other_contact=choice(none=True), source=instance(none=True)),
+            {"path": ("surface file",), "n_directions": ("directions",),
+             "friction_map": ("friction map",)}),
+        Row("fit_derivation", A.fit_derivation, dict(d=f["d"], kind="star", holdout=True),
+            dict(d=instance(), kind=choice(), holdout=flag()), {"d": ("derivation",)}),
+        Row("WalkerLeineLaw", A.WalkerLeineLaw, dict(C=f["gl"].law.C, D=f["gl"].law.D),
+            dict(C=instance(), D=instance())),
+        Row("TruncatedEllipse", A.TruncatedEllipse,
+            dict(mu_a_plus=0.2, mu_a_minus=0.3, mu_b_plus=0.1, mu_b_minus=0.15, theta=0.0),
+            dict(mu_a_plus=law_mu, mu_a_minus=law_mu, mu_b_plus=law_mu, mu_b_minus=law_mu,
+                 theta=number(-4 * math.pi, 4 * math.pi))),
+        Row("read_gauge", A.read_gauge, dict(path=f["gauge"]), dict(path=gauge),
+            {"path": ("gauge file",)}),
+        Row("write_gauge", A.write_gauge, dict(path=folder / "out.json", gl=f["gl"]),
+            dict(path=outfile(folder), gl=instance()), {"gl": ("gauge law",)}),
+        Row("PlanarLaw", A.PlanarLaw, dict(name="star", law=f["gl"].law, description="d"),
+            dict(name=choice(), law=instance(), description=text())),
+        Row("coulomb_law", A.coulomb_law, dict(mu=0.2), dict(mu=law_mu)),
+        Row("ellipse_law", A.ellipse_law, dict(mu1=0.2, mu2=0.1), dict(mu1=law_mu, mu2=law_mu)),
+        Row("truncated_ellipse_law", A.truncated_ellipse_law,
+            dict(mu_a_plus=0.2, mu_a_minus=0.3, mu_b_plus=0.1, mu_b_minus=0.15, theta=0.0),
+            dict(mu_a_plus=law_mu, mu_a_minus=law_mu, mu_b_plus=law_mu, mu_b_minus=law_mu,
+                 theta=number(-4 * math.pi, 4 * math.pi))),
+        Row("collinear_law", A.collinear_law, dict(C=None, mu1=0.2, mu2=0.1),
+            dict(C=instance(none=True), mu1=law_mu, mu2=law_mu)),
+        Row("star_law", A.star_law, dict(mu1=0.2, mu2=0.1, directions=360),
+            dict(mu1=law_mu, mu2=law_mu, directions=whole(8, 100_000))),
+        Row("windward_star_law", A.windward_star_law,
+            dict(alpha_deg=30.0, beta_deg=30.0, mu_alpha=0.3, mu_beta=0.3, directions=360),
+            dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,
+                 directions=whole(8, 100_000)), {"alpha_deg": ("alpha",), "beta_deg": ("beta",)}),
+        Row("law_from_gauge", A.law_from_gauge, dict(gauge=f["gauge"], kind=None),
+            dict(gauge=infile(folder, ".json"), kind=choice(none=True)),
+            {"gauge": ("gauge file",)}),
+        Row("slide", A.slide,
+            dict(law=f["law"], u0=1.0, angle_deg=30.0, mass=1.0, g=9.81, dt=1e-3, t_end=None,
+                 record_every=1, settings=A.slide.__kwdefaults__["settings"]),
+            dict(law=instance(), u0=number(0.0, 1e4), angle_deg=number(-360.0, 360.0),
+                 mass=number(1e-9, 1e9), g=number(1e-6, 1e4), dt=number(1e-9, 1.0),
+                 t_end=number(0.0, 1e9, none=True), record_every=whole(1, None),
+                 settings=instance()), {"angle_deg": ("angle",)}),
+        Row("ratchet_drift_square", A.ratchet_drift_square,
+            dict(F0=1.5, mass=1.0, period=1.0, mu_plus=0.2, mu_minus=0.1, g=9.81),
+            dict(F0=number(0.0, 1e12), mass=number(1e-9, 1e9), period=number(1e-9, 1e9),
+                 mu_plus=number(1e-6, 100.0), mu_minus=number(1e-6, 100.0),
+                 g=number(1e-6, 1e4))),
+        Row("deflection_deg", A.deflection_deg, dict(u0_angle_deg=30.0, rest=[1.0, 0.5]),
+            dict(u0_angle_deg=number(-3600.0, 3600.0), rest=array(skip=("2-d",),
+                 extra=[("shape", "3 values", [1.0, 2.0, 3.0])]))),
+        Row("simulate_microslip", A.simulate_microslip,
+            dict(chain=f["chain"], loading=f["loading"], cycles=5, record_nodes=None,
+                 until_stable=True, min_cycles=2, tol=tol_default),
+            dict(chain=instance(), loading=instance(), cycles=whole(1, 10**8),
+                 record_nodes=nodes, until_stable=flag(),
+                 min_cycles=whole(1, 10**8), tol=instance())),
+        Row("long_life", A.long_life,
+            dict(chain=f["chain"], loading=f["loading"], cycles=1e6, max_marched=50,
+                 record_nodes=None, tol=tol_default),
+            dict(chain=instance(), loading=instance(), cycles=number(1.0, 1e15),
+                 max_marched=whole(2, 10**6), record_nodes=nodes,
+                 tol=instance())),
+        Row("assess", A.assess,
+            dict(chain=f["chain"], loading=f["loading"], cycles=1e6, tolerance=None,
+                 dT_c_closed_form=None, max_marched=50, tol=tol_default),
+            dict(chain=instance(), loading=instance(), cycles=number(1.0, 1e15),
+                 tolerance=number(1e-9, 1e3, none=True),
+                 dT_c_closed_form=number(0.0, None, lo_open=True, none=True, inf=True),
+                 max_marched=whole(2, 10**6), tol=instance())),
+        Row("two_node_chain", A.two_node_chain,
+            dict(k=1e6, l0=0.1, alpha_T=1.2e-5, k_t=5e5, N=100.0, mu_plus=0.2, mu_minus=0.1),
+            dict(k=number(1e-3, 1e15), l0=number(1e-6, 1e3), alpha_T=alpha_T,
+                 k_t=number(1e-3, 1e15), N=number(1e-6, 1e9), mu_plus=mu_slider,
+                 mu_minus=mu_slider)),
+        Row("strip_chain", A.strip_chain,
+            dict(h=1e-3, E=2e11, p=1e6, l=0.05, k_t=1e12, alpha_T=1.2e-5, n=11, mu_plus=0.2,
+                 mu_minus=0.1),
+            dict(h=number(1e-7, 10.0), E=number(1e4, 1e13), p=number(1e-3, 1e10),
+                 l=number(1e-6, 1e3), k_t=number(1e3, 1e20), alpha_T=alpha_T,
+                 n=whole(2, 10**6), mu_plus=mu_slider, mu_minus=mu_slider)),
+        Row("Loading", A.Loading, dict(dT=[0.0, 125.0, 0.0], F=[0.0, 0.0, 0.0], substeps=1),
+            dict(dT=array(-5000.0, 5000.0), F=array(-1e12, 1e12, skip=("1-d",)),
+                 substeps=whole(1, 100_000)), {"dT": ("history",), "F": ("force_history",)}),
+        Row("load_assembly", A.load_assembly, dict(path=SURF / "two-node-spec.toml"),
+            dict(path=infile(folder, ".toml")), {"path": ("assembly file",)}),
+        Row("assembly_friction", A.assembly_friction,
+            dict(asm=f["asm"], texture=None, texture_name="", contact="all-faces",
+                 slip_axis_deg=None, textured=None),
+            dict(asm=instance(), texture=instance(none=True), texture_name=text(),
+                 contact=choice(), slip_axis_deg=number(-3600.0, 3600.0, none=True),
+                 textured=choice(none=True))),
+        Row("assess_assembly", A.assess_assembly,
+            dict(asm=f["asm"], friction=f["friction"], cycles=None, tolerance=None,
+                 max_marched=50, dynamic_steps=None),
+            dict(asm=instance(), friction=instance(), cycles=number(1.0, 1e15, none=True),
+                 tolerance=number(1e-9, 1e3, none=True), max_marched=whole(2, 10**6),
+                 dynamic_steps=whole(100, 10**7, none=True))),
+        Row("risk_map", A.risk_map,
+            dict(asm=f["asm"], x=("alpha", [20.0, 30.0]), y=("beta", [10.0, 20.0]),
+                 texture=TEX, contact=None, slip_axis_deg=None, textured=None, cycles=None,
+                 max_marched=50, workers=0, scheduler=None, folder=None),
+            dict(asm=instance(), x=axis("alpha"), y=axis("beta"), texture=instance(none=True),
+                 contact=choice(none=True), slip_axis_deg=number(-3600.0, 3600.0, none=True),
+                 textured=choice(none=True), cycles=number(1.0, 1e15, none=True),
+                 max_marched=whole(2, 10**6), workers=whole(0, 4096, none=True),
+                 scheduler=address(), folder=outfolder(folder)),
+            {"x": ("map parameter", "risk map"), "y": ("map parameter", "risk map")}),
+    ]
+    return rows
+
+
+@pytest.fixture(scope="module")
+def table(tmp_path_factory):
+    return {row.name: row for row in api_table(tmp_path_factory.mktemp("api"))}
+
+
+#: the public callables, from the package itself: a name added to ``__all__`` is walked
+PUBLIC = sorted(set(A.__all__) - NOT_CALLABLES)
+
+
+def walk(row: Row) -> tuple[collections.Counter, list[str]]:
+    """(hostile calls per class, what went wrong) of one row."""
+    counts, failures = collections.Counter(), []
+    for arg, kind, cls, label, value, call in row.calls():
+        counts[cls] += 1
+        why = judge(call, kind, (arg, *row.words.get(arg, ())), value)
+        if why:
+            failures.append(f"{row.name}({arg}={label}): {why}")
+    return counts, failures
+
+
+@pytest.mark.parametrize("name", PUBLIC)
+def test_every_argument_refuses_hostile_values_in_one_line(table, name):
+    """Each hostile value of each argument: a one-line InputError naming the argument, no
+    warning, never a bare NumPy/IndexError/TypeError -- and the row's own call is valid, so
+    each refusal is the mutated argument's."""
+    assert name in table, f"{name} is public but has no row in api_table: add one"
+    row = table[name]
+    params = [p for p in inspect.signature(row.fn).parameters.values()
+              if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+    assert set(row.kinds) == {p.name for p in params} == set(row.args), \
+        f"{name}: the row must give every argument a valid value and a kind"
+    row.fn(**row.args)
+    thin = [arg for arg, kind in row.kinds.items() if len(kind.bad()) < 5]
+    assert not thin, f"{name}: fewer than 5 hostile values for {thin}"
+    counts, failures = walk(row)
+    assert not failures, "\n".join(failures)
+
+
+def test_the_walk_covers_every_class(table):
+    """The counts the issue asks for (per class of bad input), for the report."""
+    total, n_args = collections.Counter(), 0
+    for row in table.values():
+        total.update(collections.Counter(cls for _, _, cls, *_ in row.calls()))
+        n_args += len(row.kinds)
+    line = (f"API: {len(table)} callables, {n_args} arguments, {sum(total.values())} hostile "
+            f"calls: " + ", ".join(f"{k} {v}" for k, v in total.most_common()))
+    print(line)
+    assert set(total) == {"type", "shape", "NaN", "inf", "overflow", "range", "file", "choice"}
+    assert len(table) == len(PUBLIC) and n_args >= 4 * len(table)
+
+
+def _refused(call, *words):
+    """The call's one-line InputError (its message holds ``words``), no warning on the way."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(InputError) as exc:
+            call()
+    msg = str(exc.value)
+    assert "\n" not in msg and all(w in msg for w in words), msg
+    return msg
+
+
+def test_the_issue_examples(tmp_path):
+    """Issue 18, section 9, one by one."""
+    _refused(lambda: A.compute_reservoir(TEX, psi="abc"), "psi must be a number or a 1-d array")
+    _refused(lambda: A.compute_reservoir(TEX, np.zeros((2, 2))), "psi", "shape (2, 2)")
+    np.save(tmp_path / "z.npy", Z)
+    _refused(lambda: A.load_surface(tmp_path / "z.npy", unit="um", pixel_size=np.eye(2)),
+             "pixel_size must be a number or a pair (dx, dy), got shape (2, 2)")
+    fs = A.load_surface(tmp_path / "z.npy", unit="m", pixel_size=1e-6)
+    _refused(lambda: A.FacetSurface(fs.gx, fs.gy[:-1], 0.1, fs.weight, {}),
+             "gy must have the shape of gx")
+
+
+@pytest.mark.parametrize("inline", [False, True])
+def test_x3p_whose_increment_overflows_is_one_line_without_warnings(tmp_path, inline):
+    """Raw heights times the file's Increment (plus Offset) beyond the float range: the
+    whole-file reader, load_surface and the tiled (streamed) derivation refuse the file in
+    one TextureFileError line naming the axis, and no RuntimeWarning is printed first."""
+    from x3p_files import x3p_bytes
+
+    from asperity.errors import TextureFileError
+    raw = np.full((6, 5), 3.0e4)
+    p = tmp_path / "overflow.x3p"
+    p.write_bytes(x3p_bytes(raw, code="I", zinc=1e305, zoff=0.0, inline=inline))
+    calls = [lambda: A.read_surface(p), lambda: A.load_surface(p),
+             lambda: A.derive_scan(p, n_directions=8, tile_lines=2)]
+    for call in calls:
+        msg = _refused(call, "CZ Increment 1e+305", "beyond the float range")
+        assert msg.startswith(str(p))
+    with pytest.raises(TextureFileError):
+        calls[0]()
