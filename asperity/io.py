@@ -343,19 +343,6 @@ def read_json(path: str | Path, what: str, error=InputError, parse_constant=None
         raise error(f"{p}: not a usable {what} ({str(exc).splitlines()[0][:120]})") from None
 
 
-def lock_file(path: str | Path, error: BaseException):
-    """An exclusive lock on ``path`` (created if missing), held as long as the returned
-    handle is open; ``error`` is raised when another process holds it."""
-    import fcntl
-    fh = open(path, "a+")                      # noqa: SIM115 - the caller holds it
-    try:
-        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
-        fh.close()
-        raise error from None
-    return fh
-
-
 def json_ready(x):
     """Plain JSON values: NumPy scalars and arrays as Python values, NaN and infinities as
     None (JSON has neither), keys as text, anything else as its text."""

@@ -8,6 +8,7 @@ times elements); they only have to catch what cannot possibly fit.
 """
 from __future__ import annotations
 
+import contextvars
 import os
 
 from .errors import ResourceError
@@ -102,3 +103,64 @@ def check_work(steps: float, limit: float, what: str, lower: str) -> None:
     """Refuse ``what`` if it takes more than ``limit`` elementary steps."""
     if steps > limit:
         raise ResourceError(f"{what} takes {steps:.3g} steps, at most {limit:.3g}; {lower}")
+
+
+# ----------------------------------------------------------------------------- local workers
+
+#: memory of one warm local worker process (asperity, numba's kernels, Dask): measured
+#: 92-130 MB of private memory and 134-172 MB proportional set size (RssAnon and Pss of a
+#: LocalCluster worker after a study's cases); a case's own needs come on top
+WORKER_BYTES = 150 << 20
+
+
+def cpu_cores() -> int:
+    """Cores this process may use: its CPU affinity, bounded by a cgroup CPU quota."""
+    try:
+        n = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        n = os.cpu_count() or 1
+    try:
+        with open("/sys/fs/cgroup/cpu.max", encoding="ascii") as fh:
+            quota, period = fh.read().split()[:2]
+        if quota != "max" and int(period) > 0:
+            n = min(n, max(1, -(-int(quota) // int(period))))
+    except (OSError, ValueError):
+        pass
+    return max(1, n)
+
+
+def local_workers(asked: int | None, per_worker: float = WORKER_BYTES, *,
+                  flag: str = "--workers", what: str = "workers",
+                  dask: bool = True) -> tuple[int, str | None]:
+    """How many local worker processes to start for ``asked`` (None: one per core): at most
+    one per core and as many as :data:`MEMORY_SHARE` of the free memory holds at
+    ``per_worker`` bytes each (at least one).  Returns (number, the one line that says why
+    fewer were started, or None).  The one place that decides it for every command
+    (``dask``: the workers of a local Dask cluster, which ``--scheduler`` replaces)."""
+    cores = cpu_cores()
+    free = available_memory()
+    fit = int(MEMORY_SHARE * free // max(per_worker, 1.0))
+    want = cores if asked is None else int(asked)
+    n = max(1, min(want, cores, fit))
+    if n >= want:
+        return n, None
+    why = (f"this machine has {cores} core{'s' * (cores != 1)}" if n == cores else
+           f"{format_bytes(free)} of memory is free, about {format_bytes(per_worker)} a "
+           f"worker")
+    asked_text = f"{want} {what} asked ({flag})" if asked is not None else \
+        f"{want} {what} (one per core) wanted"
+    tail = "; an existing cluster (--scheduler) has no such limit" if dask else ""
+    return n, f"{asked_text}, {n} started: {why}{tail}"
+
+
+#: the program named in front of :func:`note` lines ("asperity study"; set by the command)
+PROGRAM: contextvars.ContextVar[str] = contextvars.ContextVar("PROGRAM", default="asperity")
+
+
+def note(line: str) -> None:
+    """One line on stderr about how a request is carried out (not an error)."""
+    import sys
+    try:
+        print(f"{PROGRAM.get()}: {line}", file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass

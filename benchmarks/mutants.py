@@ -61,6 +61,7 @@ CHAIN = ("test_microslip_events.py", "test_chain_reference.py", "test_microslip.
          "test_hostile_microslip.py")
 WEB_PAGES = ("test_web_pages.py",)
 WEB_BROWSER = ("test_web_pages_browser.py",)
+PROCS = "test_processes.py"
 SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
            "test_surface_measured.py", "test_derive_cli.py")
 CONFINE = ("test_study_inputs.py", "test_web_security.py")
@@ -475,6 +476,63 @@ MUTANTS = [
            "        dx, dy = dx * factor, dy * factor\n", "        dx, dy = dx, dy\n",
            ("test_surface_readers.py", "test_web_new_user.py"),
            "an x3p read in another unit converts its heights but not its spacing"),
+    # ---- processes, locks, workers, schedulers (issue 18, sections 3 and 4)
+    Mutant("lifeline-no-death-signal", "lifeline.py",
+           "return prctl is not None and prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0",
+           "return False",
+           (f"{PROCS}::test_dask_workers_die_with_the_client_even_inside_a_kernel",),
+           "no parent-death signal: only the watch thread, which a kernel holding the "
+           "interpreter lock keeps from running"),
+    Mutant("dask-workers-not-watching", "study/clusters.py",
+           "preload=[lifeline.PRELOAD],", "preload=[],",
+           (f"{PROCS}::test_dask_workers_die_with_the_client_even_inside_a_kernel",),
+           "local Dask workers without the lifeline preload (only Dask's own watch)"),
+    Mutant("serve-worker-not-watching", "web/worker.py",
+           "    die_with_parent(parent)\n", "",
+           (f"{PROCS}::test_serve_killed_mid_study_takes_its_workers_and_the_restart_"
+            "finishes_it",),
+           "a worker of asperity serve does not watch the server: it goes on with its study"),
+    Mutant("stale-lock-kept", "locks.py",
+           "                    _replace_lock(path)            # apart",
+           "                    pass                           # apart",
+           (f"{PROCS}::test_a_lock_left_to_a_child_of_a_finished_holder_is_taken_over",),
+           "a lock left to a forked child of a finished holder is never taken over"),
+    Mutant("lock-shared", "locks.py",
+           "fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)",
+           "fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)",
+           (f"{PROCS}::test_two_studies_on_one_folder_exclude_each_other_and_a_killed_one_"
+            "frees_it", f"{PROCS}::test_two_servers_on_one_data_folder_exclude_each_other"),
+           "the folder lock is a shared lock: two runs on one folder both get it"),
+    Mutant("worker-cap-ignores-memory", "resources.py",
+           "n = max(1, min(want, cores, fit))", "n = max(1, min(want, cores))",
+           (f"{PROCS}::test_local_workers_fit_the_cores_and_the_free_memory",
+            f"{PROCS}::test_study_with_1000_workers_starts_what_the_machine_allows"),
+           "local workers limited by the cores only, not by the free memory"),
+    Mutant("worker-cap-ignores-cores", "resources.py",
+           "n = max(1, min(want, cores, fit))", "n = max(1, min(want, fit))",
+           (f"{PROCS}::test_local_workers_fit_the_cores_and_the_free_memory",
+            f"{PROCS}::test_study_with_1000_workers_starts_what_the_machine_allows"),
+           "local workers limited by the free memory only, not by the cores"),
+    Mutant("scheduler-port-unchecked", "study/clusters.py",
+           "if not 1 <= port <= 65535:", "if port < 0:",
+           (f"{PROCS}::test_bad_schedulers_are_refused_in_one_line_and_leave_nothing",),
+           "a scheduler port out of range reaches the socket library"),
+    Mutant("scheduler-silence-misread", "study/clusters.py",
+           "    if not head:\n", "    if not head and False:\n",
+           (f"{PROCS}::test_bad_schedulers_are_refused_in_one_line_and_leave_nothing",),
+           "a service that sends nothing (an HTTP server) is said to answer in another "
+           "protocol (handing it to Dask instead hangs the client: no mutant for that)"),
+    Mutant("failed-run-leaves-its-store", "study/run.py",
+           "        store.discard()", "        store.close()",
+           (f"{PROCS}::test_a_run_that_fails_before_its_first_case_leaves_the_folder_as_it_"
+            "was",),
+           "a run that fails before its first case leaves an empty store behind"),
+    Mutant("store-without-tables-stuck", "study/store.py",
+           "new = con.execute(\"SELECT 1 FROM sqlite_master WHERE type = 'table'\").fetchone() "
+           "is None", "new = db.stat().st_size == 0",
+           (f"{PROCS}::test_a_store_killed_before_its_tables_were_made_is_taken_as_new",),
+           "a store file left without tables (a kill before the first transaction) refused "
+           "for ever unless it is empty"),
 ]
 
 

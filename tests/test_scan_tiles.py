@@ -373,7 +373,7 @@ def test_new_flags_refused_by_the_real_command(scans):
     """One line on stderr, exit 1, no cluster started for a file workers cannot read."""
     assert_refused(cli("derive", scans / "c.npy", "--unit", "um", "--pixel-size", "1",
                        "--scheduler", "tcp://127.0.0.1:9"),
-                   contains="cannot reach the Dask scheduler")
+                   contains="nothing listens on 127.0.0.1:9")
     gz = scans / "c.npy.gz"                 # gzip is read whole: tiles only in this process
     import gzip
     gz.write_bytes(gzip.compress((scans / "c.npy").read_bytes()))

@@ -63,7 +63,9 @@ def add_cluster_arguments(parser, workers: str, scheduler: str) -> None:
     """``--workers N | --scheduler ADDRESS`` (mutually exclusive): where the Dask work of
     a command runs (see asperity.study.engine); the help texts say what runs there."""
     where = parser.add_mutually_exclusive_group()
-    where.add_argument("--workers", metavar="N", default=None, help=workers)
+    where.add_argument("--workers", metavar="N", default=None,
+                       help=f"{workers}; local workers are at most one per core and what the "
+                            f"free memory holds (a line says when fewer start)")
     where.add_argument("--scheduler", metavar="ADDRESS", default=None,
                        help=f"{scheduler} (scheduler address tcp://HOST:PORT or scheduler "
                             f"file)")

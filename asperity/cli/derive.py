@@ -125,10 +125,13 @@ def _derive_tiles(args, src, rows, workers):
                          f"formats); tiles on Dask workers need .npy, .x3p or a text matrix")
     import warnings
 
+    from ..friction.tiled import tile_bytes
+    from ..resources import WORKER_BYTES
     from ..study.engine import cluster
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")     # e.g. distributed's note on a busy dashboard port
-        with cluster(args.scheduler, workers or None) as (client, where, nw):
+        with cluster(args.scheduler, workers or None,
+                     WORKER_BYTES + tile_bytes(src, rows)) as (client, where, nw):
             d = go(client)
     d.texture.tiling.update(where=where, workers=nw)
     return d

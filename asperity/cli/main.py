@@ -70,6 +70,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     name = f"asperity {args.command}"
+    from ..resources import PROGRAM
+    PROGRAM.set(name)                                # the name in front of notes
     try:
         check_declared_outputs(args)
         with output_transaction(), progress_bar(args.command):

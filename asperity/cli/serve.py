@@ -33,7 +33,8 @@ def add_parser(sub) -> None:
                    help="largest request (upload) in MB")
     p.add_argument("--workers", metavar="N", default=None,
                    help="computations run at once, each in its own process (1 to 64; "
-                        "none given: one per core)")
+                        "none given: one per core; at most one per core and what the free "
+                        "memory holds)")
     p.set_defaults(func=main)
 
 

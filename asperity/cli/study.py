@@ -58,6 +58,7 @@ def run(args) -> dict:
     workers = whole_flag("--workers", args.workers, 0, 4096)
     batch = whole_flag("--batch-size", args.batch_size, 1, 1_000_000)
     if os.path.isdir(target):
+        _check_study_folder(target)
         if args.output is not None or args.scheduler or workers is not None or batch \
                 or args.retry_failed or args.restart:
             raise InputError(f"{target} is a study folder: it is summarised, not run; give "
@@ -75,6 +76,25 @@ def run(args) -> dict:
     if args.export:
         summary["export"] = {"path": args.export, "rows": export_folder(folder, args.export)}
     return summary
+
+
+def _check_study_folder(target: str) -> None:
+    """A folder given as the target must be a study folder: say what it is otherwise."""
+    from ..study.store import DB_NAME
+    if os.path.isfile(os.path.join(target, DB_NAME)):
+        return
+    try:
+        empty = not os.listdir(target)
+    except OSError as exc:
+        raise InputError(f"{target}: a folder that cannot be read ({exc.strerror})") from None
+    if str(target).rstrip("/").lower().endswith(".toml"):
+        what = "a folder named like a study file, not a study file"
+    elif empty:
+        what = "an empty folder, not a study folder"
+    else:
+        what = f"a folder that holds no study ({DB_NAME} missing)"
+    raise InputError(f"{target}: {what}; give a study file (.toml) to run, or the folder of "
+                     f"a study run before (-o) to summarise it")
 
 
 def main(args) -> int:

@@ -68,8 +68,9 @@ def run_derive(path: Path, directions: int, *flags) -> dict:
     """seconds, peak RSS (bytes) and the JSON of one ``asperity derive`` child."""
     argv = [sys.executable, "-c", _PEAK, "derive", str(path), "--unit", "um", "--pixel-size",
             "1", "--mu", "0.2", "--directions", str(directions), "--json", *flags]
+    from ..lifeline import preexec
     t0 = time.perf_counter()
-    r = subprocess.run(argv, capture_output=True, text=True)
+    r = subprocess.run(argv, capture_output=True, text=True, preexec_fn=preexec())
     seconds = time.perf_counter() - t0
     if r.returncode != 0:
         from ..errors import AsperityError

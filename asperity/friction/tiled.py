@@ -170,10 +170,16 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
     return assemble(run, plan, info, prep, contact, n, other_contact)
 
 
+def tile_bytes(src, lines=None) -> float:
+    """Memory of the work on one tile of ``lines`` file lines (default: the default)."""
+    lines = default_tile_lines(src) if lines is None else min(lines, src.n_lines)
+    return float(lines * src.shape[1 - src.axis] * TILE_BYTES_PER_PIXEL)
+
+
 def _check_tile_memory(src, lines) -> None:
     from ..resources import check_memory
-    check_memory(lines * src.shape[1 - src.axis] * TILE_BYTES_PER_PIXEL,
-                 f"a tile of {lines} lines of {src.source}", "lower --tile-rows")
+    check_memory(tile_bytes(src, lines), f"a tile of {lines} lines of {src.source}",
+                 "lower --tile-rows")
 
 
 def tiles_wanted(path, *, unit=None, pixel_size=None, height_scale=1.0, tile_lines=None,

@@ -2,10 +2,11 @@
 
 * Where: ``workers=0`` runs in this process (no cluster: small sweeps, debugging);
   otherwise an embedded ``dask.distributed.LocalCluster`` (``workers`` processes, default
-  one per core, on 127.0.0.1, stopped at the end), or an existing cluster given by its
-  scheduler address (``tcp://HOST:PORT``) or scheduler file, e.g. from ``dask scheduler``
-  / ``dask worker``, dask-jobqueue on SLURM or a Kubernetes deployment.  The same study
-  gives the same results everywhere.
+  one per core, at most what the cores and the free memory allow, on 127.0.0.1, stopped
+  at the end and dying with this process), or an existing cluster given by its scheduler
+  address (``tcp://HOST:PORT``) or scheduler file, e.g. from ``dask scheduler`` / ``dask
+  worker``, dask-jobqueue on SLURM or a Kubernetes deployment (:mod:`.clusters`).  The
+  same study gives the same results everywhere.
 * Batches: cases are grouped into tasks of about :data:`TARGET_SECONDS` each (the size
   adapts to the measured cost per case), so that microsecond cases are not dominated by
   the scheduler; at most a few batches per worker are in flight, so memory stays bounded
@@ -19,15 +20,16 @@
 """
 from __future__ import annotations
 
-import logging
-import os
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import AsperityError, InputError, check_int
+from ..errors import check_int
 from .cases import run_batch, warm_up
+from .clusters import SCHEDULER_ENV, EngineError, cluster, resolve_scheduler  # noqa: F401
+from .clusters import close as _close
+from .clusters import connect as _connect
 
 #: seconds of work per task the batch size aims at
 TARGET_SECONDS = 1.0
@@ -37,12 +39,9 @@ FIRST_BATCH = {"files": 1, "default": 16}
 MAX_BATCH = 20_000
 #: batches in flight per worker
 IN_FLIGHT_PER_WORKER = 3
-#: environment variable naming a scheduler address (or scheduler file) for every study
-SCHEDULER_ENV = "ASPERITY_SCHEDULER"
-
-
-class EngineError(AsperityError):
-    """The cluster cannot be reached or cannot run asperity's tasks."""
+#: memory of a scan library's case per byte of its file: the facets of a height map with a
+#: rest level (200 bytes a pixel) over the densest file format (4 bytes a pixel, float32)
+SCAN_BYTES_PER_FILE_BYTE = 50
 
 
 class StudyInterrupted(KeyboardInterrupt):
@@ -93,15 +92,6 @@ class Batcher:
         self.size = int(min(MAX_BATCH, max(1, TARGET_SECONDS / self.per_case)))
 
 
-def resolve_scheduler(scheduler: str | None) -> str | None:
-    """The scheduler to use: the argument, else $ASPERITY_SCHEDULER, else None (embedded)."""
-    s = scheduler if scheduler is not None else os.environ.get(SCHEDULER_ENV) or None
-    if s is not None and (not isinstance(s, str) or not s.strip()):
-        raise InputError("--scheduler must be an address such as tcp://10.0.0.5:8786 or a "
-                         "scheduler file")
-    return s.strip() if s else None
-
-
 def run_study(study, store, *, scheduler: str | None = None, workers: int | None = None,
               batch_size: int | None = None, task=None) -> RunReport:
     """Run every case of ``study`` missing from ``store``.  ``task``: the function a
@@ -122,8 +112,8 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
 
     if workers is not None:
         workers = check_int("--workers", workers, 0, 4096)
-    if not (workers == 0 and scheduler is None):     # --workers 0: in this process, always
-        scheduler = resolve_scheduler(scheduler)
+    if scheduler is not None or workers is None:     # --workers N: a local cluster (or,
+        scheduler = resolve_scheduler(scheduler)     # 0, this process), never $ASPERITY_...
     if batch_size is None:
         batch_size = study.batch_size
     first = FIRST_BATCH["files" if files is not None else "default"]
@@ -155,7 +145,7 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
                 finished(res)
         else:
             where, nw = _run_dask(todo, task_args, finished, scheduler, workers, batch_size,
-                                  first, timing, task)
+                                  first, timing, task, worker_bytes(study))
     except KeyboardInterrupt:
         raise StudyInterrupted(f"{stored} of {n} cases stored in {store.folder}; run the same "
                                f"command again to resume") from None
@@ -163,82 +153,19 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
                      timing["startup"])
 
 
-def _connect(scheduler, workers):
-    """(client, cluster or None, description, number of workers)."""
-    import distributed
-    logging.getLogger("distributed").setLevel(logging.ERROR)
-    if scheduler is None:
-        nw = workers or os.cpu_count() or 1
-        import warnings
-        try:
-            # one core per worker: the numba kernels must not start a thread per core in
-            # every worker (oversubscription)
-            with warnings.catch_warnings():     # e.g. a note on a busy port: not the user's
-                warnings.simplefilter("ignore")
-                cluster = distributed.LocalCluster(
-                    n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
-                    dashboard_address=None, silence_logs=logging.ERROR,
-                    env={"NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
-        except OSError as exc:
-            raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
-        return distributed.Client(cluster), cluster, f"LocalCluster ({nw} workers)", nw
-    _reachable(scheduler)
-    try:
-        if os.path.isfile(scheduler):
-            client = distributed.Client(scheduler_file=scheduler, timeout="10s")
-        else:
-            client = distributed.Client(scheduler, timeout="10s")
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise EngineError(f"cannot reach the Dask scheduler at {scheduler!r} "
-                          f"({' '.join(str(exc).split())[:200]})") from None
-    try:
-        client.wait_for_workers(1, timeout=60)
-    except (TimeoutError, OSError):
-        client.close()
-        raise EngineError(f"the Dask scheduler at {scheduler!r} has no workers (waited 60 s); "
-                          f"start some with: dask worker {scheduler}") from None
-    nw = len(client.scheduler_info(n_workers=-1)["workers"])
-    return client, None, scheduler, nw
+def worker_bytes(study) -> float:
+    """Memory of a local worker running ``study``'s cases: a warm worker, plus for a scan
+    library its largest scan's facets (:data:`SCAN_BYTES_PER_FILE_BYTE`)."""
+    from ..resources import WORKER_BYTES
+    if study.kind != "files" or not study.files:
+        return float(WORKER_BYTES)
+    import os
+    sizes = [os.stat(f).st_size if os.path.isfile(f) else 0 for f in study.files]
+    return float(WORKER_BYTES + SCAN_BYTES_PER_FILE_BYTE * max(sizes))
 
 
-class cluster:
-    """A Dask client for other work than studies (e.g. the tiles of one huge scan): the
-    same choice as :func:`run_study` -- ``scheduler`` (or $ASPERITY_SCHEDULER) an existing
-    cluster, else a LocalCluster of ``workers`` single-threaded processes on 127.0.0.1 --
-    closed at the end.  ``with cluster(None, 2) as (client, where, n_workers): ...``"""
-
-    def __init__(self, scheduler: str | None = None, workers: int | None = None):
-        self.scheduler = resolve_scheduler(scheduler)
-        self.workers = None if workers is None else check_int("--workers", workers, 1, 4096)
-
-    def __enter__(self):
-        self.client, self.local, where, nw = _connect(self.scheduler, self.workers)
-        return self.client, where, nw
-
-    def __exit__(self, *exc):
-        _close(self.client, self.local)
-        return False
-
-
-def _reachable(scheduler: str) -> None:
-    """Fail at once, in one line, when a tcp:// scheduler address refuses connections
-    (Dask itself retries until its timeout)."""
-    import socket
-    from urllib.parse import urlsplit
-    if os.path.isfile(scheduler) or "://" not in scheduler:
-        return
-    u = urlsplit(scheduler)
-    if u.scheme != "tcp" or not u.hostname or not u.port:
-        return
-    try:
-        socket.create_connection((u.hostname, u.port), timeout=10).close()
-    except OSError as exc:
-        raise EngineError(f"cannot reach the Dask scheduler at {scheduler!r} "
-                          f"({exc.strerror or type(exc).__name__}); start it with `dask "
-                          f"scheduler` or check the address") from None
-
-
-def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, timing, task):
+def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, timing, task,
+              per_worker=None):
     from distributed import as_completed
     from distributed.client import FutureCancelledError
     try:
@@ -246,7 +173,7 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
     except ImportError:                               # pragma: no cover
         from distributed import KilledWorker
     t0 = time.perf_counter()
-    client, cluster, where, nw = _connect(scheduler, workers)
+    client, cluster, where, nw = _connect(scheduler, workers, per_worker)
     try:
         spec, names, ids, rows, fl = task_args(todo[:1])
         client.run(warm_up, spec, None if fl else dict(zip(names, map(float, rows[0])))
@@ -310,12 +237,3 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
             f.cancel()
         _close(client, cluster)
     return where, nw
-
-
-def _close(client, cluster) -> None:
-    import contextlib
-    with contextlib.suppress(Exception):
-        client.close(timeout=5)
-    if cluster is not None:
-        with contextlib.suppress(Exception):
-            cluster.close(timeout=5)

@@ -29,13 +29,15 @@ def run_study_file(path, folder=None, *, scheduler: str | None = None,
     that changed since) and start over -- without it such a folder is refused.
     Writes ``study.sqlite``, ``summary.json``, ``summary.md`` (and with ``plot`` the
     figures) into the folder."""
-    from .engine import run_study
+    from .engine import resolve_scheduler, run_study
     from .spec import Study, load_study
     from .store import open_store
     study = path if isinstance(path, Study) else load_study(path)
     if scheduler is not None and workers is not None:
         raise InputError("give --scheduler (an existing cluster) or --workers (a local one), "
                          "not both")
+    if scheduler is not None or workers is None:    # checked before anything is created
+        scheduler = resolve_scheduler(scheduler)
     store = open_store(folder or default_folder(study.source), study, restart=restart)
     try:
         if retry_failed:
@@ -45,9 +47,11 @@ def run_study_file(path, folder=None, *, scheduler: str | None = None,
         summary = finish(store, plot)
         summary["run"] = {"ran": report.ran, "seconds": report.seconds, "where": report.where,
                           "workers": report.workers, "discarded": store.discarded}
-        return summary
-    finally:
-        store.close()
+    except BaseException:
+        store.discard()            # nothing stored: the folder as it was before the run
+        raise
+    store.close()
+    return summary
 
 
 def finish(store, plot: bool = False) -> dict:

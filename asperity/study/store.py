@@ -52,6 +52,7 @@ class Store:
         self.outputs = [tuple(c) for c in meta["outputs"]]
         self._lock = None
         self.discarded = 0            # stored cases a restart discarded
+        self.created: list[Path] = []      # what open_store created (discard() removes it)
 
     @property
     def path(self) -> Path:
@@ -110,6 +111,29 @@ class Store:
             self._lock.close()
             self._lock = None
 
+    def discard(self) -> bool:
+        """Close, and remove what :func:`open_store` created if no case was stored (a run
+        that failed before its first case leaves nothing behind); True if removed."""
+        try:
+            empty = self.con.execute("SELECT COUNT(*) FROM cases").fetchone()[0] == 0
+        except sqlite3.Error:
+            empty = False
+        if not (self.created and empty):
+            self.close()
+            return False
+        self.con.close()
+        import contextlib
+        for name in (DB_NAME, DB_NAME + "-wal", DB_NAME + "-shm", ".lock"):
+            with contextlib.suppress(OSError):
+                (self.folder / name).unlink()
+        if self._lock is not None:
+            self._lock.close()
+            self._lock = None
+        for folder in reversed(self.created[1:]):          # the folders mkdir made
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        return True
+
 
 def _connect(path: Path) -> sqlite3.Connection:
     con = sqlite3.connect(str(path), timeout=30.0, isolation_level="DEFERRED")
@@ -120,7 +144,7 @@ def _connect(path: Path) -> sqlite3.Connection:
 
 def _lock(folder: Path):
     """An exclusive lock on the folder: two runs on one store would race."""
-    from ..io import lock_file
+    from ..locks import lock_file
     return lock_file(folder / ".lock", StoreError(
         f"{folder}: another asperity study is running on this folder; wait for it or stop "
         f"it"))
@@ -134,6 +158,7 @@ def open_store(folder, study, restart: bool = False) -> Store:
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise StoreError(f"{folder}: exists and is not a folder (give -o a folder name)")
+    made = [p for p in (folder, *folder.parents) if not p.exists()][::-1]
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -153,14 +178,19 @@ def open_store(folder, study, restart: bool = False) -> Store:
         lock.close()
         raise
     store._lock = lock
+    if store.created:
+        store.created += made
     return store
 
 
 def _open(db: Path, folder: Path, study, restart: bool = False) -> Store:
     fp, digests = study.fingerprint(), study.input_digests()
-    new, n = not db.exists(), 0
+    n = 0
     try:
         con = _connect(db)
+        # no table yet: a new store, also when a run was killed before it made its tables
+        # or a reader opened the file first (the lock is held: nobody else creates them)
+        new = con.execute("SELECT 1 FROM sqlite_master WHERE type = 'table'").fetchone() is None
         if not new:
             meta = _meta(con, db)
             same = meta.get("fingerprint") == fp and meta.get("input_digests") == digests
@@ -185,6 +215,8 @@ def _open(db: Path, folder: Path, study, restart: bool = False) -> Store:
         raise StoreError(f"{db}: not a usable study store ({exc})") from None
     store = Store(con, folder, meta)
     store.discarded = n
+    if new:
+        store.created = [db]
     return store
 
 

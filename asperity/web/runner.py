@@ -3,8 +3,10 @@
 The compiled kernels hold the interpreter lock while they run, so the computations run
 in separate processes (``spawn``: the parent never forks a process with numba's threads
 in it): one :class:`Slot` per worker, each a process fed one job at a time through a
-pipe.  The server's event loop only hands out jobs and reads records, so a page never
-waits for a computation.  Queued jobs wait in a first-in first-out queue; their records
+pipe, that ends when the server ends, however it ends (:mod:`asperity.lifeline`: killed
+with SIGKILL, the server takes its workers and their study clusters with it; the next
+start runs their jobs again, a study resuming its store).  The server's event loop only
+hands out jobs and reads records, so a page never waits for a computation.  Queued jobs wait in a first-in first-out queue; their records
 say ``queued`` on disk, so a restart finds them and runs them (and the ones that were
 running when the server stopped) again.  A worker that dies (out of memory, a crash, a
 job stopped from its page) is replaced; its job is tried once more, then failed with
@@ -37,10 +39,14 @@ class Slot:
         self.start()
 
     def start(self) -> None:
+        """Start the worker process.  Called from the server's main thread only: the worker
+        dies with the thread that started it (asperity.lifeline)."""
+        import os
+
         from . import worker
         ctx = multiprocessing.get_context("spawn")
         parent, child = ctx.Pipe()
-        self.proc = ctx.Process(target=worker.main, args=(child,),
+        self.proc = ctx.Process(target=worker.main, args=(child, os.getpid()),
                                 name="asperity-serve-worker", daemon=False)
         self.proc.start()
         child.close()
@@ -65,10 +71,6 @@ class Slot:
             self.proc.join(timeout=5)
         if self.conn is not None:
             self.conn.close()
-
-    def restart(self) -> None:
-        self.kill()
-        self.start()
 
 
 class Runner:
@@ -156,7 +158,8 @@ class Runner:
             except WorkerDied as exc:
                 if self.stopping:
                     return
-                await asyncio.to_thread(slot.restart)
+                await asyncio.to_thread(slot.kill)
+                slot.start()                   # in the event loop's (main) thread
                 if jid in self.cancelled:
                     self._finish(jid, status="cancelled", error="stopped from its page")
                 elif rec["attempts"] >= MAX_ATTEMPTS:

@@ -10,7 +10,7 @@ from ..errors import InputError
 def lock_data_dir(folder):
     """An exclusive lock on the data folder: two servers on one folder would both run its
     queued jobs."""
-    from ..io import lock_file
+    from ..locks import lock_file
     return lock_file(folder / ".serve.lock", InputError(
         f"--data-dir {str(folder)!r} is in use by another asperity serve; stop it or give "
         f"another --data-dir"))
@@ -67,6 +67,8 @@ def serve(settings) -> int:
     print(f"asperity serve: {url_of(settings.host, port, settings.token)}", flush=True)
     print(f"  data folder {folder}; {settings.workers} worker process(es); uploads up to "
           f"{settings.max_upload / 2**20:.4g} MB; Ctrl-C stops", file=sys.stderr, flush=True)
+    if settings.workers_note:
+        print(f"  {settings.workers_note}", file=sys.stderr, flush=True)
     if settings.token:
         print("  every request needs the token in this link (it sets a cookie); keep it "
               "private", file=sys.stderr, flush=True)

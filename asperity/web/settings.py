@@ -37,7 +37,8 @@ def is_loopback(host: str) -> bool:
 class Settings:
     """host, port: where to listen; data_dir: uploads and jobs; token: the access token
     every request needs (None: a loopback server without one); max_upload: bytes of one
-    request at most; workers: computations at once (worker processes)."""
+    request at most; workers: computations at once (worker processes, at most one per core
+    and what the free memory holds: workers_note says why when fewer than asked)."""
 
     host: str = DEFAULT_HOST
     port: int = DEFAULT_PORT
@@ -46,6 +47,7 @@ class Settings:
     max_upload: int = int(DEFAULT_MAX_UPLOAD_MB * 2**20)
     workers: int = 2
     quick_wait: float = 2.0      # s a form waits for its job before showing the progress
+    workers_note: str | None = None   # why fewer workers than asked (printed at start)
 
 
 def make_settings(host: str = DEFAULT_HOST, port=DEFAULT_PORT, data_dir=None,
@@ -63,13 +65,18 @@ def make_settings(host: str = DEFAULT_HOST, port=DEFAULT_PORT, data_dir=None,
                          f"then needs the access token printed at start)")
     port = check_int("--port", port, 0, 65535)
     mb = check_range("--max-upload", max_upload_mb, 0.001, MAX_UPLOAD_MB, unit="MB")
-    n = os.cpu_count() or 1
-    workers = n if workers is None else check_int("--workers", workers, 1, 64)
+    if workers is not None:
+        workers = check_int("--workers", workers, 1, 64)
+    if data_dir is not None and not str(data_dir).strip():
+        raise InputError("--data-dir is empty: give a folder name (or leave --data-dir out "
+                         f"for the default, {default_data_dir()})")
     folder = Path(os.path.expanduser(str(data_dir))) if data_dir else default_data_dir()
     if allow_remote and token is None:
         token = secrets.token_urlsafe(24)
+    from ..resources import WORKER_BYTES, local_workers
+    workers, note = local_workers(workers, WORKER_BYTES, dask=False)
     return Settings(host=host, port=port, data_dir=folder, token=token if allow_remote else None,
-                    max_upload=int(mb * 2**20), workers=workers)
+                    max_upload=int(mb * 2**20), workers=workers, workers_note=note)
 
 
 def prepare_data_dir(folder: Path) -> Path:

@@ -114,10 +114,15 @@ def warm_up() -> None:
         pass
 
 
-def main(conn) -> None:
-    """A worker process: jobs from ``conn`` until it closes (or None arrives)."""
+def main(conn, parent: int | None = None) -> None:
+    """A worker process: jobs from ``conn`` until it closes (or None arrives); it ends
+    when the server (process ``parent``) ends, however the server ends, and with it the
+    processes of the job it runs (a study's local cluster)."""
     import os
     import signal
+
+    from ..lifeline import die_with_parent
+    die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # the server stops its workers itself
     os.environ.setdefault("MPLBACKEND", "Agg")
     warm_up()

@@ -1,0 +1,234 @@
+"""Where Dask work runs: a local cluster sized to the machine, or an existing scheduler
+checked before anything is created.
+
+* Local: :func:`connect` starts a ``LocalCluster`` of single-threaded worker processes on
+  127.0.0.1, as many as asked but at most what the cores and the free memory allow
+  (:func:`asperity.resources.local_workers` decides, and says so in one line).  Every
+  worker dies with the process that started it (:mod:`asperity.lifeline`).
+* Existing: :func:`resolve_scheduler` turns ``--scheduler`` (or $ASPERITY_SCHEDULER) -- an
+  address ``tcp://HOST:PORT`` or a scheduler file -- into an address, and refuses in one
+  line naming it an address that is malformed, a port out of range, a file that is not a
+  scheduler file, a host where nothing listens, or a service that does not greet as a Dask
+  scheduler does (an HTTP server, say) -- before a store or an output is created.
+"""
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+
+from ..errors import AsperityError, InputError, check_int
+
+#: environment variable naming a scheduler address (or scheduler file) for every study
+SCHEDULER_ENV = "ASPERITY_SCHEDULER"
+#: Dask's scheduler port when an address gives none
+DEFAULT_PORT = 8786
+#: seconds to reach a scheduler's port, then to receive its greeting
+CONNECT_SECONDS = 5.0
+GREETING_SECONDS = 5.0
+#: a Dask scheduler's first message (its handshake) is far smaller than this
+MAX_GREETING_BYTES = 1 << 20
+EXAMPLE = "an address such as tcp://10.0.0.5:8786 or a scheduler file"
+
+
+class EngineError(AsperityError):
+    """The cluster cannot be reached or cannot run asperity's tasks."""
+
+
+def resolve_scheduler(scheduler: str | None) -> str | None:
+    """The scheduler to use, checked: the argument, else $ASPERITY_SCHEDULER, else None
+    (a local cluster).  A scheduler file is read for its address."""
+    flag = "--scheduler" if scheduler is not None else f"${SCHEDULER_ENV}"
+    s = scheduler if scheduler is not None else os.environ.get(SCHEDULER_ENV) or None
+    if s is None:
+        return None
+    if not isinstance(s, str) or not s.strip():
+        raise InputError(f"{flag} must be {EXAMPLE}")
+    return check_scheduler(s.strip(), flag)
+
+
+def check_scheduler(s: str, flag: str = "--scheduler") -> str:
+    """The address of scheduler ``s`` (an address or a scheduler file) once it answers as
+    a Dask scheduler; else one line naming ``flag``, ``s`` and what is wrong."""
+    where = f"{flag} {s!r}"
+    address = s
+    if "://" not in s:
+        if os.path.isdir(s):
+            raise EngineError(f"{where} is a folder, not {EXAMPLE}")
+        if os.path.exists(s):
+            address = _scheduler_file(s, where)
+            where = f"{where} (scheduler at {address!r})"
+        elif ":" in s and "/" not in s:
+            address = f"tcp://{s}"
+        else:
+            raise EngineError(f"{where}: no such scheduler file, and not an address; give "
+                              f"{EXAMPLE}")
+    scheme = address.split("://", 1)[0].lower()
+    if scheme in ("tcp", "tls"):
+        host, port = _host_port(address, where)
+        _probe(host, port, where, greeting=scheme == "tcp")
+    return address
+
+
+def _scheduler_file(path: str, where: str) -> str:
+    from ..io import read_json
+    try:
+        data = read_json(path, "Dask scheduler file", EngineError)
+    except EngineError as exc:
+        raise EngineError(f"{where}: not a Dask scheduler file: {str(exc).split(': ', 1)[-1]}") \
+            from None
+    address = data.get("address") if isinstance(data, dict) else None
+    if not isinstance(address, str) or "://" not in address:
+        raise EngineError(f"{where}: not a Dask scheduler file (it holds no \"address\" such "
+                          f"as tcp://10.0.0.5:8786)")
+    return address
+
+
+def _host_port(address: str, where: str) -> tuple[str, int]:
+    rest = address.split("://", 1)[1]
+    if "/" in rest or "?" in rest or "#" in rest:
+        raise EngineError(f"{where}: not an address (tcp://HOST:PORT, nothing after the port)")
+    if rest.startswith("["):
+        end = rest.find("]")
+        if end < 0:
+            raise EngineError(f"{where}: not an address (a '[' without its ']'; an IPv6 host "
+                              f"is written tcp://[::1]:8786)")
+        host, tail = rest[1:end], rest[end + 1:]
+        if tail and not tail.startswith(":"):
+            raise EngineError(f"{where}: not an address (tcp://[HOST]:PORT)")
+        port_text = tail[1:] if tail else ""
+    else:
+        host, _, port_text = rest.rpartition(":") if ":" in rest else (rest, "", "")
+        if ":" in host:
+            raise EngineError(f"{where}: not an address (an IPv6 host is written in "
+                              f"brackets: tcp://[::1]:8786)")
+    if not host:
+        raise EngineError(f"{where}: not an address (no host; tcp://HOST:PORT)")
+    if not port_text:
+        return host, DEFAULT_PORT
+    if not port_text.isdigit():
+        raise EngineError(f"{where}: the port {port_text!r} is not a number (1 to 65535)")
+    port = int(port_text)
+    if not 1 <= port <= 65535:
+        raise EngineError(f"{where}: the port {port} is out of range (1 to 65535)")
+    return host, port
+
+
+def _probe(host: str, port: int, where: str, greeting: bool) -> None:
+    """Reach host:port, and with ``greeting`` read the first 8 bytes a Dask scheduler sends
+    to a new connection (the length of its handshake): anything else is not Dask."""
+    import socket
+    try:
+        sock = socket.create_connection((host, port), timeout=CONNECT_SECONDS)
+    except socket.gaierror:
+        raise EngineError(f"{where}: unknown host {host!r}") from None
+    except ConnectionRefusedError:
+        raise EngineError(f"{where}: nothing listens on {host}:{port} (connection refused); "
+                          f"start the scheduler (`dask scheduler`) or check the address") \
+            from None
+    except TimeoutError:
+        raise EngineError(f"{where}: no answer from {host}:{port} within {CONNECT_SECONDS:g} s "
+                          f"(nothing listens, or a firewall); check the address") from None
+    except OSError as exc:
+        raise EngineError(f"{where}: cannot be reached ({exc.strerror or type(exc).__name__})") \
+            from None
+    with sock:
+        if not greeting:
+            return
+        sock.settimeout(GREETING_SECONDS)
+        head = b""
+        try:
+            while len(head) < 8:
+                part = sock.recv(8 - len(head))
+                if not part:
+                    break
+                head += part
+        except TimeoutError:
+            pass
+        except OSError as exc:
+            raise EngineError(f"{where}: the connection failed ({exc.strerror or exc})") \
+                from None
+    if not head:
+        raise EngineError(f"{where}: not a Dask scheduler (it sent no greeting within "
+                          f"{GREETING_SECONDS:g} s: an HTTP server or another service?)")
+    size = int.from_bytes(head.ljust(8, b"\0"), "little")
+    if len(head) < 8 or not 0 < size <= MAX_GREETING_BYTES:
+        shown = head.decode("ascii", "replace").strip() or head.hex()
+        raise EngineError(f"{where}: not a Dask scheduler (it answers in another protocol: "
+                          f"{shown[:20]!r})")
+
+
+def connect(scheduler: str | None, workers: int | None, per_worker: float | None = None):
+    """(client, local cluster or None, description, number of workers).  ``scheduler``: a
+    checked address (:func:`resolve_scheduler`) or None for a local cluster of ``workers``
+    processes (None: one per core) of about ``per_worker`` bytes each."""
+    import distributed
+
+    from .. import lifeline
+    from ..resources import WORKER_BYTES, local_workers, note
+    logging.getLogger("distributed").setLevel(logging.ERROR)
+    if scheduler is None:
+        nw, why = local_workers(workers, per_worker or WORKER_BYTES)
+        if why:
+            note(why)
+        import warnings
+        try:
+            # one core per worker: the numba kernels must not start a thread per core in
+            # every worker (oversubscription)
+            with warnings.catch_warnings():     # e.g. a note on a busy port: not the user's
+                warnings.simplefilter("ignore")
+                cluster = distributed.LocalCluster(
+                    n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                    dashboard_address=None, silence_logs=logging.ERROR,
+                    preload=[lifeline.PRELOAD],
+                    env={"NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
+        except OSError as exc:
+            raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
+        return distributed.Client(cluster), cluster, f"LocalCluster ({nw} workers)", nw
+    try:
+        client = distributed.Client(scheduler, timeout="10s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise EngineError(f"cannot reach the Dask scheduler at {scheduler!r} "
+                          f"({' '.join(str(exc).split())[:200]})") from None
+    except MemoryError:
+        raise EngineError(f"{scheduler!r} is not a Dask scheduler (its answer is not Dask's "
+                          f"protocol)") from None
+    try:
+        client.wait_for_workers(1, timeout=60)
+    except (TimeoutError, OSError):
+        client.close()
+        raise EngineError(f"the Dask scheduler at {scheduler!r} has no workers (waited 60 s); "
+                          f"start some with: dask worker {scheduler}") from None
+    nw = len(client.scheduler_info(n_workers=-1)["workers"])
+    return client, None, scheduler, nw
+
+
+def close(client, cluster) -> None:
+    with contextlib.suppress(Exception):
+        client.close(timeout=5)
+    if cluster is not None:
+        with contextlib.suppress(Exception):
+            cluster.close(timeout=5)
+
+
+class cluster:
+    """A Dask client for other work than studies (e.g. the tiles of one huge scan): the
+    same choice as a study -- ``scheduler`` (or $ASPERITY_SCHEDULER) an existing cluster,
+    else a LocalCluster of ``workers`` single-threaded processes on 127.0.0.1 of about
+    ``per_worker`` bytes each -- closed at the end.
+    ``with cluster(None, 2) as (client, where, n_workers): ...``"""
+
+    def __init__(self, scheduler: str | None = None, workers: int | None = None,
+                 per_worker: float | None = None):
+        self.scheduler = resolve_scheduler(scheduler)
+        self.workers = None if workers is None else check_int("--workers", workers, 1, 4096)
+        self.per_worker = per_worker
+
+    def __enter__(self):
+        self.client, self.local, where, nw = connect(self.scheduler, self.workers,
+                                                     self.per_worker)
+        return self.client, where, nw
+
+    def __exit__(self, *exc):
+        close(self.client, self.local)
+        return False

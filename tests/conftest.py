@@ -1,0 +1,36 @@
+"""Every process a test starts dies with the test process, however that ends (a test
+that fails half-way, pytest stopped with Ctrl-C or killed with SIGKILL): each child that
+``subprocess`` starts asks the kernel for SIGKILL when its parent dies (Linux
+``PR_SET_PDEATHSIG``; a servers' own workers then die with it, see asperity.lifeline).
+The signal follows the thread that started the child, so tests start long-lived children
+from the test's own thread."""
+from __future__ import annotations
+
+import ctypes
+import signal
+import subprocess
+import sys
+
+PR_SET_PDEATHSIG = 1
+_popen_init = subprocess.Popen.__init__
+
+
+def _die_with_parent() -> None:
+    try:
+        ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
+
+
+def _init(self, *args, preexec_fn=None, **kwargs):
+    user = preexec_fn
+
+    def preexec():
+        if user is not None:                 # e.g. a change of user, which would clear
+            user()                           # the signal asked before it
+        _die_with_parent()
+    _popen_init(self, *args, preexec_fn=preexec, **kwargs)
+
+
+if sys.platform.startswith("linux"):
+    subprocess.Popen.__init__ = _init
