@@ -139,7 +139,9 @@ def outfile(folder, **kw) -> Kind:
 
 def address(**kw) -> Kind:
     """Where to reach a service (a Dask scheduler): refused, or unreachable, in one line."""
-    return Kind("address", none=True, extra=[("choice", "no address", "abc")], **kw)
+    return Kind("address", none=True, extra=[("choice", "no address", "abc"),
+                                            ("choice", "no port", "tcp://127.0.0.1:99999")],
+                **kw)
 
 
 def text(**kw) -> Kind:
