@@ -244,14 +244,19 @@ def rate_bounds(cp, cm, q, lo, hi):
 
 
 @njit(cache=True)
-def rate_statuses(kb, kt, cp, cm, fw, th, dF, q, st, w):
+def rate_statuses(kb, kt, cp, cm, fw, th, dF, q, st, w, keep=True):
     """The sliders' statuses ``st`` (out) of the rate problem at the state q under the load
-    rates (th, dF); w: (7, n) work array (w[6] holds the rates on return).  Returns the
-    status code."""
+    rates (th, dF); w: (7, n) work array (w[6] holds the rates on return).  The pivoting
+    starts from the sliders at a threshold sliding on (``keep``: the load goes on as
+    before) or from every slider sticking (the load turns back: they all stop).  Returns
+    the status code."""
     n = q.size
     lo, hi, base, f, G, P, v = w[0], w[1], w[2], w[3], w[4], w[5], w[6]
     rate_bounds(cp, cm, q, lo, hi)
     for i in range(n):
         base[i] = dF * fw[i]
-        st[i] = 1 if q[i] == cp[i] else (-1 if q[i] == -cm[i] else 0)
+        if keep:
+            st[i] = 1 if q[i] == cp[i] else (-1 if q[i] == -cm[i] else 0)
+        else:
+            st[i] = 0
     return solve_lcp(kb, kt, cp, cm, th, base, lo, hi, st, f, G, P, v, 4 * n + 2 * _BLOCK_ROUNDS)

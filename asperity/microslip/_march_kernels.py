@@ -38,19 +38,22 @@ from ._chain_kernels import (
 
 
 @njit(cache=True)
-def segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w, max_events, state, budget):
+def segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w, max_events, state, budget,
+                   keep=True):
     """March the state (u, q) along one linear load segment (elongations ``th``, force
     change ``dF`` over it) event by event, from the fraction ``state[0]`` of the segment
     already done (``state[1]``: events so far in it) until it ends or about ``budget``
     node-passes are spent (one per node and event); ``acc`` (n,) accumulates each slider's
     |slip|; st (n,), w (7, n): work arrays.  ``state`` is updated (state[0] = 1: the
-    segment is done).  Returns (code, node-passes spent)."""
+    segment is done); ``keep``: the segment goes on in the direction of the one before (the
+    sliders' statuses the guess of its first rate problem).  Returns (code, node-passes
+    spent)."""
     n = u.size
     lam = state[0]
     events = int(state[1])
     work = 0
     while True:
-        code = rate_statuses(kb, kt, cp, cm, fw, th, dF, q, st, w)
+        code = rate_statuses(kb, kt, cp, cm, fw, th, dF, q, st, w, keep or lam > 0.0)
         work += n
         if code != STATUS_OK:
             return code, work
@@ -96,7 +99,7 @@ def segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w, max_events, sta
 
 
 @njit(cache=True)
-def segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, guess, w, w2):
+def segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, guess, w, w2, keep=True):
     """The backward-Euler increment of one linear load segment, taken if certain to be the
     exact end state (see the module's docstring): returns True and updates (u, q, acc), or
     returns False and leaves them as they were.  ``guess`` (n,) int64: the statuses to start
@@ -105,7 +108,7 @@ def segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, guess, w, w2):
     if dF != 0.0:
         return False
     # the rate problem at the start: who slides as the segment begins
-    if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, st, w) != STATUS_OK:
+    if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, st, w, keep) != STATUS_OK:
         return False
     lo, hi, base, f, G, P, v = w2[0], w2[1], w2[2], w2[3], w2[4], w2[5], w2[6]
     for i in range(n):
@@ -178,9 +181,14 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, 
     work = 0
     a_dT = dT0
     a_F = F0
+    p_dT = 0.0
+    p_F = 0.0
     for j in range(m):
         ddT = dT_seq[j] - a_dT
         dF = F_seq[j] - a_F
+        # the load goes on as in the segment before (not known for the first of a call)
+        keep = j > 0 and ddT * p_dT >= 0.0 and dF * p_F >= 0.0 and (ddT != 0.0) == (
+            p_dT != 0.0)
         for e in range(n - 1):
             th[e] = alpha_T * le[e] * ddT
         if state[0] == 0.0:
@@ -188,13 +196,13 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, 
                 acc[i] = 0.0
             state[1] = 0.0
             if not events_only and segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc,
-                                                     st, guess[j], w, w2):
+                                                     st, guess[j], w, w2, keep):
                 state[0] = 1.0
                 work += 10 * n
         if state[0] < 1.0:
             ev0 = int(state[1])
             code, wk = segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w,
-                                      max_events, state, budget - work)
+                                      max_events, state, budget - work, keep)
             work += wk
             events += int(state[1]) - ev0
             if code != STATUS_OK:
@@ -214,6 +222,8 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, 
             rec_u[j, k] = u[rec_nodes[k]]
         a_dT = dT_seq[j]
         a_F = F_seq[j]
+        p_dT = ddT
+        p_F = dF
         state[0] = 0.0
         if work >= budget:
             return STATUS_OK, j + 1, events, work

@@ -188,6 +188,7 @@ def _built(kind, x, kb, le, kt, mp, mm, N, w, alpha_T, params) -> Chain:
                     ("alpha_T", alpha_T), ("mu_plus", mp), ("mu_minus", mm),
                     ("params", params)):
         object.__setattr__(c, name, v)
+    c.__dict__["_uniform"] = True          # both models are uniform by construction
     _check_resolvable(c)
     return c
 

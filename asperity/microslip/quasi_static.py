@@ -175,8 +175,8 @@ def march_cost(chain: Chain, loading: Loading, cycles: int, n_record: int,
     points = cycles * m + loading.substeps
     mem = (24 * n * 8 + m * n * 8 + cycles * (n * 8 + 300)
            + 2 * points * (n_record * 8 + 24))
-    _, F = loading.cycle_points()
-    moving = m if events_only else int(np.count_nonzero(F != np.roll(F, 1)))
+    F = loading.F                         # breakpoints: a segment whose force changes
+    moving = m if events_only else loading.substeps * int(np.count_nonzero(np.diff(F)))
     lead = loading.substeps * (n / 10 if events_only or loading.F[0] != 0.0 else 1)
     return mem, cycles * (10 * (m - moving) * n + moving * n * n + 2000) + 10 * lead * n
 
