@@ -1,5 +1,6 @@
 """The contact solver's peers, shared by ``tests/test_contact_oracle.py`` and
-``benchmarks/bench_contact.py``: a random self-affine height map, and ContactMechanics
+``benchmarks/bench_contact.py``: a random self-affine height map (the benchmark's,
+:func:`asperity.contact.bench.self_affine`), and ContactMechanics
 (PyPI ``ContactMechanics``, MIT; a test and benchmark peer only, never imported by the
 package) called in asperity's conventions.
 
@@ -27,24 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-
-def self_affine(nx, ny=None, hurst=0.8, rms_slope=0.1, dx=1.0, dy=None, seed=0):
-    """(nx, ny) periodic random height map (m when dx is), power spectrum C(q) ~ q^-2(1+H)
-    (random phases), zero mean, scaled to the given rms slope (periodic forward
-    differences, sqrt(mean(dz/dx^2 + dz/dy^2)))."""
-    ny = nx if ny is None else ny
-    dy = dx if dy is None else dy
-    rng = np.random.default_rng(seed)
-    qx = np.fft.fftfreq(nx, dx)[:, None]
-    qy = np.fft.rfftfreq(ny, dy)[None, :]
-    q = np.hypot(qx, qy)
-    q[0, 0] = np.inf
-    spec = np.fft.rfft2(rng.standard_normal((nx, ny))) * q ** (-(1.0 + hurst))
-    z = np.fft.irfft2(spec, s=(nx, ny))
-    z -= z.mean()
-    gx = (np.roll(z, -1, 0) - z) / dx
-    gy = (np.roll(z, -1, 1) - z) / dy
-    return z * (rms_slope / np.sqrt(np.mean(gx * gx + gy * gy)))
+from asperity.contact.bench import self_affine  # noqa: F401  (the maps of tests and bench)
 
 
 def cm_available():
@@ -56,9 +40,10 @@ def cm_available():
 
 
 def cm_solve(h, dx, dy, E_star, p_mean, boundary="periodic", hardness=None, tol=1e-10,
-             max_iterations=100000):
+             max_iterations=100000, initial=None):
     """ContactMechanics' constrained conjugate gradient (Polonsky-Keer) on asperity's
-    problem: (pressure Pa with NaN on undefined pixels, gap m, iterations, converged)."""
+    problem: (pressure Pa with NaN on undefined pixels, gap m, iterations, converged).
+    ``initial``: a pressure (Pa) to start from (its pixel forces)."""
     from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
     from ContactMechanics.Optimization import constrained_conjugate_gradients
     h = np.asarray(h, float)
@@ -71,10 +56,14 @@ def cm_solve(h, dx, dy, E_star, p_mean, boundary="periodic", hardness=None, tol=
     sub = cls((nx, ny), 1.0, physical_sizes=sizes)
     load = p_mean / E_star * nx * ny * area
     rms = float(np.std(h[ok] / dx))
+    f0 = None
+    if initial is not None:                             # compressive forces are negative
+        f0 = np.zeros(sub.nb_subdomain_grid_pts)
+        f0[:nx, :ny] = -np.where(ok, np.nan_to_num(initial), 0.0) / E_star * area
     res = constrained_conjugate_gradients(
         sub, z, hardness=None if hardness is None else hardness / E_star * area,
         external_force=load, pentol=tol * rms, forcetol=tol * load / ok.sum(),
-        thermotol=tol, maxiter=max_iterations)
+        thermotol=tol, maxiter=max_iterations, initial_forces=f0)
     p = np.asarray(res.jac)[:nx, :ny] / area * E_star
     gap = (np.asarray(res.x)[:nx, :ny] - np.where(ok, h / dx, 0.0) - res.offset) * dx
     p = np.where(ok, p, np.nan)
