@@ -133,7 +133,8 @@ def _pixel_size(pixel_size) -> tuple[float, float]:
 def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
     """The checked arguments of :func:`solve_contact`: (heights as float64, (dx, dy),
     E*, pressure, boundary, hardness or None, number of defined pixels)."""
-    z = check_array("heights", heights, ndim=2, finite=False)
+    # C order: the kernels work on flat views (a Fortran-ordered map would be copied)
+    z = np.ascontiguousarray(check_array("heights", heights, ndim=2, finite=False))
     if z.shape[0] < 2 or z.shape[1] < 2:
         raise InputError(f"heights must have at least 2 x 2 pixels, got shape {z.shape}")
     if np.isinf(z).any():
