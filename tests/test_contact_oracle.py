@@ -318,3 +318,38 @@ def test_effective_modulus():
         1 / (0.91 / 210e9 + (1 - 0.33 ** 2) / 70e9), rel=1e-14)
     assert effective_modulus(210e9, 0.3) == pytest.approx(210e9 / 0.91, rel=1e-14)
     assert effective_modulus(1e9, 0.5, 1e9, 0.5) == pytest.approx(1e9 / 1.5, rel=1e-14)
+
+
+# ---- the benchmark's plumbing (no timing asserted) -------------------------------------
+
+@pytest.mark.parametrize("flags,msg", [
+    (["--contact-size", "10"], "--contact-size must be in [64, 4096], got 10"),
+    (["--repeats", "0"], "--repeats must be in [1, 20], got 0")])
+def test_contact_benchmark_flags_refused(capsys, flags, msg):
+    from cli_run import run
+    code, out, err = run(capsys, "bench", "--only", "contact", *flags)
+    assert code == 1 and out == "" and msg in err and err.count("\n") == 1, err
+
+
+@needs_cm
+@pytest.mark.slow
+def test_contact_benchmark_runs_every_solver_on_the_same_problem(capsys):
+    """Each solver's child runs, reports its figures, and the three solve the same problem
+    (their pressures agree to the tolerance); every target gets a verdict."""
+    import json
+
+    from cli_run import run
+    code, out, err = run(capsys, "bench", "--only", "contact", "--contact-size", "64",
+                         "--json")
+    assert code == 0, err
+    b = json.loads(out)["contact"]
+    assert set(b["cases"]) == {"periodic", "free", "periodic curve"}
+    for key, case_ in b["cases"].items():
+        for solver in ("asperity", "contactmechanics", "plain"):
+            r = case_[solver]
+            assert "error" not in r, (key, solver, r)
+            assert r["pixels"] == 64 * 64 and r["peak_bytes"] > 0 and r["iterations"] > 0
+            assert len(r["iterations_each"]) == (8 if key == "periodic curve" else 1)
+            if solver != "asperity":
+                assert r["rel_l2_vs_asperity"] < 1e-6, (key, solver)
+    assert all(v["value"] is not None for k, v in b["verdict"].items() if "4096" not in k)
