@@ -312,3 +312,15 @@ def bench_big_scan(sizes=(2048, 4096, 8192), directions: int = 360, repeats: int
 def format_big_scan(out: dict) -> str:
     from .friction.scan_bench import format_big_scan as fmt
     return fmt(out)
+
+
+def bench_contact(n: int = 1024, big: bool = False, repeats: int = 1) -> dict:
+    """The elastic contact solve against ContactMechanics and a plain Polonsky-Keer
+    (:mod:`asperity.contact.bench`)."""
+    from .contact.bench import bench_contact as run
+    return run(n, n, big, repeats=repeats)
+
+
+def format_contact(out: dict) -> str:
+    from .contact.bench import format_contact as fmt
+    return fmt(out)

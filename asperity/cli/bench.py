@@ -6,7 +6,8 @@ import os
 
 from . import json_text
 
-PARTS = ("closed-form", "springs", "facets", "microslip", "moreau", "study", "big-scan")
+PARTS = ("closed-form", "springs", "facets", "microslip", "moreau", "study", "big-scan",
+         "contact")
 #: largest --facets: the benchmark then takes 4.4 GB (peak RSS measured; estimated 7.5 GB)
 MAX_FACETS_GRID = 8192
 
@@ -22,7 +23,12 @@ def add_parser(sub) -> None:
                                    "study cases per second, a serial loop against 2 local "
                                    "Dask workers; --only big-scan: time and peak memory of "
                                    "derive in tiles on synthetic float32 maps written to disk "
-                                   "(--scan-sizes, deleted afterwards).")
+                                   "(--scan-sizes, deleted afterwards); --only contact: "
+                                   "time, iterations and memory per pixel of the elastic "
+                                   "contact solve against ContactMechanics and a plain "
+                                   "NumPy Polonsky-Keer (periodic and free, a load curve), "
+                                   "each solver in a child process, and whether the "
+                                   "issue's targets are met.")
     p.add_argument("--seconds", type=float, default=1.0, help="time per measurement (s)")
     p.add_argument("--only", choices=PARTS, default=None,
                    help="run one benchmark only (default: closed-form and springs)")
@@ -40,9 +46,15 @@ def add_parser(sub) -> None:
                    metavar="N", help="--only big-scan: N x N maps (64 to 32768; 16384 "
                                      "writes 1 GB and takes minutes)")
     p.add_argument("--repeats", type=int, default=1, metavar="R",
-                   help="--only big-scan: runs per size (1 to 20), to see the spread")
+                   help="--only big-scan / contact: runs per size or solver (1 to 20), to "
+                        "see the spread (contact: the fastest is reported)")
     p.add_argument("--scan-dir", metavar="DIR", default=None,
                    help="--only big-scan: folder for the maps (default: a temporary folder)")
+    p.add_argument("--contact-size", type=int, default=1024, metavar="N",
+                   help="--only contact: N x N maps (64 to 4096; default 1024)")
+    p.add_argument("--big", action="store_true",
+                   help="--only contact: also a free 4096 x 4096 solve of asperity's solver "
+                        "(memory per pixel; about 3.5 GB)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=main)
 
@@ -69,6 +81,9 @@ def main(args) -> int:
         if args.scan_dir is not None and not os.path.isdir(args.scan_dir):
             from ..errors import InputError
             raise InputError(f"--scan-dir {args.scan_dir!r} is not a folder")
+    if "contact" in parts:
+        contact_n = int(check_range("--contact-size", args.contact_size, 64, 4096))
+        repeats = int(check_range("--repeats", args.repeats, 1, 20))
     out = {}
     if "closed-form" in parts:
         out["closed_form"] = bench.bench_closed_form(seconds)
@@ -85,6 +100,8 @@ def main(args) -> int:
         out["study"] = bench_study(workers=workers)
     if "big-scan" in parts:
         out["big_scan"] = bench.bench_big_scan(sizes, n_dir, repeats, args.scan_dir)
+    if "contact" in parts:
+        out["contact"] = bench.bench_contact(contact_n, args.big, repeats)
     if args.json:
         print(json_text(out))
         return 0
@@ -103,4 +120,6 @@ def main(args) -> int:
         print(format_study(out["study"]))
     if "big_scan" in out:
         print(bench.format_big_scan(out["big_scan"]))
+    if "contact" in out:
+        print(bench.format_contact(out["contact"]))
     return 0
