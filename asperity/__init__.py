@@ -59,6 +59,8 @@ _LAZY = {
     "assembly_friction": "asperity.microslip.risk",
     "assess_assembly": "asperity.microslip.risk",
     "risk_map": "asperity.study.maps",
+    "solve_contact": "asperity.contact.solver",
+    "effective_modulus": "asperity.contact.solver",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }

@@ -1,0 +1,329 @@
+"""Normal contact of a rigid rough surface and an elastic half-space: the Polonsky-Keer
+constrained conjugate gradient with exact load control (SPEC.md section 7).
+
+Problem: heights h (the rigid surface, its highest points touch first), an elastic
+half-space of effective modulus E* pressed onto it at nominal pressure p_bar.  Unknowns:
+the pixel pressures p and the approach d such that, with the half-space's displacement
+u = K p (:mod:`.elastic`),
+
+    g = u - h + d >= 0,   0 <= p <= H,   g = 0 where 0 < p < H,   g <= 0 where p = H,
+    g > 0 only where p = 0,   sum p = p_bar x (pixel count of the whole map)
+
+(H the hardness of the optional perfectly plastic cap, infinite without one; pixels where
+p = H are plastic: the surface has flowed into the gap).  Undefined (NaN) pixels carry no
+pressure.
+
+Polonsky & Keer (Wear 231, 206, 1999), one iteration:
+
+1. the gap g = u - h - gbar on the free set F = {0 < p < H}, gbar its mean there (the
+   gap mean shift: the rigid-body approach is d = -gbar), G = sum_F g^2;
+2. the conjugate direction t = g + delta (G / G_old) t on F, 0 elsewhere; delta = 0 (a
+   steepest-descent restart) after an iteration that changed the contact set through the
+   gap (step 4), else 1;
+3. r = K t, rbar its mean over F, tau = sum_F g t / sum_F (r - rbar) t; p -= tau t on F;
+4. where p = 0 and g < 0 (overlap), and where p = H and g > 0 (a plastic pixel whose gap
+   opened), p -= tau g, and delta = 0 for the next iteration; p clipped to [0, H];
+5. load control: p scaled by the factor s that gives sum min(s p, H) = the load (plain
+   scaling without a cap, as in the paper; with one, Newton steps on that concave,
+   piecewise linear function, exact in a few passes);
+6. the change eps = sum |p_new - p_old| / sum p (the residual reported): done below tol.
+
+u is updated without a transform (u - tau r, scaled) when no pixel was clipped or moved
+by the gap; else, and every :data:`REFRESH` iterations, recomputed as K p.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import AsperityError, InputError, check_array, check_choice, check_int, \
+    check_range
+from . import elastic
+
+#: iterations between two full products u = K p when u is updated incrementally
+REFRESH = 25
+#: default iteration limit
+MAX_ITERATIONS = 10_000
+#: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
+#: flat many times over, or nothing is loaded)
+PRESSURE_OVER_E = (1e-12, 10.0)
+#: range of E* in Pa (a gel to diamond, with margin)
+E_RANGE = (1.0, 1e13)
+
+
+class ContactNotConverged(AsperityError):
+    """The iteration limit was reached; ``.result`` holds the last iterate."""
+
+    def __init__(self, message: str, result):
+        super().__init__(message)
+        self.result = result
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """The solved contact (see :func:`solve_contact`); arrays on the map's own grid."""
+
+    pressure: np.ndarray = field(repr=False)
+    gap: np.ndarray = field(repr=False)
+    displacement: np.ndarray = field(repr=False)
+    contact: np.ndarray = field(repr=False)
+    area_fraction: float
+    mean_pressure: float
+    max_pressure: float
+    mean_gap: float
+    iterations: int
+    residual: float
+    converged: bool
+    E_star: float
+    boundary: str
+    hardness: float | None
+    pixel_size: tuple[float, float]
+    pressure_asked: float
+    #: share of the defined pixels at the hardness (0 without one)
+    plastic_fraction: float = 0.0
+    #: rigid-body approach d of the gap g = u - h + d, m
+    approach: float = 0.0
+
+    @property
+    def full_contact(self) -> bool:
+        """Every defined pixel is in contact."""
+        return self.area_fraction >= 1.0
+
+    def to_dict(self) -> dict:
+        """The JSON keys of ``asperity contact --json``."""
+        return {"area_fraction": self.area_fraction, "pressure_Pa": self.mean_pressure,
+                "max_pressure_Pa": self.max_pressure, "mean_gap_m": self.mean_gap,
+                "E_star_Pa": self.E_star, "boundary": self.boundary,
+                "hardness_Pa": self.hardness, "iterations": self.iterations,
+                "residual": self.residual, "converged": self.converged,
+                "plastic_fraction": self.plastic_fraction}
+
+
+def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
+    """E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2); E2 None: a rigid counterface."""
+    E1 = check_range("E1", E1, 0.0, None, low_open=True, unit="Pa")
+    nu1 = check_range("nu1", nu1, -1.0, 0.5, low_open=True)
+    c = (1.0 - nu1 * nu1) / E1
+    if (E2 is None) != (nu2 is None):
+        raise InputError("give E2 and nu2 together (or neither: a rigid counterface)")
+    if E2 is not None:
+        E2 = check_range("E2", E2, 0.0, None, low_open=True, unit="Pa")
+        nu2 = check_range("nu2", nu2, -1.0, 0.5, low_open=True)
+        c += (1.0 - nu2 * nu2) / E2
+    return 1.0 / c
+
+
+def _pixel_size(pixel_size) -> tuple[float, float]:
+    from ..surface.topography import pixel_length
+    if np.ndim(pixel_size) == 0:
+        d = pixel_length("pixel_size", pixel_size)
+        return d, d
+    a = check_array("pixel_size", pixel_size, shape=(2,))
+    return pixel_length("pixel_size dx", float(a[0])), pixel_length("pixel_size dy",
+                                                                     float(a[1]))
+
+
+def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
+    """The checked arguments of :func:`solve_contact`: (heights as float64, (dx, dy),
+    E*, pressure, boundary, hardness or None, number of defined pixels)."""
+    z = check_array("heights", heights, ndim=2, finite=False)
+    if z.shape[0] < 2 or z.shape[1] < 2:
+        raise InputError(f"heights must have at least 2 x 2 pixels, got shape {z.shape}")
+    if np.isinf(z).any():
+        raise InputError("heights must be finite or NaN (undefined), got an infinity")
+    defined = int(np.count_nonzero(~np.isnan(z)))
+    if defined == 0:
+        raise InputError("heights has no defined (finite) pixel: nothing can carry the load")
+    dx, dy = _pixel_size(pixel_size)
+    E_star = check_range("E_star", E_star, *E_RANGE, unit="Pa")
+    p = check_range("pressure", pressure, 0.0, None, low_open=True, unit="Pa")
+    lo, hi = PRESSURE_OVER_E
+    check_range("pressure / E_star", p / E_star, lo, hi)
+    boundary = check_choice("boundary", boundary, elastic.BOUNDARIES)
+    if hardness is not None:
+        mean_defined = p * z.size / defined
+        hardness = check_range("hardness", hardness, mean_defined, None, low_open=True,
+                               unit="Pa (above the mean pressure over the defined pixels)")
+    return z, (dx, dy), E_star, p, boundary, hardness, defined
+
+
+def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
+                  hardness=None, tol=1e-8, max_iterations=None, initial=None,
+                  progress=None, workers=None) -> ContactResult:
+    """Contact of the rigid surface ``heights`` (m, (nx, ny), axis 0 along x, NaN
+    undefined) pressed at nominal pressure ``pressure`` (Pa, over the whole map's
+    projected area nx dx x ny dy) onto an elastic half-space of effective modulus
+    ``E_star`` (Pa).  See the module's docstring for the problem and the algorithm.
+
+    boundary       : "periodic" (the map is one period) or "free" (non-periodic)
+    hardness       : None, or a perfectly plastic cap H (Pa), above the mean pressure
+                     over the defined pixels
+    tol            : the iteration stops when the relative change of the pressure field
+                     (sum |dp| / sum p) falls below it; reported as ``residual``
+    max_iterations : iteration limit (default :data:`MAX_ITERATIONS`); reached, it raises
+                     :class:`ContactNotConverged` with the last iterate as ``.result``
+    initial        : None, or a pressure field (nx, ny) to start from (a previous
+                     result's pressure: load curves); scaled to the load
+    progress       : callable(fraction, text), else the active progress bar
+    workers        : threads of the transforms (default: the cores this process may use)
+    """
+    from ..resources import check_memory, cpu_cores
+    z, (dx, dy), E, pbar, boundary, H, n_def = check_inputs(heights, pixel_size, E_star,
+                                                            pressure, boundary, hardness)
+    tol = check_range("tol", tol, 1e-15, 0.1)
+    maxit = MAX_ITERATIONS if max_iterations is None else \
+        check_int("max_iterations", max_iterations, 1, 10 ** 7)
+    if progress is not None and not callable(progress):
+        raise InputError(f"progress must be a callable(fraction, text), got "
+                         f"{type(progress).__name__}")
+    workers = cpu_cores() if workers is None else check_int("workers", workers, 1, 4096)
+    nx, ny = z.shape
+    check_memory(elastic.solver_bytes(z.shape, boundary),
+                 f"the {boundary} contact solve of {nx} x {ny} pixels",
+                 "crop or resample the map to fewer pixels")
+    p0 = None if initial is None else check_array("initial", initial, shape=(nx, ny),
+                                                  finite=False)
+    space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
+    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, maxit, p0,
+                   progress)
+    res = ContactResult(**out, E_star=E, boundary=boundary, hardness=H,
+                        pixel_size=(dx, dy), pressure_asked=pbar)
+    if not res.converged:
+        raise ContactNotConverged(
+            f"the contact solve did not converge in {res.iterations} iterations (residual "
+            f"{res.residual:.3g}, tolerance {tol:g}); allow more iterations or a looser "
+            f"tolerance", res)
+    return res
+
+
+def _start(z: np.ndarray, h: np.ndarray, load: float, H: float, n_def: int, p0):
+    """The first pressure field: ``p0`` made admissible (0 on undefined pixels, in
+    [0, H]), else uniform over the defined pixels; scaled to the load afterwards."""
+    undefined = np.isnan(h)
+    if p0 is not None:
+        p = np.nan_to_num(p0, nan=0.0, posinf=0.0, neginf=0.0)
+        np.clip(p, 0.0, H, out=p)
+        p[undefined] = 0.0
+        if p.sum() > 0.0:
+            return p
+    p = np.full(z.shape, load / n_def)
+    p[undefined] = 0.0
+    return p
+
+
+def _scale_factor(p: np.ndarray, total: float, load: float, H: float) -> float | None:
+    """The factor s with sum min(s p, H) = load (None: the contact set cannot carry the
+    load even at H everywhere)."""
+    from . import _pk_kernels as K
+    s = load / total
+    if math.isinf(H):
+        return s
+    for _ in range(100):                       # Newton from the left: monotone, finite
+        f, df = K.capped_sums(p, s, H)
+        if abs(load - f) <= 1e-15 * load:
+            return s
+        if df <= 0.0:
+            return None
+        s += (load - f) / df
+    return s
+
+
+def _fill(p, u, h, load: float, H: float) -> None:
+    """Every contact pixel at H and the rest of the load on the most penetrating pixels
+    out of contact (the bearing-area step of a plastic solve whose set is too small)."""
+    on = p > 0.0
+    p[on] = H
+    rest = load - H * np.count_nonzero(on)
+    g = np.where((~on) & ~np.isnan(h), u - h, np.inf)
+    k = min(int(math.ceil(rest / H)), g.size)
+    idx = np.argpartition(g, k - 1)[:k] if k < g.size else np.arange(g.size)
+    idx = idx[np.argsort(g[idx])]
+    p[idx] = H
+    p[idx[-1]] = rest - H * (k - 1)
+
+
+def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
+    from ..progress import report
+    from . import _pk_kernels as K
+    tell = progress or report
+    nx, ny = z.shape
+    load = pbar * nx * ny                      # sum of the pixel pressures
+    h = z - np.nanmax(z)                       # the highest point at 0 (rounding)
+    p = _start(z, h, load, H, n_def, p0)
+    u = np.empty_like(h)
+    t = np.zeros_like(h)
+    r = np.empty_like(h)
+    hf, pf, uf, tf, rf = (a.reshape(-1) for a in (h, p, u, t, r))
+    s = _scale_factor(pf, float(pf.sum()), load, H)
+    if s is None:
+        space.apply(p, u)
+        _fill(pf, uf, hf, load, H)
+    else:
+        K.rescale(pf, uf, rf, s, H, False)
+    space.apply(p, u)
+    c, G_old, delta, fresh, eps = 0.0, 1.0, 0, 0, math.inf
+    it = 0
+    t_report = time.perf_counter()
+    while it < maxit:
+        it += 1
+        s1, s2, n, _, _ = K.gap_sums(uf, hf, pf, H, c)
+        if n > 0:
+            gbar = c + s1 / n
+            G = max(s2 - n * (gbar - c) ** 2, 0.0)
+            c = gbar
+            K.direction(uf, hf, pf, tf, H, gbar, delta * G / G_old if G_old > 0 else 0.0)
+            space.apply(t, r)
+            sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
+            denom = srt - sr / n * st
+            tau = sgt / denom if denom > 0.0 else 0.0
+        else:                                  # every contact pixel plastic: no CG step
+            G = 0.0
+            gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
+            t[...] = 0.0
+            r[...] = 0.0
+            tau = 1.0 / space.self_compliance
+        total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau)
+        delta = 0 if moved else 1
+        exact = clipped == 0 and moved == 0 and fresh < REFRESH
+        s = _scale_factor(pf, total, load, H) if total > 0.0 else None
+        if s is None:                          # the set cannot carry the load: widen it
+            _fill(pf, uf, hf, load, H)
+            change = float(np.abs(pf - rf).sum())
+            exact = False
+        else:
+            change, _, capped = K.rescale(pf, uf, rf, s, H, exact)
+            exact = exact and capped == 0
+        if exact:
+            fresh += 1
+        else:
+            space.apply(p, u)
+            fresh = 0
+        G_old = G
+        eps = change / load
+        now = time.perf_counter()
+        if now - t_report > 0.2:
+            t_report = now
+            tell(min(1.0, max(0.0, math.log(max(eps, tol)) / math.log(tol))),
+                 f"contact: iteration {it}, residual {eps:.2g}")
+        if eps < tol:
+            break
+    if fresh:                                  # the exact displacement of the result
+        space.apply(p, u)
+    s1, _, n, _, _ = K.gap_sums(uf, hf, pf, H, 0.0)
+    if n > 0:
+        gbar = s1 / n
+    else:
+        gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
+    del r, rf
+    plastic = int(np.count_nonzero(p >= H)) if math.isfinite(H) else 0
+    gap = t
+    gap_sum, _, nc = K.final_fields(uf, hf, pf, tf, -gbar)
+    d = float(np.nanmax(z)) - gbar             # approach for the heights as given
+    return dict(pressure=p, gap=gap, displacement=u, contact=p > 0.0,
+                area_fraction=nc / n_def, mean_pressure=float(np.nansum(p)) / (nx * ny),
+                max_pressure=float(np.nanmax(p)), mean_gap=gap_sum / n_def,
+                iterations=it, residual=float(eps), converged=bool(eps < tol),
+                plastic_fraction=plastic / n_def, approach=d)
