@@ -64,7 +64,8 @@ class FacetSurface:
 
     gx, gy   : (n,) float, facet gradients (only facets that carry load)
     mu       : float (uniform) or (n,) float, local friction
-    weight   : (n,) float, projected area x contact weight, m^2 (> 0)
+    weight   : (n,) float, projected area x contact weight, m^2 (> 0); with a pressure
+               field the normal force each facet carries, N
     info     : what it came from and what was skipped (see :meth:`to_dict`)
     preview  : small (nx, ny) height array (m) and its physical size, for plots
     quality  : data-quality figures (:func:`asperity.surface.quality.quality_stats`)
@@ -78,12 +79,16 @@ class FacetSurface:
     preview: np.ndarray | None = field(default=None, repr=False)
     extent: tuple[float, float] | None = None
     quality: dict | None = field(default=None, repr=False, compare=False)
+    #: the contact's figures when the weights are contact forces (:mod:`.contact_facets`)
+    elastic: dict | None = field(default=None, compare=False)
 
     kind = "surface"
 
     def __post_init__(self):
         gx, gy, mu, w = check_fields(self.gx, self.gy, self.mu, self.weight, self.info,
                                      self.preview, self.extent, self.quality)
+        if self.elastic is not None:
+            check_instance("elastic", self.elastic, dict)
         for name, v in (("gx", gx), ("gy", gy), ("weight", w), ("mu", mu)):
             object.__setattr__(self, name, v)
 
