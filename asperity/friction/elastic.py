@@ -22,11 +22,14 @@ import numpy as np
 from ..errors import InputError
 from .reservoir import Faces
 
-#: nodes a period of a wedge texture's plane-strain solve: at least this many, and at
-#: least WEDGE_NODES_PER_WEDGE a wedge of a Gaussian texture, at most WEDGE_MAX_NODES
+#: nodes a period of a wedge texture's plane-strain solve (a power of 2): at least this
+#: many, WEDGE_NODES_PER_WEDGE a wedge of a Gaussian texture and WEDGE_CONTACT_NODES x the
+#: mean slope / (p / E*) at the lightest pressure (the contact of a sharp crest spans about
+#: (p / E*) / mean slope of the period: some 100 nodes), at most WEDGE_MAX_NODES
 WEDGE_MIN_NODES = 4096
 WEDGE_NODES_PER_WEDGE = 256
-WEDGE_MAX_NODES = 1 << 20
+WEDGE_CONTACT_NODES = 64
+WEDGE_MAX_NODES = 1 << 18
 
 
 class ElasticWedge:
@@ -68,10 +71,14 @@ class ElasticWedge:
         return self._texture.to_dict()
 
 
-def wedge_nodes(texture) -> int:
-    """Nodes a period of the plane-strain solve of ``texture``'s profile."""
+def wedge_nodes(texture, prof, p_over_E: float) -> int:
+    """Nodes a period of the plane-strain solve of ``texture``'s profile ``prof`` at the
+    lightest pressure ``p_over_E`` (p / E*)."""
     n_wedges = int(getattr(texture, "n_wedges", 1))
-    return int(min(WEDGE_MAX_NODES, max(WEDGE_MIN_NODES, WEDGE_NODES_PER_WEDGE * n_wedges)))
+    slope = float(np.abs(np.diff(prof.z)).sum() / prof.period)
+    want = max(WEDGE_MIN_NODES, WEDGE_NODES_PER_WEDGE * n_wedges,
+               WEDGE_CONTACT_NODES * slope / p_over_E)
+    return int(min(WEDGE_MAX_NODES, 1 << int(np.ceil(np.log2(want)))))
 
 
 def segment_forces(p: np.ndarray, dx: float, x0: np.ndarray, x1: np.ndarray) -> np.ndarray:
@@ -95,7 +102,7 @@ def wedge_contact(texture, elastic) -> list[ElasticWedge]:
     from ..surface.contact_facets import contact_solutions
     from ..surface.topography import HeightMap
     prof = texture.profile()
-    n = wedge_nodes(texture)
+    n = wedge_nodes(texture, prof, min(elastic.pressures) / elastic.E_star)
     period = prof.period
     dx = period / n
     z = prof.height(np.arange(n) * dx)

@@ -124,7 +124,7 @@ def mean_facet_gradient(z: np.ndarray, dx: float, dy: float) -> tuple[float, flo
 def contact_heights(hm: HeightMap, periodic: bool, level_slope: bool) -> np.ndarray:
     """The heights the half-space meets: the map's, less the facets' mean slope plane on a
     free map when the slope is removed."""
-    z = hm.heights
+    z = np.ascontiguousarray(hm.heights)      # the solver's flat views need C order
     if periodic or not level_slope:
         return z
     a, b = mean_facet_gradient(z, float(hm.dx), float(hm.dy))
