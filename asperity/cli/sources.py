@@ -128,14 +128,15 @@ def elastic_from_args(args, several: bool):
     if getattr(args, "method", "closed-form") != "closed-form":
         raise InputError("--elastic weights the closed form; --method springs has its own "
                          "load model")
-    if len(args.pressure) > 1 and not several:
-        raise InputError("several --pressure values make a family of laws; a gauge file "
-                         "holding a family is not supported yet: give one --pressure")
     from ..surface.contact_facets import ElasticContact
     p = args.pressure
     with flag_names():
-        return ElasticContact(args.elastic, p[0] if len(p) == 1 else tuple(p),
-                              boundary=args.boundary, hardness=args.hardness)
+        elastic = ElasticContact(args.elastic, p[0] if len(p) == 1 else tuple(p),
+                                 boundary=args.boundary, hardness=args.hardness)
+    if elastic.family and not several:
+        raise InputError("several --pressure values make a family of laws; a gauge file "
+                         "holding a family is not supported yet: give one --pressure")
+    return elastic
 
 
 def add_source_arguments(p) -> None:
