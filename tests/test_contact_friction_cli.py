@@ -160,7 +160,7 @@ USAGE = [
      "not with --bearing-fraction"),
     (["--elastic", "1e9", "--pressure", "1e6", "--tile-rows", "10"], "not with --tile-rows"),
     (["--elastic", "1e9", "--pressure", "1e6", "--workers", "2"], "not with --workers"),
-    (["--elastic", "1e9", "--pressure", *["1e6"] * 101], "number of --pressure values"),
+    (["--elastic", "1e9", "--pressure", *["1e6"] * 101], "--pressure (number of values)"),
 ]
 
 

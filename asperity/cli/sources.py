@@ -25,8 +25,7 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "max_slope": "--max-slope", "despike_window": "--despike-window",
                 "despike": "--despike", "tile_lines": "--tile-rows",
                 "pressure / E_star": "--pressure / --elastic", "E_star": "--elastic",
-                "pressure": "--pressure", "hardness": "--hardness",
-                "number of pressures": "number of --pressure values"}
+                "pressure": "--pressure", "hardness": "--hardness"}
 #: the elastic-contact flags (dest -> flag)
 ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
                  "hardness": "--hardness"}

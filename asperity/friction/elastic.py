@@ -140,4 +140,5 @@ def elastic_textures(texture, elastic) -> list:
     what = "a surface's facets (they have lost the height grid: give the HeightMap, or " \
            "load_elastic(path, ...))" if getattr(texture, "kind", "") == "surface" else \
         f"{type(texture).__name__}"
-    raise InputError(f"elastic contact needs a height map or a wedge texture, not {what}")
+    raise InputError(f"texture must be a height map or a wedge texture for elastic contact, "
+                     f"got {what}")

@@ -37,7 +37,10 @@ def derive_family(texture, elastic, contact: str = "all-faces", n_directions: in
     from ..surface.contact_facets import check_elastic
     from .derive import derive
     from .elastic import elastic_textures
+    from .reservoir import check_contact, check_progress
     elastic = check_elastic(elastic)
+    check_contact(contact)
+    check_progress(progress)
     check_int("directions", n_directions, 8, 100_000)
     if isinstance(texture, (list, tuple)):
         textures = list(texture)

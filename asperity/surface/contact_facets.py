@@ -29,7 +29,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_int, check_range, is_array
+from ..errors import InputError, check_array, check_choice, check_int, check_range, \
+    is_array
 from . import grid_facets as grid
 from .facets import FacetSurface, facet_bytes, heightmap_facets
 from .prepare import check_surface_options, prepare_surface
@@ -70,9 +71,11 @@ class ElasticContact:
     def __post_init__(self):
         E = check_range("E_star", self.E_star, 0.0, None, low_open=True, unit="Pa")
         raw = self.pressure
-        seq = is_array(raw) or isinstance(raw, (list, tuple))
-        values = list(np.asarray(raw, dtype=object).ravel()) if seq else [raw]
-        check_int("number of pressures", len(values), 1, MAX_PRESSURES)
+        seq = is_array(raw)
+        values = [raw]
+        if seq:
+            values = list(check_array("pressure", raw, ndim=1, finite=False))
+            check_int("pressure (number of values)", len(values), 1, MAX_PRESSURES)
         ps = tuple(check_range("pressure", v, 0.0, None, low_open=True, unit="Pa")
                    for v in values)
         if self.boundary is not None:
