@@ -49,14 +49,20 @@ def gap_sums(u, h, p, H, c):
 
 @njit(cache=True)
 def direction(u, h, p, t, H, gbar, beta):
-    """t = g + beta t on the free set, 0 elsewhere (g = u - h - gbar)."""
+    """t = g + beta t on the free set, 0 elsewhere (g = u - h - gbar); returns sum g t
+    (G when the previous step ended on a line minimum of an unchanged set)."""
+    sgt = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
-            t[i] = u[i] - hi - gbar + beta * t[i]
+            g = u[i] - hi - gbar
+            ti = g + beta * t[i]
+            t[i] = ti
+            sgt += g * ti
         else:
             t[i] = 0.0
+    return sgt
 
 
 @njit(cache=True)
@@ -120,33 +126,54 @@ def update(u, h, p, t, r, H, gbar, tau):
 
 
 @njit(cache=True)
-def capped_sums(p, s, H):
-    """sum of min(s p, H) and the sum of the p not capped (the slope in s)."""
+def load_sums(p, H):
+    """(sum of the pixels below H, number of pixels at H)."""
+    f = 0.0
+    n = 0
+    for i in range(p.size):
+        pi = p[i]
+        if pi < H:
+            f += pi
+        else:
+            n += 1
+    return f, n
+
+
+@njit(cache=True)
+def capped_sums(p, s, H, fixed):
+    """sum of min(s p, H) (the pixels at H kept at H when ``fixed``) and the sum of the p
+    not capped (the slope in s)."""
     f = 0.0
     df = 0.0
     for i in range(p.size):
-        q = s * p[i]
+        pi = p[i]
+        if fixed and pi >= H:
+            f += H
+            continue
+        q = s * pi
         if q < H:
             f += q
-            df += p[i]
+            df += pi
         else:
             f += H
     return f, df
 
 
 @njit(cache=True)
-def rescale(p, u, old, s, H, scale_u):
-    """p = min(s p, H); u *= s when ``scale_u``; returns (sum |p - old|, sum p, number
-    capped by the scaling)."""
+def rescale(p, u, old, s, H, scale_u, fixed):
+    """p = min(s p, H) (the pixels at H kept when ``fixed``); u *= s when ``scale_u``;
+    returns (sum |p - old|, sum p, number capped by the scaling)."""
     change = 0.0
     total = 0.0
     capped = 0
     for i in range(p.size):
-        q = s * p[i]
-        if q > H:
-            q = H
-            capped += 1
-        p[i] = q
+        q = p[i]
+        if not (fixed and q >= H):
+            q *= s
+            if q > H:
+                q = H
+                capped += 1
+            p[i] = q
         total += q
         change += abs(q - old[i])
         if scale_u:

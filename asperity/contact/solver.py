@@ -45,6 +45,10 @@ from . import elastic
 
 #: iterations between two full products u = K p when u is updated incrementally
 REFRESH = 25
+#: the conjugate direction is restarted (t = g) when sum g t < THETA G: after the contact
+#: set changed, the old direction may have lost its conjugacy (on an unchanged set, with
+#: the exact step of the iteration, sum g t = G)
+THETA = 0.9
 #: default iteration limit
 MAX_ITERATIONS = 10_000
 #: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
@@ -214,21 +218,29 @@ def _start(z: np.ndarray, h: np.ndarray, load: float, H: float, n_def: int, p0):
     return p
 
 
-def _scale_factor(p: np.ndarray, total: float, load: float, H: float) -> float | None:
-    """The factor s with sum min(s p, H) = load (None: the contact set cannot carry the
-    load even at H everywhere)."""
+def _scale_factor(p: np.ndarray, load: float, H: float):
+    """(s, fixed): the factor s with sum min(s p, H) = load over the pixels below H, those
+    at H kept there (``fixed``); when they alone carry the load or more, every pixel is
+    scaled (``fixed`` False).  s None: the contact set cannot carry the load even at H
+    everywhere."""
     from . import _pk_kernels as K
-    s = load / total
+    below, n_at = K.load_sums(p, H)
+    fixed = n_at > 0 and H * n_at < load
+    if not fixed and n_at:
+        below += H * n_at
+    if below <= 0.0:
+        return None, fixed
+    s = (load - (H * n_at if fixed else 0.0)) / below
     if math.isinf(H):
-        return s
+        return s, False
     for _ in range(100):                       # Newton from the left: monotone, finite
-        f, df = K.capped_sums(p, s, H)
+        f, df = K.capped_sums(p, s, H, fixed)
         if abs(load - f) <= 1e-15 * load:
-            return s
+            break
         if df <= 0.0:
-            return None
+            return None, fixed
         s += (load - f) / df
-    return s
+    return s, fixed
 
 
 def _fill(p, u, h, load: float, H: float) -> None:
@@ -257,12 +269,12 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     t = np.zeros_like(h)
     r = np.empty_like(h)
     hf, pf, uf, tf, rf = (a.reshape(-1) for a in (h, p, u, t, r))
-    s = _scale_factor(pf, float(pf.sum()), load, H)
+    s, fixed = _scale_factor(pf, load, H)
     if s is None:
         space.apply(p, u)
         _fill(pf, uf, hf, load, H)
     else:
-        K.rescale(pf, uf, rf, s, H, False)
+        K.rescale(pf, uf, rf, s, H, False, fixed)
     space.apply(p, u)
     c, G_old, delta, fresh, eps = 0.0, 1.0, 0, 0, math.inf
     it = 0
@@ -274,7 +286,11 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             gbar = c + s1 / n
             G = max(s2 - n * (gbar - c) ** 2, 0.0)
             c = gbar
-            K.direction(uf, hf, pf, tf, H, gbar, delta * G / G_old if G_old > 0 else 0.0)
+            beta = delta * G / G_old if G_old > 0 else 0.0
+            if beta > 0.0 and K.direction(uf, hf, pf, tf, H, gbar, beta) < THETA * G:
+                K.direction(uf, hf, pf, tf, H, gbar, 0.0)     # restart: t = g
+            elif beta == 0.0:
+                K.direction(uf, hf, pf, tf, H, gbar, 0.0)
             space.apply(t, r)
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
@@ -286,15 +302,19 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             r[...] = 0.0
             tau = 1.0 / space.self_compliance
         total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau)
-        delta = 0 if moved else 1
+        delta = 1
         exact = clipped == 0 and moved == 0 and fresh < REFRESH
-        s = _scale_factor(pf, total, load, H) if total > 0.0 else None
-        if s is None:                          # the set cannot carry the load: widen it
+        s, fixed = _scale_factor(pf, load, H) if total > 0.0 else (None, False)
+        if s is None and math.isinf(H):       # every pressure clipped: back to the last
+            p[...] = r                         # iterate, restart the directions
+            change, delta, exact = math.inf, 0, False
+        elif s is None:                        # the set cannot carry the load: widen it
             _fill(pf, uf, hf, load, H)
             change = float(np.abs(pf - rf).sum())
             exact = False
         else:
-            change, _, capped = K.rescale(pf, uf, rf, s, H, exact)
+            exact = exact and not fixed
+            change, _, capped = K.rescale(pf, uf, rf, s, H, exact, fixed)
             exact = exact and capped == 0
         if exact:
             fresh += 1
