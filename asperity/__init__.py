@@ -61,6 +61,9 @@ _LAZY = {
     "risk_map": "asperity.study.maps",
     "solve_contact": "asperity.contact.solver",
     "effective_modulus": "asperity.contact.solver",
+    "ElasticContact": "asperity.surface.contact_facets",
+    "load_elastic": "asperity.surface.contact_facets",
+    "derive_family": "asperity.friction.family",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }

@@ -67,6 +67,7 @@ SURFACE = ("test_surface_facets.py", "test_surface_detrend_friction_map.py",
 CONFINE = ("test_study_inputs.py", "test_web_security.py")
 FINGERPRINT = ("test_study_fingerprint.py",)
 WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
+CONTACT_FRICTION = ("test_contact_friction.py", "test_contact_friction_cli.py")
 
 
 @dataclass(frozen=True)
@@ -533,6 +534,37 @@ MUTANTS = [
            (f"{PROCS}::test_a_store_killed_before_its_tables_were_made_is_taken_as_new",),
            "a store file left without tables (a kill before the first transaction) refused "
            "for ever unless it is empty"),
+    # ---- issue 19: friction weighted by the elastic contact force
+    Mutant("contact-weight-one-sided", "surface/facets.py",
+           "        grid.centroid_heights(pressure, force)\n",
+           "        force[:] = np.tile(pressure[:-1, :-1].ravel(), 2)\n", CONTACT_FRICTION,
+           "each facet takes its cell's first corner's pressure (first order), not the mean "
+           "of its own corners"),
+    Mutant("contact-weight-is-area", "surface/facets.py",
+           "w = grid.pressure_weight(area, force)", "w = area", CONTACT_FRICTION,
+           "the pressure field is ignored: facets weighted by their area"),
+    Mutant("periodic-edges-left-out", "surface/facets.py",
+           "    if periodic:\n        z = grid.wrap_periodic(z)",
+           "    if False:\n        z = grid.wrap_periodic(z)", CONTACT_FRICTION,
+           "a periodic map's cells across its edges are not facets"),
+    Mutant("contact-heights-not-levelled", "surface/contact_facets.py",
+           "return z - a * x[:, None] - b * y[None, :]", "return z", CONTACT_FRICTION,
+           "a free map's slope removed from the facets but not from the heights the "
+           "half-space meets"),
+    Mutant("wedge-face-forces-swapped", "friction/elastic.py",
+           "w = np.array([force[prof.face == k].sum() for k in range(nfaces)])",
+           "w = np.array([force[prof.face == k].sum() for k in range(nfaces)])[::-1]",
+           CONTACT_FRICTION, "a wedge's alpha face weighs the force on its beta face"),
+    Mutant("wedge-force-left-node", "friction/elastic.py",
+           "return cum[i] + dx * (q[i] * t + 0.5 * (q[i + 1] - q[i]) * t * t)",
+           "return cum[i] + dx * q[i] * t", CONTACT_FRICTION,
+           "a face's partial pixel integrated with the left node's pressure only"),
+    Mutant("contact-hardness-dropped", "surface/contact_facets.py",
+           "boundary=boundary, hardness=elastic.hardness,", "boundary=boundary, hardness=None,",
+           CONTACT_FRICTION, "the hardness never reaches the contact solve"),
+    Mutant("contact-block-missing", "friction/derive.py",
+           'out["elastic_contact"] = dict(d.texture.elastic)', "pass", CONTACT_FRICTION,
+           "derive's JSON loses its elastic_contact block"),
 ]
 
 

@@ -6,7 +6,10 @@ import argparse
 from ..progress import progress_bar
 from . import add_cluster_arguments, emit, whole_flag
 from .sources import (
+    add_elastic_arguments,
     add_source_arguments,
+    contact_failed,
+    elastic_from_args,
     flag_names,
     spring_model_from_args,
     surface_options,
@@ -29,6 +32,7 @@ def add_parser(sub) -> None:
                     "a trailing .gz is read too.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     add_source_arguments(p)
+    add_elastic_arguments(p)
     p.add_argument("--method", choices=["closed-form", "springs"], default="closed-form",
                    help="closed form, or the spring-on-wedge simulation")
     p.add_argument("--directions", type=int, default=72, metavar="N",
@@ -68,7 +72,15 @@ def run(args) -> dict:
     if scan is not None:
         d = _derive_tiles(args, *scan)
         return d, to_json(d)
-    texture, table = texture_from_args(args)
+    elastic = elastic_from_args(args, several=True)
+    texture, table = texture_from_args(args, several=True)
+    if elastic is not None and elastic.family:
+        from ..friction.family import derive_family, family_json
+        with progress_bar("facets") as progress:
+            fam = derive_family(texture, elastic, args.contact, args.directions, progress)
+        return fam, family_json(fam)
+    if elastic is not None:
+        texture = texture[0]
     model = spring_model_from_args(args, table) if args.method == "springs" else None
     with progress_bar("facets") as progress:
         d = derive(texture, args.contact, args.method, args.directions, model, progress=progress)
@@ -82,6 +94,12 @@ def _scan(args):
     rows = whole_flag("--tile-rows", args.tile_rows, 0, 10 ** 9)
     workers = whole_flag("--workers", args.workers, 0, 4096)
     distributed = bool(workers) or args.scheduler is not None
+    if args.elastic is not None:
+        if rows or distributed:
+            flag = "--tile-rows" if rows else "--workers" if workers else "--scheduler"
+            raise InputError(f"--elastic solves the whole map in memory; not with {flag} "
+                             "(the contact is long-range: tiles do not decouple)")
+        return None
     if args.texture is None or is_texture_file(args.texture):
         if rows is not None or distributed:
             flag = "--tile-rows" if rows is not None else \
@@ -138,8 +156,19 @@ def _derive_tiles(args, src, rows, workers):
 
 
 def main(args) -> int:
+    from ..contact.solver import ContactNotConverged
     from ..friction.derive import format_text
-    d, obj = run(args)
+    try:
+        d, obj = run(args)
+    except ContactNotConverged as exc:
+        return contact_failed("derive", exc)
+    from ..friction.family import LawFamily
+    if isinstance(d, LawFamily):                # several --pressure values
+        from ..friction.family import family_text, plot_family
+        if args.plot:
+            plot_family(d, args.plot)
+        emit(args, obj, family_text(d))
+        return 0
     if args.plot:
         from ..friction.plot import plot_derivation
         other = "windward" if d.contact == "all-faces" else "all-faces"

@@ -11,7 +11,7 @@ LAWS = {"ellipse": "truncated-ellipse", "star": "star"}
 
 
 def add_parser(sub) -> None:
-    from .sources import add_source_arguments
+    from .sources import add_elastic_arguments, add_source_arguments
     p = sub.add_parser(
         "fit", help="fit a friction law to a texture and save it as a gauge file",
         description="Derive the directional friction p(psi) of a texture or surface (closed "
@@ -26,6 +26,7 @@ def add_parser(sub) -> None:
                     "are made from the gauge file by `asperity law`.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     add_source_arguments(p)
+    add_elastic_arguments(p)
     p.add_argument("--law", choices=sorted(LAWS), default="star", help="law to fit")
     p.add_argument("-o", "--output", metavar="GAUGE.json",
                    help="write the gauge file (versioned JSON, see README); without it only the "
@@ -58,7 +59,12 @@ def run(args):
 
 
 def main(args) -> int:
-    gl, obj = run(args)
+    from ..contact.solver import ContactNotConverged
+    from .sources import contact_failed
+    try:
+        gl, obj = run(args)
+    except ContactNotConverged as exc:
+        return contact_failed("fit", exc)
     if args.plot:
         from ..laws.plot import plot_law
         plot_law(gl, args.plot)

@@ -12,7 +12,14 @@ from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS
 from ..microslip.risk_text import format_map, format_text
 from . import add_cluster_arguments, emit, whole_flag
-from .sources import WEDGE_FLAGS, add_source_arguments, texture_from_args
+from .sources import (
+    WEDGE_FLAGS,
+    add_elastic_arguments,
+    add_source_arguments,
+    contact_failed,
+    elastic_from_args,
+    texture_from_args,
+)
 
 
 def add_parser(sub) -> None:
@@ -30,6 +37,7 @@ def add_parser(sub) -> None:
                     "of two wedge parameters (alpha, beta, mu_alpha, mu_beta).",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     add_source_arguments(p)
+    add_elastic_arguments(p)
     p.add_argument("assembly", metavar="ASSEMBLY.toml", help="assembly file (see README)")
     p.add_argument("--cycles", type=float, default=None, metavar="N",
                    help="load cycles to assess (e.g. 1e6; default: the file's loading.cycles, "
@@ -96,6 +104,12 @@ def run(args) -> dict:
     from ..microslip.risk import assembly_friction, assess_assembly
     asm = load_assembly(args.assembly)
     cycles, tol, mm, dyn = _settings(args, asm)
+    if elastic_from_args(args, several=False) is not None:
+        if not _texture_given(args):
+            raise InputError("--elastic weights the faces of a texture or surface: give one "
+                             "(the assembly file's friction table has none)")
+        if args.map is not None:
+            raise InputError("--map varies the wedge's parameters; not with --elastic")
     texture = texture_from_args(args)[0] if _texture_given(args) else None
     if args.map is not None:
         x, y = (parse_map_axis(t) for t in args.map)
@@ -142,7 +156,11 @@ def _public(out: dict) -> dict:
 
 
 def main(args) -> int:
-    out = run(args)
+    from ..contact.solver import ContactNotConverged
+    try:
+        out = run(args)
+    except ContactNotConverged as exc:
+        return contact_failed("risk", exc)
     if args.map is not None:
         if args.plot:
             from ..microslip.plot import plot_risk_map

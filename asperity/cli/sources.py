@@ -23,7 +23,12 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "bearing_fraction": "--bearing-fraction",
                 "mu ": "--mu ", "unit ": "--unit ", "detrend ": "--detrend ",
                 "max_slope": "--max-slope", "despike_window": "--despike-window",
-                "despike": "--despike", "tile_lines": "--tile-rows"}
+                "despike": "--despike", "tile_lines": "--tile-rows",
+                "pressure / E_star": "--pressure / --elastic", "E_star": "--elastic",
+                "pressure": "--pressure", "hardness": "--hardness"}
+#: the elastic-contact flags (dest -> flag)
+ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
+                 "hardness": "--hardness"}
 
 
 def surface_options(args) -> dict:
@@ -56,11 +61,81 @@ class flag_names:
         return False
 
 
-def surface_from_args(args, progress=None):
-    """FacetSurface from a surface file and the surface flags."""
+def surface_from_args(args, progress=None, elastic=None):
+    """FacetSurface from a surface file and the surface flags (with ``elastic``: the list
+    of contact-weighted FacetSurfaces, one a pressure)."""
     from ..surface.facets import load_surface
     with flag_names():                    # the library's field names as the user's flags
-        return load_surface(args.texture, **surface_options(args))
+        if elastic is None:
+            return load_surface(args.texture, **surface_options(args))
+        from ..surface.contact_facets import load_elastic
+        opts = {k: v for k, v in surface_options(args).items()
+                if k not in ("rest_level", "bearing_fraction")}
+        return load_elastic(args.texture, elastic, **opts)
+
+
+def add_elastic_arguments(p) -> None:
+    """--elastic E* --pressure P [P ...] [--boundary] [--hardness]: load shares from an
+    elastic contact solution (derive, fit, risk)."""
+    e = p.add_argument_group(
+        "elastic contact (load shares from a contact solution; height maps and wedge "
+        "textures)",
+        "The surface (a height map, or a wedge texture's profile over one period) is pressed "
+        "at the nominal pressure P onto an elastic half-space of effective modulus E* "
+        "(frictionless normal contact, Polonsky-Keer); each facet's load share is the "
+        "normal force it carries, the facet law unchanged.  Not right where the pressure "
+        "reaches the hardness nor where sliding redistributes the load.")
+    e.add_argument("--elastic", type=float, metavar="E_STAR_PA",
+                   help="effective modulus E* of the elastic half-space, Pa (> 0)")
+    e.add_argument("--pressure", type=float, nargs="+", metavar="P_PA",
+                   help="nominal mean pressure over the map's projected area, Pa (> 0); "
+                        "several (derive only): a law for each")
+    e.add_argument("--boundary", choices=["periodic", "free"], default=None,
+                   help="periodic: the map is one period; free: a non-periodic scan "
+                        "(default: free for files, periodic for wedge textures)")
+    e.add_argument("--hardness", type=float, metavar="H_PA",
+                   help="perfectly plastic cap of the pressure, Pa (above the pressure)")
+
+
+#: exit status when the contact solve reaches its iteration limit (as ``slide``'s)
+EXIT_NOT_CONVERGED = 3
+
+
+def contact_failed(command: str, exc) -> int:
+    """Report a contact solve that did not converge (one line, nothing written): exit 3."""
+    import sys
+    r = exc.result
+    print(f"asperity {command}: error: the elastic contact did not converge at --pressure "
+          f"{r.pressure_asked:g} in {r.iterations} iterations (residual {r.residual:.3g}); "
+          "nothing written", file=sys.stderr)
+    return EXIT_NOT_CONVERGED
+
+
+def elastic_from_args(args, several: bool):
+    """The ElasticContact of the elastic flags, or None when --elastic is not given;
+    ``several``: several pressures are allowed (else one line refuses them)."""
+    given = [f for d, f in ELASTIC_FLAGS.items() if getattr(args, d, None) is not None]
+    if getattr(args, "elastic", None) is None:
+        if given:
+            raise InputError(f"{given[0]} needs --elastic (the effective modulus E*, Pa)")
+        return None
+    if args.pressure is None:
+        raise InputError("--elastic needs --pressure (the nominal pressure, Pa)")
+    for d, flag in (("rest_level", "--rest-level"), ("bearing_fraction", "--bearing-fraction")):
+        if getattr(args, d, None) is not None:
+            raise InputError(f"--elastic sets the load shares; not with {flag}")
+    if getattr(args, "method", "closed-form") != "closed-form":
+        raise InputError("--elastic weights the closed form; --method springs has its own "
+                         "load model")
+    from ..surface.contact_facets import ElasticContact
+    p = args.pressure
+    with flag_names():
+        elastic = ElasticContact(args.elastic, p[0] if len(p) == 1 else tuple(p),
+                                 boundary=args.boundary, hardness=args.hardness)
+    if elastic.family and not several:
+        raise InputError("several --pressure values make a family of laws; a gauge file "
+                         "holding a family is not supported yet: give one --pressure")
+    return elastic
 
 
 def add_source_arguments(p) -> None:
@@ -115,15 +190,29 @@ def add_source_arguments(p) -> None:
                         "only faces facing the motion")
 
 
-def texture_from_args(args):
-    """(texture or surface, springs table) from a texture file, the wedge flags or a surface file."""
+def texture_from_args(args, several: bool = False):
+    """(texture or surface, springs table) from a texture file, the wedge flags or a surface
+    file; with the elastic flags the texture weighted by the contact force (``several``: a
+    list of them, one a pressure)."""
+    elastic = elastic_from_args(args, several)
+    texture, table = _texture_from_args(args, elastic)
+    if elastic is None:
+        return texture, table
+    if not isinstance(texture, list):
+        from ..friction.elastic import elastic_textures
+        with flag_names():
+            texture = elastic_textures(texture, elastic)
+    return (texture if several else texture[0]), table
+
+
+def _texture_from_args(args, elastic):
     from ..texture.wedges import WedgeTexture, load_texture_file
     given = {k: getattr(args, k) for k in WEDGE_FLAGS if getattr(args, k) is not None}
     if args.texture is not None and not is_texture_file(args.texture):
         if given:
             flag = "--" + next(iter(given)).replace("_", "-")
             raise InputError(f"give a surface file or the wedge flags, not both ({flag} with {args.texture})")
-        return surface_from_args(args), {}
+        return surface_from_args(args, elastic=elastic), {}
     surface_given = [k for k in SURFACE_FLAGS if getattr(args, k, None) is not None]
     if surface_given:
         raise InputError(f"--{surface_given[0].replace('_', '-')} applies to surface files, not to "

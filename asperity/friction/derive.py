@@ -49,7 +49,7 @@ class Derivation:
 
 
 def derive(texture, contact: str = "all-faces", method: str = "closed-form",
-           n_directions: int = 72, model=None, progress=None) -> Derivation:
+           n_directions: int = 72, model=None, progress=None, elastic=None) -> Derivation:
     """Directional friction of ``texture`` over ``n_directions`` sliding directions.
 
     ``texture``: a wedge texture (frame t_a, t_b given: the principal direction is 0) or a
@@ -62,7 +62,14 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
     four axis directions, and reports its largest relative deviation from the closed form.
     ``progress(fraction)`` is called during long facet computations.  A HeightMap or
     TriangleMesh is taken as its facets (default friction, mean slope removed).
+
+    ``elastic``: an :class:`~asperity.surface.contact_facets.ElasticContact` of one
+    pressure: each face (facet) of a HeightMap or wedge texture weighs the normal force it
+    carries in that elastic contact (:mod:`asperity.friction.elastic`); several pressures:
+    :func:`asperity.friction.family.derive_family`.
     """
+    if elastic is not None:
+        texture = _elastic_texture(texture, elastic, method)
     texture = faces_source(texture)
     check_progress(progress)
     check_contact(contact)
@@ -105,6 +112,18 @@ def derive(texture, contact: str = "all-faces", method: str = "closed-form",
                       principal_direction_deg=math.degrees(theta),
                       anisotropy=anisotropy(res),
                       locking_share=float(np.nanmax(locking_share(faces, res), initial=0.0)))
+
+
+def _elastic_texture(texture, elastic, method):
+    from ..surface.contact_facets import check_elastic
+    from .elastic import elastic_textures
+    if check_elastic(elastic).family:
+        raise InputError("derive takes one pressure (a number); derive_family derives a law "
+                         "for each of several")
+    if method != "closed-form":
+        raise InputError("method springs has its own load model; elastic contact weights "
+                         "the closed form")
+    return elastic_textures(texture, elastic)[0]
 
 
 def principal_direction(res: Reservoir) -> float:
@@ -190,6 +209,8 @@ def to_json(d: Derivation) -> dict:
         },
         "directions": dirs,
     }
+    if getattr(d.texture, "elastic", None) is not None:
+        out["elastic_contact"] = dict(d.texture.elastic)
     if getattr(d.texture, "kind", "") == "surface":
         from .quality import data_quality
         out["n_facets"] = d.texture.n_facets
@@ -222,6 +243,9 @@ def format_text(d: Derivation) -> str:
                 f"mu_alpha={tex.mu_alpha:g}  mu_beta={tex.mu_beta:g}",
                 f"contact: {d.contact}   method: {d.method}   directions: {d.reservoir.psi.size}"]
         dirs = ["along +t_a", "along -t_a", "along +t_b", "along -t_b"]
+    if getattr(tex, "elastic", None) is not None:
+        from ..surface.contact_facets import contact_lines
+        head += contact_lines(tex.elastic)
     lines = head + ["",
              f"  mu_a+ (slide {dirs[0]}) = {f(d.axes['mu_a_plus'])}",
              f"  mu_a- (slide {dirs[1]}) = {f(d.axes['mu_a_minus'])}",

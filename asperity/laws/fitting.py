@@ -368,5 +368,8 @@ def source_of(d) -> dict:
         tdict = tex.to_dict()
     except Exception:                                   # pragma: no cover - defensive
         tdict = {"kind": str(getattr(tex, "kind", "unknown"))}
-    return {"texture": json_ready(tdict), "contact": d.contact, "method": d.method,
-            "n_directions": int(d.reservoir.psi.size)}
+    out = {"texture": json_ready(tdict), "contact": d.contact, "method": d.method,
+           "n_directions": int(d.reservoir.psi.size)}
+    if getattr(tex, "elastic", None) is not None:     # load shares from an elastic contact
+        out["elastic_contact"] = json_ready(tex.elastic)
+    return out

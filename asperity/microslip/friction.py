@@ -67,6 +67,8 @@ def friction_from_texture(texture, contact: str = "all-faces", slip_axis_deg=Non
     detail = {"slip_axis_deg": psi_deg, "slip_axis": axis, "textured": textured,
               "contact": contact, "texture": source_name or texture.to_dict().get("kind", ""),
               "lateral_plus": _num(L[plus]), "lateral_minus": _num(L[minus])}
+    if getattr(texture, "elastic", None) is not None:   # load shares from an elastic contact
+        detail["elastic_contact"] = dict(texture.elastic)
     return Friction(float(T[plus]), float(T[minus]), "texture", detail)
 
 

@@ -33,6 +33,9 @@ def format_text(out: dict) -> str:
                      f"({f['slip_axis']}), texture on the {f['textured']}")
     if f.get("note"):
         lines.append(f"  ({f['note']})")
+    if f.get("elastic_contact"):
+        from ..surface.contact_facets import contact_lines
+        lines += ["  " + x for x in contact_lines(f["elastic_contact"])]
     lines.append(f"  mu+ (assembly sliding towards +x) = {mu(f['mu_plus'])}   "
                  f"mu- (towards -x) = {mu(f['mu_minus'])}")
     hist = " -> ".join(f"{x:g}" for x in L["history_K"])

@@ -90,3 +90,22 @@ def check_options(rest_level, bearing_fraction, level_slope, info):
     if info is not None and not isinstance(info, dict):
         raise InputError(f"info must be a dict or None, got {type(info).__name__}")
     return rest_level, bearing_fraction
+
+
+def check_pressure_field(pressure, z: np.ndarray, rest_level: bool) -> np.ndarray | None:
+    """A node-pressure field for the map ``z`` (None stays None): its shape, finite and >= 0
+    on every defined pixel (NaN allowed on undefined ones), as a float array; not with a
+    rest level (``rest_level`` True: one was given)."""
+    if pressure is None:
+        return None
+    if rest_level:
+        raise InputError("give a pressure field or a rest level (bearing fraction), not both")
+    p = check_array("pressure", pressure, ndim=2, finite=False)
+    if p.shape != z.shape:
+        raise InputError(f"pressure has shape {p.shape}, the height map {z.shape}")
+    bad = np.isfinite(z) & ~(np.isfinite(p) & (p >= 0))
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        raise InputError(f"pressure must be finite and >= 0 Pa on the defined pixels, got "
+                         f"{p[i, j]:g} at pixel ({i}, {j}) ({int(bad.sum())} such pixels)")
+    return p

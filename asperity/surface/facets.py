@@ -32,21 +32,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_instance, check_mu
+from ..errors import InputError, check_flag, check_instance, check_mu
 from ..friction.reservoir import Faces
 from ..resources import check_memory
 from ._previews import height_preview, mesh_preview
 from .friction_map import MAX_MU, check_friction_map
 from . import grid_facets as grid
 from . import quality as Q
-from .facet_checks import check_fields, check_options
+from .facet_checks import check_fields, check_options, check_pressure_field
 from .grid_facets import rest_level_for_bearing  # noqa: F401  (re-exported)
+from .prepare import DETREND, check_surface_options, prepare_surface  # noqa: F401
 from .topography import HeightMap, TriangleMesh
 
 #: default local friction coefficient of a surface when no --mu or friction map is given
 DEFAULT_MU = 0.1
-#: detrending choices: name -> polynomial degree (None: keep the form)
-DETREND = {"none": None, "slope": "slope", "mean": 0, "plane": 1, "poly2": 2, "poly3": 3}
 #: |n_z| / |n| below which a mesh triangle counts as vertical
 VERTICAL_TOL = 1e-9
 #: bytes per pixel of a height map's facets and their friction homogenisation (measured
@@ -55,6 +54,8 @@ VERTICAL_TOL = 1e-9
 #: rest level (or bearing fraction) adds the facet heights, their sorting and the weights
 FACET_BYTES_PER_PIXEL = 80
 REST_LEVEL_BYTES_PER_PIXEL = 120
+#: a pressure field or a periodic map: wrapped heights and pressures, facet mean pressures
+PRESSURE_BYTES_PER_PIXEL = 40
 
 
 @dataclass(frozen=True)
@@ -63,7 +64,8 @@ class FacetSurface:
 
     gx, gy   : (n,) float, facet gradients (only facets that carry load)
     mu       : float (uniform) or (n,) float, local friction
-    weight   : (n,) float, projected area x contact weight, m^2 (> 0)
+    weight   : (n,) float, projected area x contact weight, m^2 (> 0); with a pressure
+               field the normal force each facet carries, N
     info     : what it came from and what was skipped (see :meth:`to_dict`)
     preview  : small (nx, ny) height array (m) and its physical size, for plots
     quality  : data-quality figures (:func:`asperity.surface.quality.quality_stats`)
@@ -77,12 +79,16 @@ class FacetSurface:
     preview: np.ndarray | None = field(default=None, repr=False)
     extent: tuple[float, float] | None = None
     quality: dict | None = field(default=None, repr=False, compare=False)
+    #: the contact's figures when the weights are contact forces (:mod:`.contact_facets`)
+    elastic: dict | None = field(default=None, compare=False)
 
     kind = "surface"
 
     def __post_init__(self):
         gx, gy, mu, w = check_fields(self.gx, self.gy, self.mu, self.weight, self.info,
                                      self.preview, self.extent, self.quality)
+        if self.elastic is not None:
+            check_instance("elastic", self.elastic, dict)
         for name, v in (("gx", gx), ("gy", gy), ("weight", w), ("mu", mu)):
             object.__setattr__(self, name, v)
 
@@ -98,7 +104,8 @@ class FacetSurface:
         """The facets as :class:`~asperity.friction.reservoir.Faces` (views, no copies)."""
         n = self.gx.size
         mu = np.broadcast_to(np.asarray(self.mu, dtype=float), (n,))
-        return Faces(gradient=_columns(self.gx, self.gy), mu=mu, weight=self.weight, names=None)
+        return Faces(gradient=grid.columns(self.gx, self.gy), mu=mu, weight=self.weight,
+                     names=None)
 
     def to_dict(self) -> dict:
         return {"kind": self.info.get("kind", "surface"), **self.info, "n_facets": self.n_facets}
@@ -115,16 +122,8 @@ class FacetSurface:
         return s
 
 
-def _columns(gx: np.ndarray, gy: np.ndarray) -> np.ndarray:
-    """(n, 2) view whose columns are ``gx`` and ``gy`` without copying either, when they
-    are two rows of one (2, n) array; a copy otherwise."""
-    if _rows_of_one(gx, gy):
-        return gx.base.T
-    return np.stack([gx, gy]).T
-
-
 def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
-            max_slope=None, pixels=None, **extra) -> FacetSurface:
+            max_slope=None, pixels=None, force=None, **extra) -> FacetSurface:
     if rest_level is not None and bearing_fraction is not None:
         raise InputError("give rest_level or bearing_fraction, not both")
     if gx.size == 0:
@@ -133,7 +132,7 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
     if level_slope:
         # shear z -> z - a x - b y: projected areas unchanged, gradients shifted by (a, b)
         a, b = (float(np.dot(area, g) / area.sum()) for g in (gx, gy))
-        if _rows_of_one(gx, gy):          # our own arrays: shifted in place
+        if grid.rows_of_one(gx, gy):          # our own arrays: shifted in place
             gx -= a
             gy -= b
         else:
@@ -152,7 +151,11 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
         rest_level = float(rest_level)
         if not math.isfinite(rest_level):
             raise InputError(f"rest_level must be a finite height in m, got {rest_level}")
-    w = grid.contact_weight(area, zc, rest_level)
+    if force is None:
+        w = grid.contact_weight(area, zc, rest_level)
+    else:                                 # the normal force each facet carries, N
+        w = grid.pressure_weight(area, force)
+        del force
     mu_max = float(mu) if np.isscalar(mu) else float(mu.max())
     stats = Q.SlopeStats(Q.locking_limit_deg(mu_max))
     Q.add_slopes(stats, gx, gy, w, steep)
@@ -165,6 +168,9 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
     info["rest_level_m"] = rest_level
     info["n_unloaded"] = int(gx.size - np.count_nonzero(loaded)
                              - (0 if steep is None else np.count_nonzero(steep)))
+    if not loaded.any() and rest_level is None:
+        raise InputError(f"{info.get('source')}: no facet carries load (the pressure is "
+                         "zero on every defined facet)")
     if not loaded.any():
         raise InputError(f"rest_level {rest_level:g} m lies above the highest facet "
                          f"({float(zc.max()):g} m): nothing is in contact")
@@ -172,7 +178,7 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
         gx, gy, w = gx[loaded], gy[loaded], w[loaded]
         if not np.isscalar(mu):
             mu = mu[loaded]
-    if not _rows_of_one(gx, gy):
+    if not grid.rows_of_one(gx, gy):
         g = np.empty((2, gx.size))
         g[0], g[1] = gx, gy
         gx, gy = g[0], g[1]
@@ -181,15 +187,6 @@ def _finish(gx, gy, mu, area, zc, xy, level_slope, rest_level, bearing_fraction,
                               stats=stats)
     return FacetSurface(gx=gx, gy=gy, mu=mu, weight=np.ascontiguousarray(w), info=info,
                         quality=quality, **extra)
-
-
-def _rows_of_one(gx: np.ndarray, gy: np.ndarray) -> bool:
-    """``gx`` and ``gy`` are the two rows of one (2, n) array (what :func:`_columns` views)."""
-    base = gx.base
-    return (base is not None and base is gy.base and base.ndim == 2
-            and base.shape == (2, gx.size) and base.flags.c_contiguous
-            and gx.ctypes.data == base.ctypes.data
-            and gy.ctypes.data == base.ctypes.data + 8 * gx.size)
 
 
 def _facet_mu(mu, friction_map, to_facets):
@@ -201,14 +198,15 @@ def _facet_mu(mu, friction_map, to_facets):
     return to_facets(check_friction_map(friction_map))
 
 
-def facet_bytes(rest_level: bool) -> float:
+def facet_bytes(rest_level: bool, pressure: bool = False) -> float:
     """Memory per height-map pixel of the facets and their homogenisation (bytes)."""
-    return float(FACET_BYTES_PER_PIXEL + (REST_LEVEL_BYTES_PER_PIXEL if rest_level else 0))
+    return float(FACET_BYTES_PER_PIXEL + (REST_LEVEL_BYTES_PER_PIXEL if rest_level else 0)
+                 + (PRESSURE_BYTES_PER_PIXEL if pressure else 0))
 
 
 def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
                      bearing_fraction=None, level_slope=False, info=None,
-                     max_slope=None) -> FacetSurface:
+                     max_slope=None, pressure=None, periodic=False) -> FacetSurface:
     """Facets of a :class:`~asperity.surface.topography.HeightMap` (two triangles per cell).
 
     friction_map: (nx, ny) local friction per pixel; a facet takes the mean of its
@@ -218,19 +216,30 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     the facets steeper than that (after the slope removal), counted in ``quality``.  The
     facet arrays are built in place (about :data:`FACET_BYTES_PER_PIXEL` bytes per pixel
     with the homogenisation); a map that does not fit in memory is refused first.
+
+    pressure: (nx, ny) node pressures, Pa (0 out of contact, NaN on undefined pixels): a
+    facet weighs the normal force it carries (:func:`.grid_facets.pressure_weight`, N).
+    periodic: the map is one period, the cells across its edges are facets too.  Either
+    adds :data:`PRESSURE_BYTES_PER_PIXEL` bytes a pixel.
     """
     check_instance("surface", hm, HeightMap, "HeightMap")
     rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, level_slope,
                                                   info)
     max_slope = Q.check_max_slope(max_slope)
+    periodic = check_flag("periodic", periodic)
     z = hm.heights
     if z.shape[0] < 2 or z.shape[1] < 2:
         raise InputError(f"{hm.source}: a height map needs at least 2 x 2 pixels, got {z.shape}")
     name = hm.source or "the height map"
     need_z = rest_level is not None or bearing_fraction is not None
-    check_memory(z.size * facet_bytes(need_z), f"the facets of {name} "
-                 f"({z.shape[0]} x {z.shape[1]} pixels)", "crop or resample the scan to fewer "
-                 "points")
+    pressure = check_pressure_field(pressure, z, need_z)
+    check_memory(z.size * facet_bytes(need_z, pressure is not None or periodic),
+                 f"the facets of {name} ({z.shape[0]} x {z.shape[1]} pixels)",
+                 "crop or resample the scan to fewer points")
+    shape = z.shape
+    if periodic:
+        z = grid.wrap_periodic(z)
+        pressure = None if pressure is None else grid.wrap_periodic(pressure)
     dx, dy = float(hm.dx), float(hm.dy)
     nxm, nym = z.shape[0] - 1, z.shape[1] - 1
     nc = nxm * nym
@@ -243,6 +252,10 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     if need_z:
         zc = np.empty(2 * nc)
         grid.centroid_heights(z, zc)
+    force = None if pressure is None else np.empty(2 * nc)
+    if pressure is not None:              # the node pressures' mean on each facet
+        grid.centroid_heights(pressure, force)
+        del pressure
     n_ok = int(np.count_nonzero(ok))
     every = n_ok == ok.size
 
@@ -256,19 +269,21 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
         return out
 
     def per_vertex(m):
-        if m.shape != z.shape:
-            raise InputError(f"friction map has shape {m.shape}, the height map {z.shape}")
-        return keep(grid.facet_mu(m))
+        if m.shape != shape:
+            raise InputError(f"friction map has shape {m.shape}, the height map {shape}")
+        return keep(grid.facet_mu(grid.wrap_periodic(m) if periodic else m))
 
     fmu = _facet_mu(mu, friction_map, per_vertex)
     g = keep(g)
     zc = keep(zc) if need_z else None
+    force = None if force is None else keep(force)
     info = dict(info or {})
-    info.update(kind="heightmap", source=hm.source, grid=[int(z.shape[0]), int(z.shape[1])],
-                pixel_size_m=[dx, dy], physical_size_m=[dx * z.shape[0], dy * z.shape[1]],
+    info.update(kind="heightmap", source=hm.source, grid=[int(shape[0]), int(shape[1])],
+                pixel_size_m=[dx, dy], physical_size_m=[dx * shape[0], dy * shape[1]],
                 n_undefined=int(hm.n_undefined),
                 n_skipped_undefined=int(ok.size - n_ok),
                 mu=None if not np.isscalar(fmu) else float(fmu))
+    info.update({"periodic": True} if periodic else {})
     xy = None
     if level_slope and need_z:            # facet centroids, to shear the heights
         xy = [keep(grid.centroid_coordinate(nxm, nym, d, along, 0))
@@ -276,8 +291,9 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
     del ok
     area = np.full(n_ok, 0.5 * dx * dy)
     return _finish(g[0], g[1], fmu, area, zc, xy, level_slope, rest_level,
-                   bearing_fraction, info, max_slope=max_slope, pixels=z.size,
-                   preview=height_preview(z), extent=(dx * z.shape[0], dy * z.shape[1]))
+                   bearing_fraction, info, max_slope=max_slope, pixels=hm.heights.size,
+                   preview=height_preview(hm.heights), extent=(dx * shape[0], dy * shape[1]),
+                   force=force)
 
 
 def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
@@ -352,36 +368,16 @@ def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend=
     with despike_window) marks spikes undefined before the form is removed, max_slope
     (deg) drops steeper facets (:mod:`asperity.surface.quality`; figures in ``quality``).
     """
-    from .friction_map import read_friction_map
-    from .quality import remove_spikes
-    from .readers import read_surface
-    check_choice("detrend", detrend, tuple(DETREND))
+    despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
+                                               despike_window=despike_window,
+                                               max_slope=max_slope)
     rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, False, None)
-    despike = Q.check_despike(despike, despike_window)
-    max_slope = Q.check_max_slope(max_slope)
-    if mu is not None:
-        check_mu("mu", mu, MAX_MU)
-    s = read_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale,
-                     point_bytes=facet_bytes(rest_level is not None
-                                             or bearing_fraction is not None))
-    spikes = 0
-    if despike is not None:
-        if not isinstance(s, HeightMap):
-            raise InputError(f"despike applies to height maps, not to the mesh {s.source}")
-        spikes = remove_spikes(s.heights, despike)
-    if DETREND[detrend] not in (None, "slope"):
-        from .detrend import detrend as _detrend
-        s = _detrend(s, DETREND[detrend])
-    fm = friction_map
-    info = {"file": str(path), "detrend": detrend, "height_scale": float(height_scale)}
-    if isinstance(friction_map, (str, bytes)) or hasattr(friction_map, "__fspath__"):
-        info["friction_map"] = str(friction_map)
-        fm = read_friction_map(friction_map, s)        # checked as it is read
-    elif fm is not None:
-        fm = check_friction_map(fm)
-    out = surface_facets(s, mu=mu, friction_map=fm, rest_level=rest_level,
-                         bearing_fraction=bearing_fraction, level_slope=detrend == "slope",
-                         info=info, max_slope=max_slope)
-    out.quality.update(spike_filter=None if despike is None else
-                       {"threshold": despike[0], "window": despike[1]}, spikes_removed=spikes)
+    prep = prepare_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale,
+                           detrend=detrend, friction_map=friction_map, despike=despike,
+                           point_bytes=facet_bytes(rest_level is not None
+                                                   or bearing_fraction is not None))
+    out = surface_facets(prep.surface, mu=mu, friction_map=prep.friction_map,
+                         rest_level=rest_level, bearing_fraction=bearing_fraction,
+                         level_slope=prep.level_slope, info=prep.info, max_slope=max_slope)
+    out.quality.update(prep.quality)
     return out

@@ -81,6 +81,23 @@ def contact_weight(area: np.ndarray, zc: np.ndarray, rest_level: float | None) -
     return area * np.maximum(zc - rest_level, 0.0)
 
 
+def pressure_weight(area: np.ndarray, pc: np.ndarray) -> np.ndarray:
+    """Each facet's normal force, N: projected area x ``pc``, the mean of the pressures
+    (Pa) at its three corners (:func:`centroid_heights` of the node pressures), which is
+    the integral over the triangle of the pressure interpolated linearly between the
+    nodes.  Second order in the pixel size; taking one corner's pressure for the facet (a
+    one-sided attribution) would shift the pressure field by a fraction of a pixel
+    against the slopes, an error of first order.  ``pc`` is overwritten."""
+    pc *= area
+    return pc
+
+
+def wrap_periodic(a: np.ndarray) -> np.ndarray:
+    """(nx + 1, ny + 1) copy of a map that is one period, its first row and column repeated
+    after the last: the cells across the map's edges become cells of the copy."""
+    return np.pad(a, ((0, 1), (0, 1)), mode="wrap")
+
+
 def rest_level_for_bearing(zc: np.ndarray, area: np.ndarray, fraction: float) -> float:
     """Rest level z0 such that the facets whose centroids lie above z0 hold ``fraction`` of
     the projected area (0 < fraction <= 1): z0 halfway between the lowest facet taken and
@@ -93,3 +110,20 @@ def rest_level_for_bearing(zc: np.ndarray, area: np.ndarray, fraction: float) ->
     if k + 1 < z.size:
         return float(0.5 * (z[k] + z[k + 1]))
     return float(z[-1] - 1e-9 * max(z[0] - z[-1], abs(z[-1]), 1e-300))
+
+
+def columns(gx: np.ndarray, gy: np.ndarray) -> np.ndarray:
+    """(n, 2) view whose columns are ``gx`` and ``gy`` without copying either, when they
+    are two rows of one (2, n) array; a copy otherwise."""
+    if rows_of_one(gx, gy):
+        return gx.base.T
+    return np.stack([gx, gy]).T
+
+
+def rows_of_one(gx: np.ndarray, gy: np.ndarray) -> bool:
+    """``gx`` and ``gy`` are the two rows of one (2, n) array (what :func:`columns` views)."""
+    base = gx.base
+    return (base is not None and base is gy.base and base.ndim == 2
+            and base.shape == (2, gx.size) and base.flags.c_contiguous
+            and gx.ctypes.data == base.ctypes.data
+            and gy.ctypes.data == base.ctypes.data + 8 * gx.size)

@@ -1,0 +1,139 @@
+"""A law family mu(psi; p): one derivation per nominal pressure of an elastic contact.
+
+:func:`derive_family` derives the directional friction of a texture or height map at each
+pressure of an :class:`~asperity.surface.contact_facets.ElasticContact` (the faces weighted
+by the contact force, :mod:`asperity.friction.elastic`; each contact solve starts from the
+previous pressure's), :func:`family_json` is the JSON object ``asperity derive --pressure
+P1 P2 ... --json`` prints and :func:`family_text` its summary.  Each member is derived on
+its own: its principal direction is found again (it may turn with the load).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .. import __version__
+from ..errors import InputError, check_int
+
+#: the members' axis coefficients, in the order of the text's table
+AXES = ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus")
+
+
+@dataclass(frozen=True)
+class LawFamily:
+    """pressures: the nominal pressures (Pa, as given); members: the Derivation at each;
+    elastic: the ElasticContact."""
+
+    pressures: tuple
+    members: tuple
+    elastic: object
+
+
+def derive_family(texture, elastic, contact: str = "all-faces", n_directions: int = 72,
+                  progress=None) -> LawFamily:
+    """The derivation of ``texture`` (a HeightMap or a wedge texture) at every pressure of
+    ``elastic``; or ``texture`` a list of contact-weighted surfaces, one a pressure (what
+    :func:`asperity.surface.contact_facets.load_elastic` returns for ``elastic``)."""
+    from ..surface.contact_facets import check_elastic
+    from .derive import derive
+    from .elastic import elastic_textures
+    from .reservoir import check_contact, check_progress
+    elastic = check_elastic(elastic)
+    check_contact(contact)
+    check_progress(progress)
+    check_int("directions", n_directions, 8, 100_000)
+    if isinstance(texture, (list, tuple)):
+        textures = list(texture)
+        if len(textures) != len(elastic.pressures) or any(
+                getattr(t, "elastic", None) is None for t in textures):
+            raise InputError(f"texture must be one contact-weighted surface a pressure "
+                             f"({len(elastic.pressures)}), as load_elastic returns them")
+    else:
+        textures = elastic_textures(texture, elastic)
+    members = tuple(derive(t, contact, "closed-form", n_directions, progress=progress)
+                    for t in textures)
+    return LawFamily(tuple(elastic.pressures), members, elastic)
+
+
+def _num(x):
+    return float(x) if math.isfinite(x) else None
+
+
+def summary_rows(fam: LawFamily) -> list[dict]:
+    """One row a pressure: the contact's area fraction and the axis coefficients."""
+    rows = []
+    for p, d in zip(fam.pressures, fam.members):
+        c = d.texture.elastic
+        rows.append({"pressure_Pa": p, "p_over_E_star": p / fam.elastic.E_star,
+                     "area_fraction": c["area_fraction"],
+                     **{k: _num(d.axes[k]) for k in AXES},
+                     "principal_direction_deg": d.principal_direction_deg,
+                     "self_locking": bool(d.self_locking)})
+    return rows
+
+
+def family_json(fam: LawFamily) -> dict:
+    """The JSON object of ``asperity derive --pressure P1 P2 ... --json`` (README)."""
+    from .derive import to_json
+    e = fam.elastic
+    c = fam.members[0].texture.elastic
+    return {"asperity_version": __version__, "family": "pressure",
+            "pressures_Pa": list(fam.pressures), "E_star_Pa": e.E_star,
+            "boundary": c["boundary"], "hardness_Pa": e.hardness,
+            "summary": summary_rows(fam), "members": [to_json(d) for d in fam.members]}
+
+
+def family_text(fam: LawFamily) -> str:
+    """The summary of a family: the contact's assumptions once, a row a pressure."""
+    from ..surface.contact_facets import contact_lines
+    first = fam.members[0]
+    tex = first.texture
+    head = tex.describe() if hasattr(tex, "describe") else \
+        f"texture: {tex.kind}  alpha={tex.alpha_deg:g} deg  beta={tex.beta_deg:g} deg  " \
+        f"mu_alpha={tex.mu_alpha:g}  mu_beta={tex.mu_beta:g}"
+    e = fam.elastic
+    c = tex.elastic
+    lines = [head, f"contact: {first.contact}   directions: {first.reservoir.psi.size}",
+             f"law family over {len(fam.pressures)} pressures: E* = {e.E_star:.4g} Pa, "
+             f"boundary {c['boundary']}, hardness "
+             + ("none" if e.hardness is None else f"{e.hardness:.4g} Pa")]
+    lines += contact_lines(c)[-2:]
+    lines += ["", "  p (Pa)      p/E*       contact    mu_a+      mu_a-      mu_b+      mu_b-"
+                  "      t_a (deg)"]
+    for r in summary_rows(fam):
+        mus = "".join(f"{'locked':<11}" if r[k] is None else f"{r[k]:<11.6f}" for k in AXES)
+        lines.append(f"  {r['pressure_Pa']:<11.4g} {r['p_over_E_star']:<10.3g} "
+                     f"{r['area_fraction']:<10.4f} {mus}{r['principal_direction_deg']:.2f}")
+    full = [p for p, d in zip(fam.pressures, fam.members)
+            if d.texture.elastic["area_fraction"] >= 1.0]
+    if full:
+        lines.append("full contact at p = " + ", ".join(f"{p:g}" for p in full) + " Pa: the "
+                     "whole surface carries load")
+    locked = [p for p, d in zip(fam.pressures, fam.members) if d.self_locking]
+    if locked:
+        lines.append("SELF-LOCKING at p = " + ", ".join(f"{p:g}" for p in locked) + " Pa "
+                     "in some directions: friction is unbounded there (see --json)")
+    lines.append("(mu_a+/-: along and against the principal direction t_a found at each "
+                 "pressure; mu_b+/-: at +/-90 deg from it)")
+    return "\n".join(lines)
+
+
+def plot_family(fam: LawFamily, path) -> None:
+    """mu_a+/-, mu_b+/- and the contact area fraction against p / E*."""
+    from ..io import pyplot, save_figure_atomic
+    plt = pyplot()
+    rows = summary_rows(fam)
+    x = [r["p_over_E_star"] for r in rows]
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
+    for k, style in zip(AXES, ("-o", "--o", "-s", "--s")):
+        ax.plot(x, [math.nan if r[k] is None else r[k] for r in rows], style, label=k)
+    bx.plot(x, [r["area_fraction"] for r in rows], "-o", color="k")
+    for a, label in ((ax, "friction coefficient"), (bx, "contact area fraction")):
+        a.set_xscale("log")
+        a.set_xlabel("p / E*")
+        a.set_ylabel(label)
+        a.grid(True, alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    save_figure_atomic(fig, path, dpi=110)
+    plt.close(fig)

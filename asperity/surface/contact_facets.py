@@ -1,0 +1,217 @@
+"""A height map's facets weighted by the normal force of an elastic contact (SPEC.md 7).
+
+Under a nominal pressure p the counter-face touches only the summits, and the elasticity
+of the bodies sets how the load shares out between them.  Here the map is pressed onto an
+elastic half-space of effective modulus E* (frictionless normal contact, Polonsky-Keer:
+:func:`asperity.contact.solve_contact`) and each facet weighs the normal force it carries,
+the node pressures averaged onto it (:func:`.grid_facets.pressure_weight`).  The facet
+law is unchanged.  The weighting assumes that the normal contact sets the load shares: it
+stops being right where the pressure reaches the hardness (plastic flow: the optional cap
+H only clips the pressure) and where sliding redistributes the load (tangential
+tractions, ploughing, the sliding-induced tilt of the contact are left out).
+
+* :class:`ElasticContact` -- the options: E*, one pressure or several (a load curve: each
+  solution starts the next), the boundary (``periodic``: the map is one period and its
+  cells across the edges are facets too; ``free``: a non-periodic scan), the hardness;
+* :func:`elastic_facets` -- the facets of a HeightMap at each pressure;
+* :func:`load_elastic` -- the same from a surface file with :func:`load_surface`'s options.
+
+Slope removal (``detrend="slope"``): on a ``free`` map the mean facet gradient is removed
+from the facets and the same plane from the heights the half-space meets; a ``periodic``
+map's mean slope is zero by construction (its facets' gradients telescope over the
+period), so nothing is removed.  Memory: the solve's (``asperity.contact``), then the
+facets' (:func:`.facets.facet_bytes` with a pressure field) and the pressure kept, 8
+bytes a pixel; a family keeps every pressure's facets in contact.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import InputError, check_array, check_choice, check_int, check_range, \
+    is_array
+from . import grid_facets as grid
+from .facets import FacetSurface, facet_bytes, heightmap_facets
+from .prepare import check_surface_options, prepare_surface
+from .topography import HeightMap
+
+BOUNDARIES = ("periodic", "free")
+#: most pressures of one family
+MAX_PRESSURES = 100
+#: what the weighting assumes and where it stops being right (the text output's lines)
+ASSUMPTIONS = ("load shares: the normal force each facet carries in a frictionless "
+               "elastic contact (Polonsky-Keer half-space); the facet law is unchanged",
+               "not right where the pressure reaches the hardness (plastic flow) nor where "
+               "sliding redistributes the load (tangential tractions, ploughing)")
+
+
+@dataclass(frozen=True)
+class ElasticContact:
+    """Contact-force weighting of a surface's facets.
+
+    E_star         : effective modulus of the elastic half-space, Pa (> 0; see
+                     :func:`asperity.contact.effective_modulus`)
+    pressure       : nominal mean pressure over the map's projected area, Pa (> 0), or a
+                     sequence of them (a family: one law per pressure)
+    boundary       : "periodic", "free", or None (free for files and height maps,
+                     periodic for wedge textures)
+    hardness       : None, or a perfectly plastic cap H, Pa (above every pressure)
+    tol            : relative tolerance of the contact solve
+    max_iterations : iteration limit of the contact solve (None: the solver's)
+    """
+
+    E_star: float
+    pressure: object
+    boundary: str | None = None
+    hardness: float | None = None
+    tol: float = 1e-8
+    max_iterations: int | None = None
+
+    def __post_init__(self):
+        E = check_range("E_star", self.E_star, 0.0, None, low_open=True, unit="Pa")
+        raw = self.pressure
+        seq = is_array(raw)
+        values = [raw]
+        if seq:
+            values = list(check_array("pressure", raw, ndim=1, finite=False))
+            check_int("pressure (number of values)", len(values), 1, MAX_PRESSURES)
+        ps = tuple(check_range("pressure", v, 0.0, None, low_open=True, unit="Pa")
+                   for v in values)
+        if self.boundary is not None:
+            check_choice("boundary", self.boundary, BOUNDARIES)
+        H = self.hardness
+        if H is not None:
+            H = check_range("hardness", H, max(ps), None, low_open=True,
+                            unit="Pa (above the mean pressure)")
+        object.__setattr__(self, "E_star", E)
+        object.__setattr__(self, "pressure", ps if seq else ps[0])
+        object.__setattr__(self, "hardness", H)
+        object.__setattr__(self, "tol", check_range("tol", self.tol, 1e-15, 0.1))
+        if self.max_iterations is not None:
+            object.__setattr__(self, "max_iterations",
+                               check_int("max_iterations", self.max_iterations, 1, 10 ** 7))
+
+    @property
+    def pressures(self) -> tuple[float, ...]:
+        """The pressures, as a tuple (one for a single pressure)."""
+        return self.pressure if isinstance(self.pressure, tuple) else (self.pressure,)
+
+    @property
+    def family(self) -> bool:
+        """Several pressures were given (a sequence, even of one)."""
+        return isinstance(self.pressure, tuple)
+
+    def boundary_or(self, default: str) -> str:
+        return self.boundary or default
+
+
+def check_elastic(elastic) -> ElasticContact:
+    if not isinstance(elastic, ElasticContact):
+        raise InputError(f"elastic must be an ElasticContact, got {type(elastic).__name__}")
+    return elastic
+
+
+def mean_facet_gradient(z: np.ndarray, dx: float, dy: float) -> tuple[float, float]:
+    """The mean gradient of the map's defined facets (all of equal area): the plane the
+    facets' slope removal takes off."""
+    g = np.empty((2, 2 * (z.shape[0] - 1) * (z.shape[1] - 1)))
+    grid.cell_gradients(z, dx, dy, g)
+    ok = np.isfinite(g[0]) & np.isfinite(g[1])
+    if not ok.any():
+        raise InputError("the height map has no defined facet (no 2 x 2 block of defined "
+                         "pixels): nothing can carry the load")
+    return float(g[0][ok].mean()), float(g[1][ok].mean())
+
+
+def contact_heights(hm: HeightMap, periodic: bool, level_slope: bool) -> np.ndarray:
+    """The heights the half-space meets: the map's, less the facets' mean slope plane on a
+    free map when the slope is removed."""
+    z = np.ascontiguousarray(hm.heights)      # the solver's flat views need C order
+    if periodic or not level_slope:
+        return z
+    a, b = mean_facet_gradient(z, float(hm.dx), float(hm.dy))
+    x = np.arange(z.shape[0]) * float(hm.dx)
+    y = np.arange(z.shape[1]) * float(hm.dy)
+    return z - a * x[:, None] - b * y[None, :]
+
+
+def contact_solutions(hm: HeightMap, elastic: ElasticContact, boundary: str,
+                      level_slope: bool):
+    """Yield the ContactResult at each pressure of ``elastic`` (each solve starting from
+    the previous pressure field)."""
+    from ..contact.solver import solve_contact
+    z = contact_heights(hm, boundary == "periodic", level_slope)
+    previous = None
+    for p in elastic.pressures:
+        res = solve_contact(z, (float(hm.dx), float(hm.dy)), elastic.E_star, p,
+                            boundary=boundary, hardness=elastic.hardness, tol=elastic.tol,
+                            max_iterations=elastic.max_iterations, initial=previous)
+        previous = res.pressure
+        yield res
+
+
+def elastic_facets(hm: HeightMap, elastic: ElasticContact, *, mu=None, friction_map=None,
+                   level_slope=True, info=None, max_slope=None, default_boundary="free"):
+    """Yield the facets of ``hm`` weighted by the contact force at each pressure of
+    ``elastic`` (FacetSurfaces whose ``elastic`` holds the contact's figures: the keys of
+    ``asperity contact --json``).  Options as :func:`.facets.heightmap_facets`;
+    ``default_boundary`` when ``elastic.boundary`` is None."""
+    if not isinstance(hm, HeightMap):
+        raise InputError("elastic contact needs a height map (the scan's grid); a mesh's "
+                         "facets cannot be weighted by a contact solution yet")
+    elastic = check_elastic(elastic)
+    boundary = elastic.boundary_or(default_boundary)
+    periodic = boundary == "periodic"
+    for res in contact_solutions(hm, elastic, boundary, level_slope):
+        fs = heightmap_facets(hm, mu=mu, friction_map=friction_map, info=info,
+                              level_slope=level_slope and not periodic, max_slope=max_slope,
+                              pressure=res.pressure, periodic=periodic)
+        summary = res.to_dict()
+        del res
+        yield replace(fs, elastic=summary)
+
+
+def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
+                 height_scale=1.0, detrend="slope", mu=None, friction_map=None,
+                 despike=None, despike_window=None, max_slope=None) -> list[FacetSurface]:
+    """:func:`.facets.load_surface` with the facets weighted by the contact force: one
+    FacetSurface per pressure of ``elastic`` (boundary ``free`` unless it says otherwise).
+    A height-map file only (not a mesh), read whole (no tiles)."""
+    from ..contact.elastic import BYTES_PER_PIXEL
+    elastic = check_elastic(elastic)
+    despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
+                                               despike_window=despike_window,
+                                               max_slope=max_slope)
+    boundary = elastic.boundary_or("free")
+    per_point = max(BYTES_PER_PIXEL[boundary], facet_bytes(False, True)) + 16
+    prep = prepare_surface(path, unit=unit, pixel_size=pixel_size, height_scale=height_scale,
+                           detrend=detrend, friction_map=friction_map, despike=despike,
+                           point_bytes=per_point)
+    out = []
+    for fs in elastic_facets(prep.surface, replace(elastic, boundary=boundary), mu=mu,
+                             friction_map=prep.friction_map, level_slope=prep.level_slope,
+                             info=prep.info, max_slope=max_slope):
+        fs.quality.update(prep.quality)
+        out.append(fs)
+    return out
+
+
+def contact_lines(c: dict) -> list[str]:
+    """Text lines of a contact's figures (``c``: the keys of ``asperity contact --json``)
+    and of what the weighting assumes."""
+    H = c.get("hardness_Pa")
+    lines = [f"elastic contact: p = {c['pressure_Pa']:.4g} Pa (p/E* = "
+             f"{c['pressure_Pa'] / c['E_star_Pa']:.3g}), E* = {c['E_star_Pa']:.4g} Pa, "
+             f"boundary {c['boundary']}, hardness "
+             + ("none" if H is None else f"{H:.4g} Pa"),
+             f"  contact area fraction {c['area_fraction']:.4g}, max pressure "
+             f"{c['max_pressure_Pa']:.4g} Pa, mean gap {c['mean_gap_m']:.4g} m; "
+             f"{c['iterations']} iterations, residual {c['residual']:.2g}"]
+    if c["area_fraction"] >= 1.0:
+        lines.append("  full contact: the whole surface carries load (the load shares "
+                     "still follow the pressure, not the area)")
+    if c.get("plastic_fraction"):
+        lines.append(f"  {100 * c['plastic_fraction']:.3g} % of the surface at the hardness "
+                     "(plastic)")
+    return lines + ["  " + a for a in ASSUMPTIONS]
