@@ -49,10 +49,12 @@ def default_tile_lines(src) -> int:
 
 
 class _Runner:
-    """Runs a pass over every tile, in this process or on a Dask client."""
+    """Runs a pass over every tile, in this process or on a Dask client (``task``: what
+    runs a group of tiles, :func:`.tile_tasks.run_tiles` by default)."""
 
-    def __init__(self, plan, client):
+    def __init__(self, plan, client, task=run_tiles):
         self.client = client
+        self.task = task
         self.n = plan.n_tiles
         self.passes = 0
         if client is not None:
@@ -68,7 +70,7 @@ class _Runner:
         if self.client is None:
             out = []
             for t in range(self.n):
-                out += run_tiles(kind, plan, [t], args,
+                out += self.task(kind, plan, [t], args,
                                  tick=lambda f, t=t: report((t + f) / self.n, label))
             return out
         return self._dask(kind, plan, args, label)
@@ -77,7 +79,7 @@ class _Runner:
         from distributed import as_completed
         c = self.client
         pf = c.scatter(plan, broadcast=True, hash=False)
-        futs = [c.submit(run_tiles, kind, pf, g, args, pure=False) for g in self.groups]
+        futs = [c.submit(self.task, kind, pf, g, args, pure=False) for g in self.groups]
         where = {f.key: i for i, f in enumerate(futs)}
         parts = [None] * len(futs)
         try:
