@@ -140,10 +140,12 @@ def test_origins_lie_in_the_scan_one_a_stratum():
     a = window_origins((100, 300), 20, 6, "random", 4)
     assert a == window_origins((100, 300), 20, 6, "random", 4)
     assert a != window_origins((100, 300), 20, 6, "random", 5)
-    g = np.array(window_origins((300, 300), 20, 4, "grid"))      # 2 x 2 strata of 281 / 2
-    assert sorted(set(g[:, 0])) == [70, 210] and sorted(set(g[:, 1])) == [70, 210]
+    g = np.array(window_origins((300, 300), 20, 4, "grid"))      # 2 x 2, edge to edge
+    assert sorted(set(g[:, 0])) == [0, 280] and sorted(set(g[:, 1])) == [0, 280]
     g = np.array(window_origins((100, 300), 20, 6, "grid"))      # 1 x 6 along the long side
-    assert set(g[:, 0]) == {40} and list(g[:, 1]) == [23, 70, 117, 163, 210, 257]
+    assert set(g[:, 0]) == {40} and list(g[:, 1]) == [0, 56, 112, 168, 224, 280]
+    g = window_origins((64, 64), 32, 4, "grid")                 # four windows tile the scan
+    assert sorted(g) == [(0, 0), (0, 32), (32, 0), (32, 32)]
 
 
 def test_windows_on_two_local_workers_equal_the_serial_ones(repeated, capsys):
@@ -196,3 +198,30 @@ def test_windows_without_enough_defined_pixels_are_refused(tmp_path, capsys):
     code, _, err = run(capsys, "derive", str(tmp_path / "holes.npy"), "--unit", "um",
                        "--pixel-size", "1", "--window", "40")
     assert code == 1 and "--window needs --elastic" in err
+
+
+def test_windows_whose_axes_straddle_0_and_180_deg_are_turned_alike(capsys):
+    """The shipped ridge scan: its windows find t_a near 0 deg or near 180 deg (an axis);
+    those pointing the other way have + and - exchanged, so the spread is the physics',
+    and the estimate is the whole map's friction along the same direction."""
+    from pathlib import Path
+    scan = str(Path(__file__).resolve().parents[1] / "surfaces" / "scan-ridges.txt")
+    flags = [scan, "--mu", "0.15", "--elastic", "1e9", "--pressure", "1e7"]
+    s = run_json(capsys, "derive", *flags, "--window", "32", "--windows", "4")
+    w = s["per_window"]
+    assert {x["reversed"] for x in w} == {True, False}
+    for x in w:
+        own = x["principal_direction_deg"]
+        assert x["reversed"] == (abs((own - s["principal_direction_deg"]["mean"] + 180) % 360
+                                     - 180) > 90)
+        plus, minus = (x["mu_a_minus"], x["mu_a_plus"]) if x["reversed"] else \
+            (x["mu_a_plus"], x["mu_a_minus"])
+        assert s["mu_a_plus"]["min"] <= plus <= s["mu_a_plus"]["max"]
+        assert s["mu_a_minus"]["min"] <= minus <= s["mu_a_minus"]["max"]
+    assert s["mu_a_plus"]["max"] < s["mu_a_minus"]["min"]          # the asymmetry survives
+    whole = run_json(capsys, "derive", *flags)
+    same = abs((whole["principal_direction_deg"] - s["principal_direction_deg"]["mean"] + 180)
+               % 360 - 180) <= 90
+    a, b = ("mu_a_plus", "mu_a_minus") if same else ("mu_a_minus", "mu_a_plus")
+    assert s["mu_a_plus"]["mean"] == pytest.approx(whole[a], rel=0.03)
+    assert s["mu_a_minus"]["mean"] == pytest.approx(whole[b], rel=0.03)

@@ -9,9 +9,10 @@ and reports each window's contact figures and contact-weighted friction, their m
 their spread.  It is an estimate from K windows of W, never the whole scan's solution.
 
 * Placement (:func:`window_origins`): the range of window origins [0, nx - W] x [0, ny -
-  W] is cut into a grid of r x c strata (r c >= K, r / c close to the scan's shape);
-  ``grid`` takes the centre of K strata spread evenly over them, ``random`` a uniform
-  origin inside each (NumPy's PCG64 stream of ``seed``).  Windows overlap when K W^2
+  W] is cut into a grid of r x c strata (r c >= K, r / c close to the scan's shape) and
+  K of them are taken, spread evenly; ``grid`` puts the windows on the r x c regular grid
+  from edge to edge of the scan, ``random`` a uniform origin inside each stratum (NumPy's
+  PCG64 stream of ``seed``).  Windows overlap when K W^2
   exceeds the scan's area (said in the result).
 * A window is read from the file alone (:func:`read_window`: a few lines of the file at a
   time, cropped), so a task holds its window and its solve, never the scan; a window with
@@ -75,10 +76,11 @@ def window_origins(shape, window: int, count: int, placement: str = "grid",
         a, b = divmod(int(k), c)
         x0, x1 = a * sx / r, (a + 1) * sx / r          # stratum of origins [x0, x1)
         y0, y1 = b * sy / c, (b + 1) * sy / c
-        if placement == "grid":
-            u, v = 0.5, 0.5
-        else:
-            u, v = rng.random(2)
+        if placement == "grid":                        # spread from edge to edge
+            out.append((round((sx - 1) * (a / (r - 1) if r > 1 else 0.5)),
+                        round((sy - 1) * (b / (c - 1) if c > 1 else 0.5))))
+            continue
+        u, v = rng.random(2)
         out.append((min(sx - 1, int(x0 + u * (x1 - x0))), min(sy - 1, int(y0 + v * (y1 - y0)))))
     return out
 

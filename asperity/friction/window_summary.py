@@ -34,6 +34,17 @@ def axial_spread(degrees) -> dict:
     return {"mean": float(np.degrees(m) % 180.0), "max_deviation": float(np.degrees(dev.max()))}
 
 
+def aligned(r: dict, mean_deg: float) -> tuple[dict, bool]:
+    """A window's axis coefficients along the common principal direction ``mean_deg``:
+    a principal direction is an axis (in [0, 180)), so a window whose t_a points the other
+    way (more than 90 deg from the mean's) has its + and - exchanged; (axes, reversed)."""
+    d = (r["principal_direction_deg"] - mean_deg + 180.0) % 360.0 - 180.0
+    if abs(d) <= 90.0:
+        return {a: r[a] for a in AXES}, False
+    return {"mu_a_plus": r["mu_a_minus"], "mu_a_minus": r["mu_a_plus"],
+            "mu_b_plus": r["mu_b_minus"], "mu_b_minus": r["mu_b_plus"]}, True
+
+
 def summarise(plan, results: list, placement: str, seed: int) -> dict:
     """The JSON object of ``asperity derive --window`` (README)."""
     from .reservoir import directions
@@ -58,6 +69,10 @@ def summarise(plan, results: list, placement: str, seed: int) -> dict:
                                                         ("mean", "sd", "min", "max")},
                      "self_locking_windows": int(np.count_nonzero(np.isnan(T[:, i])))})
     per = [{x: v for x, v in r.items() if x != "tangential"} for r in results]
+    pd = axial_spread([r["principal_direction_deg"] for r in used])
+    axes = [aligned(r, pd["mean"]) for r in used]
+    for r, (_, flipped) in zip([p for p in per if "skipped" not in p], axes):
+        r["reversed"] = flipped
     c0 = used[0]["elastic_contact"]
     return {
         "asperity_version": __version__, "estimate": what,
@@ -69,8 +84,8 @@ def summarise(plan, results: list, placement: str, seed: int) -> dict:
         "E_star_Pa": e.E_star, "pressure_Pa": e.pressure, "p_over_E_star": e.pressure / e.E_star,
         "boundary": c0["boundary"], "hardness_Pa": e.hardness, "contact": plan.contact,
         "area_fraction": spread([r["elastic_contact"]["area_fraction"] for r in used]),
-        **{a: spread([r[a] for r in used]) for a in AXES},
-        "principal_direction_deg": axial_spread([r["principal_direction_deg"] for r in used]),
+        **{a: spread([ax[a] for ax, _ in axes]) for a in AXES},
+        "principal_direction_deg": pd,
         "self_locking_windows": sum(1 for r in used if r["self_locking"]),
         "directions": dirs, "per_window": per}
 
@@ -110,7 +125,7 @@ def window_text(s: dict) -> str:
              f"{s['boundary']}, hardness " + ("none" if H is None else f"{H:.4g} Pa"),
              *("  " + a for a in ASSUMPTIONS),
              f"contact: {s['contact']}   (each window's mu_a+/- along and against its own "
-             f"principal direction)", "",
+             f"principal direction, turned to point as the mean t_a)", "",
              f"  {'':<18}{'mean':<12}{'sd':<12}{'min':<12}{'max':<12}windows"]
     for key in ("area_fraction", *AXES):
         r = s[key]
