@@ -32,13 +32,12 @@ import numpy as np
 
 from ..errors import InputError, check_choice, check_int
 from ..progress import report
+from .window_summary import MIN_DEFINED_SHARE, summarise
 
 #: smallest window side (pixels): a smaller patch cannot resolve a contact spot
 MIN_WINDOW = 16
 #: most windows of one estimate
 MAX_WINDOWS = 10_000
-#: a window needs at least this share of its pixels defined
-MIN_DEFINED_SHARE = 0.8
 PLACEMENTS = ("grid", "random")
 #: values read at a time when a window is cut from a file's lines
 _READ_VALUES = 1 << 22
@@ -220,5 +219,4 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
                        "max_slope": max_slope}, contact, n_dir)
     report(0.0, "windows")
     results = _Runner(plan, client, run_windows).map("window", plan, label="windows")
-    from .window_summary import summarise
     return summarise(plan, results, placement, seed)

@@ -11,6 +11,8 @@ from .. import __version__
 from ..errors import InputError
 
 AXES = ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus")
+#: a window needs at least this share of its pixels defined
+MIN_DEFINED_SHARE = 0.8
 _LABELS = {"area_fraction": "contact fraction", "mu_a_plus": "mu_a+", "mu_a_minus": "mu_a-",
            "mu_b_plus": "mu_b+", "mu_b_minus": "mu_b-"}
 
@@ -53,7 +55,7 @@ def summarise(plan, results: list, placement: str, seed: int) -> dict:
     if not used:
         raise InputError(f"window: none of the {len(results)} windows of {w} x {w} pixels "
                          f"has enough defined pixels (at least "
-                         f"{100 * _min_share():.0f} %); place them elsewhere (--windows, "
+                         f"{100 * MIN_DEFINED_SHARE:.0f} %); place them elsewhere (--windows, "
                          f"--window-placement) or lower --window")
     nx, ny = src.shape
     k = len(used)
@@ -80,7 +82,7 @@ def summarise(plan, results: list, placement: str, seed: int) -> dict:
         "windows": {"window_px": w, "window_m": [w * src.dx, w * src.dy],
                     "asked": len(results), "used": k, "skipped": len(results) - k,
                     "placement": placement, "seed": seed if placement == "random" else None,
-                    "overlap": _overlap(plan.origins, w), "min_defined_share": _min_share()},
+                    "overlap": _overlap(plan.origins, w), "min_defined_share": MIN_DEFINED_SHARE},
         "E_star_Pa": e.E_star, "pressure_Pa": e.pressure, "p_over_E_star": e.pressure / e.E_star,
         "boundary": c0["boundary"], "hardness_Pa": e.hardness, "contact": plan.contact,
         "area_fraction": spread([r["elastic_contact"]["area_fraction"] for r in used]),
@@ -88,11 +90,6 @@ def summarise(plan, results: list, placement: str, seed: int) -> dict:
         "principal_direction_deg": pd,
         "self_locking_windows": sum(1 for r in used if r["self_locking"]),
         "directions": dirs, "per_window": per}
-
-
-def _min_share() -> float:
-    from .elastic_windows import MIN_DEFINED_SHARE
-    return MIN_DEFINED_SHARE
 
 
 def _overlap(origins, w: int) -> bool:
