@@ -5,12 +5,12 @@ point of the contact grid; the fingerprint follows the pressures; bad values are
 in one line naming the key."""
 from __future__ import annotations
 
-import sqlite3
 from pathlib import Path
 
 import numpy as np
 import pytest
 from cli_run import run, run_json
+from test_study_cases import table
 
 from asperity.study.run import run_study_file
 from asperity.study.spec import load_study
@@ -25,15 +25,6 @@ def write(tmp_path: Path, body: str, name: str = "s.toml") -> Path:
     p = tmp_path / name
     p.write_text(body)
     return p
-
-
-def table(folder: Path) -> list[dict]:
-    con = sqlite3.connect(folder / "study.sqlite")
-    con.row_factory = sqlite3.Row
-    try:
-        return [dict(r) for r in con.execute("SELECT * FROM cases ORDER BY case_id")]
-    finally:
-        con.close()
 
 
 @pytest.fixture(scope="module")

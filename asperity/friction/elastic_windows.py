@@ -218,5 +218,6 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
                       {"detrend": detrend, "mu": mu, "despike": despike,
                        "max_slope": max_slope}, contact, n_dir)
     report(0.0, "windows")
-    results = _Runner(plan, client, run_windows).map("window", plan, label="windows")
+    results = _Runner(plan, client, run_windows, "lower --window").map("window", plan,
+                                                                       label="windows")
     return summarise(plan, results, placement, seed)

@@ -52,9 +52,10 @@ class _Runner:
     """Runs a pass over every tile, in this process or on a Dask client (``task``: what
     runs a group of tiles, :func:`.tile_tasks.run_tiles` by default)."""
 
-    def __init__(self, plan, client, task=run_tiles):
+    def __init__(self, plan, client, task=run_tiles, lower="lower --tile-rows"):
         self.client = client
         self.task = task
+        self.lower = lower
         self.n = plan.n_tiles
         self.passes = 0
         if client is not None:
@@ -94,9 +95,9 @@ class _Runner:
                     if type(exc).__name__ != "KilledWorker":
                         raise
                     from ..errors import ResourceError
-                    raise ResourceError("a Dask worker died running the tiles (out of memory?); "
-                                        "lower --tile-rows or give the workers more memory") \
-                        from None
+                    raise ResourceError(f"a Dask worker died running the tiles (out of "
+                                        f"memory?); {self.lower} or give the workers more "
+                                        f"memory") from None
                 report(done / len(futs), label)
         finally:
             for f in futs:
