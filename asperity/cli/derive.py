@@ -66,14 +66,14 @@ def add_parser(sub) -> None:
         "and friction, their mean and spread: an estimate from K windows, not the whole "
         "scan's contact.  --workers / --scheduler run the windows on a Dask cluster.")
     w.add_argument("--window", metavar="W", default=None,
-                   help="window side in pixels (at least 16, at most the scan's smaller side)")
+                   help="window side in pixels, 16 to the scan's smaller side (None: no windows)")
     w.add_argument("--windows", metavar="K", default=None,
-                   help="number of windows (1 to 10000; default 8)")
+                   help="number of windows, 1 to 10000 (None: 8)")
     w.add_argument("--window-placement", choices=["grid", "random"], default=None,
                    help="grid: the centres of a regular grid of strata; random: a uniform "
-                        "position in each stratum (--window-seed) (default grid)")
+                        "position in each stratum (--window-seed) (None: grid)")
     w.add_argument("--window-seed", metavar="S", default=None,
-                   help="seed of --window-placement random (default 0)")
+                   help="seed of --window-placement random (None: 0)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
                                                       "(surfaces: and a height-map preview)")
