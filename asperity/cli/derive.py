@@ -70,7 +70,7 @@ def add_parser(sub) -> None:
     w.add_argument("--windows", metavar="K", default=None,
                    help="number of windows, 1 to 10000 (None: 8)")
     w.add_argument("--window-placement", choices=["grid", "random"], default=None,
-                   help="grid: the centres of a regular grid of strata; random: a uniform "
+                   help="grid: a regular grid from edge to edge of the scan; random: a uniform "
                         "position in each stratum (--window-seed) (None: grid)")
     w.add_argument("--window-seed", metavar="S", default=None,
                    help="seed of --window-placement random (None: 0)")
