@@ -51,7 +51,7 @@ def modulus(form: Form) -> tuple[float, dict | None]:
     if form.text("E_star"):
         raise FormError(f"give E* (Pa) or the materials (E1, nu1 and E2, nu2), not both: "
                         f"leave E* (Pa) blank to use {given[0]}", given[0])
-    mat = {m: (_positive(form, m, m in ("E1", "E2")) if m.startswith("E")
+    mat = {m: (_positive(form, m, False) if m.startswith("E")
                else form.optional(m, label=LABELS[m])) for m in MATERIALS}
     for m in ("E1", "nu1"):
         if mat[m] is None:
