@@ -29,7 +29,9 @@ def bumps(n: int = 40) -> np.ndarray:
     i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
     t = (i % 20) / 20.0
     ridge = np.where(t < 0.7, t / 0.7, (1.0 - t) / 0.3)
-    return 0.8 * ridge ** 2 + 0.15 * np.cos(2 * np.pi * j / 20.0)
+    z = 0.8 * ridge ** 2 + 0.15 * np.cos(2 * np.pi * j / 20.0)
+    z[30:33, 5:8] = np.nan                       # undefined pixels: no data, no load
+    return z
 
 
 @pytest.fixture(scope="module")
@@ -105,8 +107,18 @@ def test_one_pressure_gives_the_numbers_of_derive_elastic_json(site, capsys):
     assert heat["type"] == "heatmap" and len(heat["z"]) == 40 and len(heat["z"][0]) == 40
     unit = heat["colorbar"]["title"]["text"]
     scale = {"(MPa)": 1e6, "(GPa)": 1e9, "(kPa)": 1e3}[unit[unit.index("("):]]
+    top = wc["max_pressure_Pa"]
+    assert scale == max(s for s in (1.0, 1e3, 1e6, 1e9) if top / s >= 1)   # from the data
     peak = max(v for row in heat["z"] for v in row if v is not None) * scale
-    assert peak == pytest.approx(wc["max_pressure_Pa"], rel=1e-4)
+    assert peak == pytest.approx(top, rel=1e-4)
+    # undefined pixels: no value in the heat map, and drawn by the grey layer (z is (y, x);
+    # a text matrix's lines are y, so the file's lines 30-32, columns 5-7 are y 30-32)
+    holes = {(jy, ix) for jy in range(30, 33) for ix in range(5, 8)}
+    none = {(jy, ix) for jy, row in enumerate(heat["z"]) for ix, v in enumerate(row)
+            if v is None}
+    grey = {(jy, ix) for jy, row in enumerate(cmap["data"][1]["z"])
+            for ix, v in enumerate(row) if v is not None}
+    assert none == holes and grey == holes
 
 
 def test_three_pressures_give_three_curves_and_the_contact_figures(site, capsys):
@@ -143,6 +155,19 @@ def test_three_pressures_give_three_curves_and_the_contact_figures(site, capsys)
     gauge = json.loads(c.get(f"/jobs/{fit}/files/gauge.json").content)
     src = json.dumps(gauge)
     assert f'"area_fraction": {want["summary"][1]["area_fraction"]!r}'[:30] in src
+
+
+def test_a_range_and_the_materials(site, capsys):
+    """pressures from 1e6 to 1e8, 3 of them: 1e6, 1e7, 1e8 (spaced in log); E1 = 2e11,
+    nu1 = 0.3 on a rigid counterface: E* = E1 / (1 - nu1^2)."""
+    c, path = site
+    jid = job(c, surface(c, path, E_star="", E1="2e11", nu1="0.3", pressure="",
+                         p_min="1e6", p_max="1e8", p_count="3"))
+    got = json.loads(c.get(f"/jobs/{jid}/files/derive.json").content)
+    assert got["pressures_Pa"] == pytest.approx([1e6, 1e7, 1e8], rel=1e-12)
+    assert got["E_star_Pa"] == pytest.approx(2e11 / 0.91, rel=1e-12)
+    page = c.get(f"/jobs/{jid}").text
+    assert len(re.findall(r'class="contact-row"', page)) == 3
 
 
 def test_full_contact_is_a_result(site):
