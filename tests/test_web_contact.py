@@ -267,3 +267,22 @@ def test_a_solve_that_does_not_converge_is_one_line_with_the_residual(tmp_path):
     msg = str(e.value)
     assert "did not converge" in msg and "residual" in msg and "2 iterations" in msg
     assert "\n" not in msg and not (tmp_path / "derive.json").exists()
+
+
+def test_a_large_contact_map_is_shown_as_block_means_with_its_holes():
+    """A 600 x 300 field shown at most 256 a side: 3 x 3 block means of the defined
+    pixels (against a loop here); a block without a defined pixel stays undefined."""
+    from asperity.web.figures_contact import block_means
+    rng = np.random.default_rng(4)
+    p = rng.random((600, 300))
+    p[30:36, 60:63] = np.nan                      # two whole blocks undefined
+    p[90, 90] = np.nan                            # one pixel of a block
+    got = block_means(p, 256)
+    assert got.shape == (200, 100)
+    for i, j in ((10, 20), (10, 21), (30, 30), (0, 0), (199, 99)):
+        block = p[3 * i:3 * i + 3, 3 * j:3 * j + 3]
+        ok = np.isfinite(block)
+        want = block[ok].mean() if ok.any() else np.nan
+        np.testing.assert_allclose(got[i, j], want, rtol=1e-12)
+    assert np.isnan(got[10:12, 20]).all() and np.isfinite(got[30, 30])
+    assert np.isfinite(got).sum() == 200 * 100 - 2
