@@ -80,9 +80,10 @@ def test_elastic_contact_section_meets_its_closed_forms(tmp_path):
         for b in ("periodic", "free"):
             row = _row(lines, b)
             assert float(row[1]) < 1e-5 and abs(float(row[2])) < 1e-10, row
-    else:
+    else:                   # only where the package has no benchmarks/ or no ContactMechanics
         from importlib.util import find_spec
-        assert find_spec("ContactMechanics") is None, "ContactMechanics is importable"
+        peers = Path(contact.__file__).resolve().parents[2] / "benchmarks" / "contact_peers.py"
+        assert not (peers.is_file() and find_spec("ContactMechanics")), text
     ridge = [x for x in lines if x.startswith("| rounded ridge |")]
     light, heavy, area = (_row([x], "rounded ridge") for x in (ridge[0], ridge[-2], ridge[-1]))
     assert light[1] == "0.0001" and area[1] == "area weighted"

@@ -256,7 +256,7 @@ def test_a_solve_that_does_not_converge_is_one_line_with_the_residual(tmp_path):
     """The iteration limit (not a field of the page: set in the job here) gives the job's
     one line, which the page puts above the form."""
     from asperity.errors import InputError
-    from asperity.web.tasks_surface import derive_task
+    from asperity.web.tasks_contact import derive_task
     ctx = {"job_dir": tmp_path, "uploads": tmp_path, "jobs": tmp_path, "names": {}}
     params = {"source": {"kind": "wedge", "alpha_deg": 5.71059, "beta_deg": 26.5651,
                          "mu_alpha": 0.15, "mu_beta": 0.15}, "directions": 8,

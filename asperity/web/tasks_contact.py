@@ -15,9 +15,12 @@ from __future__ import annotations
 import json
 
 from ..io import json_ready, write_text_atomic
+from . import tasks_surface
 from .elastic import contact_of
 from .figures_contact import MapKeeper, axes_figure, contact_map, family_polar
+from .labels import source_stem
 from .results import rename
+from .tasks_surface import describe, load_source, source_job, surface_kwargs, upload_file
 
 #: what the weighting assumes and where it stops being right (shown under the results)
 ASSUMES = ("The load shares come from a normal, frictionless elastic contact: the surface "
@@ -39,7 +42,6 @@ def elastic_textures_of(src: dict, params: dict, ctx: dict, bar):
     """(textures weighted at each pressure, the MapKeeper of their contact maps)."""
     from ..contact.solver import ContactNotConverged
     from ..errors import InputError
-    from .tasks_surface import load_source, surface_kwargs, upload_file
     elastic = contact_of(params)
     keep = MapKeeper(len(elastic.pressures), bar)
     bar(0.02, f"solving the elastic contact at {len(elastic.pressures)} pressure(s)")
@@ -62,7 +64,6 @@ def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
     from ..friction.derive import derive, format_text, to_json
     from ..friction.family import derive_family, family_json, family_text
     from .figures import height_figure, reservoir_figures
-    from .tasks_surface import describe
     textures, keep = elastic_textures_of(src, params, ctx, bar)
     elastic = contact_of(params)
     contact, n = params.get("contact", "all-faces"), params.get("directions", 360)
@@ -87,7 +88,6 @@ def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
     if cmap is not None:
         figs["contact_map"] = cmap
     write_text_atomic(ctx["job_dir"] / "derive.json", json.dumps(json_ready(obj), indent=1))
-    from .labels import source_stem
     contacts = [m["elastic_contact"] for m in members]
     return {("family" if elastic.family else "derive"): obj,
             "derive": members[-1], "contacts": contacts,
@@ -106,13 +106,11 @@ def family_law(members, elastic, law: str):
     return None
 
 
-def fit_elastic(params: dict, ctx: dict, bar, law_outputs) -> dict:
+def fit_elastic(params: dict, ctx: dict, bar) -> dict:
     """The Law job for a Surface result with an elastic contact: the law at the pressure
     chosen (``params["elastic"]["pressures"]``: that one), or the family's when
     :func:`family_law` gives one."""
     from .. import derive, fit_derivation
-    from .labels import source_stem
-    from .tasks_surface import describe, source_job
     src = source_job(ctx, params["source"]["job"])
     textures, _ = elastic_textures_of(src, params, ctx, bar)
     elastic = contact_of(params)
@@ -122,7 +120,7 @@ def fit_elastic(params: dict, ctx: dict, bar, law_outputs) -> dict:
     gl = family_law(members, elastic, params.get("law", "star"))
     if gl is None:
         gl = fit_derivation(members[0], params.get("law", "star"))
-    out = law_outputs(gl, ctx, source_stem(src))
+    out = tasks_surface.law_outputs(gl, ctx, source_stem(src))
     out["source"] = describe(src, members[0].texture)
     out["elastic_contact"] = members[0].texture.elastic
     fam = params.get("family") or {}
@@ -133,3 +131,24 @@ def fit_elastic(params: dict, ctx: dict, bar, law_outputs) -> dict:
                    + ": the law of that pressure only (a law for the whole family, "
                      "interpolated in p, needs the gauge file of version 2, not here yet)")
     return out
+
+
+def derive_task(params: dict, ctx: dict, bar) -> dict:
+    """The Surface job: with an elastic contact here, else :mod:`.tasks_surface`'s."""
+    if not params.get("elastic"):
+        return tasks_surface.derive_task(params, ctx, bar)
+    src = params["source"]
+    return derive_elastic(source_job(ctx, src["job"]) if src.get("kind") == "job" else src,
+                          params, ctx, bar)
+
+
+def fit_task(params: dict, ctx: dict, bar) -> dict:
+    """The Law job: a Surface result with an elastic contact here, else
+    :mod:`.tasks_surface`'s."""
+    if not params.get("elastic"):
+        return tasks_surface.fit_task(params, ctx, bar)
+    return fit_elastic(params, ctx, bar)
+
+
+#: the jobs of this module (they replace tasks_surface's of the same kinds)
+TASKS = {"derive": derive_task, "fit": fit_task}

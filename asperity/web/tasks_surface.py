@@ -121,11 +121,6 @@ def _derivation(src: dict, params: dict, ctx: dict, bar):
 def derive_task(params: dict, ctx: dict, bar) -> dict:
     from ..friction.derive import format_text, to_json
     from .figures import height_figure, reservoir_figures
-    if params.get("elastic"):                       # load shares from an elastic contact
-        from .tasks_contact import derive_elastic
-        src = params["source"]
-        return derive_elastic(source_job(ctx, src["job"]) if src.get("kind") == "job"
-                              else src, params, ctx, bar)
     d, real = _derivation(params["source"], params, ctx, bar)
     obj = rename(to_json(d), ctx["names"])
     figs = reservoir_figures(obj)
@@ -167,9 +162,6 @@ def _law_outputs(gl, ctx: dict, source: str, n_csv: int = 360) -> dict:
 
 def fit_task(params: dict, ctx: dict, bar) -> dict:
     from .. import fit_derivation
-    if params.get("elastic"):                       # a Surface result of an elastic contact
-        from .tasks_contact import fit_elastic
-        return fit_elastic(params, ctx, bar, _law_outputs)
     d, real = _derivation(params["source"], {**params, "method": "closed-form",
                                              "allow_tiles": False}, ctx, bar)
     bar(0.95, "fitting the law")
@@ -186,5 +178,8 @@ def gauge_task(params: dict, ctx: dict, bar) -> dict:
     out["source"] = {"kind": "gauge file", "text": f"gauge file {params.get('name')}"}
     return out
 
+
+#: the law outputs, for the Law page's other jobs (:mod:`.tasks_contact`)
+law_outputs = _law_outputs
 
 TASKS = {"derive": derive_task, "fit": fit_task, "gauge": gauge_task}
