@@ -187,6 +187,9 @@ def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
     :func:`contact_solutions`'s."""
     from ..contact.elastic import BYTES_PER_PIXEL
     elastic = check_elastic(elastic)
+    if observe is not None and not callable(observe):
+        raise InputError(f"observe must be a callable or None, got "
+                         f"{type(observe).__name__}")
     despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
                                                despike_window=despike_window,
                                                max_slope=max_slope)
