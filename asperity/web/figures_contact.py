@@ -73,7 +73,8 @@ def axes_figure(rows: list[dict], E_star: float) -> dict:
                   f"nominal pressure p ({unit.name})", "friction coefficient")
     lay["xaxis"]["type"] = "log"
     lay["yaxis2"] = {"title": {"text": "contact area fraction"}, "overlaying": "y",
-                     "side": "right", "range": [0, 1.05], "showgrid": False}
+                     "side": "right", "range": [0, 1.05], "dtick": 0.2,
+                     "showgrid": False}
     lay["margin"] = {**lay["margin"], "r": 60}
     return {"data": traces, "layout": lay}
 

@@ -25,12 +25,14 @@ def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
                                       (("fit", "gauge"), None, 20))
     sources = [("wedge", "the wedge below")] + [(j["id"], f"{j['id']}: {label(j)}")
                                                 for j in surfaces]
-    from .elastic import pressure_choices
-    ctx.setdefault("pressures", pressure_choices(surfaces))
-    ctx.setdefault("pressure_options", [(v, t) for v, t, _ in ctx["pressures"]])
     wanted = request.query_params.get("source", "")
     default = wanted if any(s == wanted for s, _ in sources) else \
         (surfaces[0]["id"] if surfaces else "wedge")
+    from .elastic import pressure_choices
+    ctx.setdefault("pressures", pressure_choices(surfaces))
+    ctx.setdefault("pressure_options", [(v, t) for v, t, _ in ctx["pressures"]])
+    ctx.setdefault("default_pressure", next((v for v, _, j in ctx["pressures"]
+                                             if j == default), ""))
     return web.page(request, "law.html", status, page="law", sources=sources,
                     default_source=default, jobs=jobs, **ctx)
 
