@@ -70,6 +70,8 @@ WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 CONTACT_FRICTION = ("test_contact_friction.py", "test_contact_friction_cli.py")
 WINDOWS = ("test_contact_windows.py",)
 STUDY_CONTACT = ("test_study_contact.py",)
+WEB_CONTACT = ("test_web_contact.py",)
+REPORT = ("test_report.py",)
 
 
 @dataclass(frozen=True)
@@ -598,6 +600,45 @@ MUTANTS = [
            "    check_range(where if p.distribution == \"grid\" else f\"{where}.low\", low, 0.0, "
            "None,\n                low_open=False,", STUDY_CONTACT,
            "a contact parameter whose distribution reaches 0 Pa accepted"),
+    # ---- issue 19: the Surface page's elastic contact and the report's section
+    Mutant("web-contact-family-collapsed", "web/elastic.py",
+           "ps[0] if len(ps) == 1 else tuple(ps)", "ps[0]", WEB_CONTACT,
+           "several pressures of the Surface page solved at the first only"),
+    Mutant("web-contact-range-linear", "web/elastic.py",
+           "lo * math.exp(r * k / (n - 1))", "lo + (hi - lo) * k / (n - 1)", WEB_CONTACT,
+           "a range of pressures spaced linearly while the page says in log"),
+    Mutant("web-contact-materials-nu-dropped", "web/elastic.py",
+           'E = effective_modulus(mat["E1"], mat["nu1"], mat["E2"], mat["nu2"])',
+           'E = effective_modulus(mat["E1"], 0.0, mat["E2"], mat["nu2"])', WEB_CONTACT,
+           "E* from the materials without the body's Poisson ratio"),
+    Mutant("web-contact-hardness-unplaced", "web/elastic.py",
+           "if H is not None and H <= max(ps):", "if H is not None and H <= 0:", WEB_CONTACT,
+           "a hardness below the pressure refused by the library, not next to its field"),
+    Mutant("web-contact-boundary-periodic", "web/elastic.py",
+           'boundary=e.get("boundary"), hardness', 'boundary=e.get("boundary") or '
+           '"periodic", hardness', WEB_CONTACT,
+           "a measured scan solved as periodic by default on the page"),
+    Mutant("web-contact-law-first-pressure", "web/elastic.py",
+           "        k = int(idx)", "        k = 0", WEB_CONTACT,
+           "the Law page fits the first pressure of a family whatever was chosen"),
+    Mutant("web-contact-map-unit-fixed", "web/figures_contact.py",
+           'for m in maps], "Pa")', 'for m in maps][:0] + [1e6], "Pa")', WEB_CONTACT,
+           "the contact map in MPa whatever the pressures"),
+    Mutant("web-contact-undefined-hidden", "web/figures_contact.py",
+           '"z": np.where(undefined, 1.0, np.nan).T.tolist(),',
+           '"z": np.full(z.shape, np.nan).T.tolist(),', WEB_CONTACT,
+           "undefined pixels of the contact map not drawn as such"),
+    Mutant("web-contact-undefined-as-zero", "web/figures_contact.py",
+           "return np.where(n > 0, s / np.where(n > 0, n, 1), np.nan)",
+           "return np.where(n > 0, s / np.where(n > 0, n, 1), 0.0)", WEB_CONTACT,
+           "undefined blocks of a large contact map shown as out of contact"),
+    Mutant("report-hertz-radius-halved-area", "report/contact.py",
+           "a_num = math.sqrt(res.contact.sum() * dx * dx / math.pi)",
+           "a_num = math.sqrt(res.contact.sum() * dx * dx / (2 * math.pi))", REPORT,
+           "the Hertz contact radius measured from half the contact area"),
+    Mutant("report-westergaard-width-wrong", "report/contact.py",
+           "2.0 / math.pi * math.asin(math.sqrt(f))", "1.0 / math.pi * math.asin(f)", REPORT,
+           "the Westergaard closed form of the report mis-stated"),
 ]
 
 

@@ -195,9 +195,11 @@ def api_table(folder: Path) -> list[Row]:
                  workers=whole(1, 4096, none=True))),
         Row("load_elastic", A.load_elastic,
             dict({k: v for k, v in scan_args.items() if "_level" not in k
-                  and k != "bearing_fraction"}, elastic=A.ElasticContact(1e9, 1e6)),
-            dict(path=npy, elastic=instance(), **{k: v for k, v in scan.items()
-                                                  if k not in ("rest_level", "bearing_fraction")}),
+                  and k != "bearing_fraction"}, elastic=A.ElasticContact(1e9, 1e6),
+                 observe=None),
+            dict(path=npy, elastic=instance(), observe=callback(),
+                 **{k: v for k, v in scan.items() if k not in ("rest_level",
+                                                               "bearing_fraction")}),
             {"path": ("surface file",), "friction_map": ("friction map",)}),
         Row("derive_family", A.derive_family,
             dict(texture=TEX, elastic=A.ElasticContact(1e9, [1e6, 1e7]), contact="all-faces",
