@@ -213,6 +213,12 @@ def test_ellipse_between_members_against_the_hand_interpolation():
         for k in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"):
             hand = (1 - w) * a.law.C.axes[k] + w * b.law.C.axes[k]
             assert e.axes[k] == pytest.approx(hand, rel=1e-12)
+    # three members: the law between the second and third is theirs, not the first's
+    c = wedge_law(20, 15, "truncated-ellipse", mu=(0.25, 0.15))
+    fam3 = synthetic([a, b, c], (1e6, 1e8, 1e10))
+    e = fam3.at(1e9).law.C
+    for k in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"):
+        assert e.axes[k] == pytest.approx(0.5 * (b.law.C.axes[k] + c.law.C.axes[k]), rel=1e-12)
     # member b written with t_a reversed (the same set): the law between is the same set
     eb = b.law.C
     from asperity.laws.sets import TruncatedEllipse
