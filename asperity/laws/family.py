@@ -41,8 +41,9 @@ from .fitting import GaugeLaw, ReservoirData
 INTERPOLATION = ("linear in ln p between the two members around p; truncated ellipse: the "
                  "semi-axes and the direction t_a; star: each sliding direction's reservoir "
                  "point, the star law fitted through them; outside [first, last] refused")
-#: relative agreement of a member's pressure with its contact's mean pressure
-PRESSURE_MATCH = 1e-6
+#: relative agreement of a member's pressure with its contact's mean pressure (the solve's
+#: tolerance is 1e-8 by default)
+PRESSURE_MATCH = 1e-4
 #: most members of a family (as ElasticContact.MAX_PRESSURES)
 MAX_MEMBERS = 100
 
@@ -110,6 +111,14 @@ class GaugeFamily:
             if not isinstance(m.source.get("elastic_contact"), dict):
                 raise InputError(f"member {k} has no elastic contact figures (fit it with "
                                  "--elastic and --pressure)")
+            c, c0 = m.source["elastic_contact"], ms[0].source["elastic_contact"]
+            if not abs(c.get("pressure_Pa", math.nan) - ps[k]) <= PRESSURE_MATCH * ps[k]:
+                raise InputError(f"member {k}'s contact pressure ({c.get('pressure_Pa')}) is "
+                                 f"not its pressure {ps[k]:g} Pa")
+            for key in ("E_star_Pa", "boundary", "hardness_Pa"):
+                if c.get(key) != c0.get(key):
+                    raise InputError(f"member {k}'s contact has {key} {c.get(key)}, member "
+                                     f"0's {c0.get(key)}: one contact a family")
             if m.kind != ms[0].kind:
                 raise InputError(f"member {k} is a {m.kind} law, member 0 a {ms[0].kind}: one "
                                  "kind a family")

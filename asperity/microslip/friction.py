@@ -88,7 +88,14 @@ def _check_some_friction(mu_plus: float, mu_minus: float, name: str) -> None:
 def friction_from_gauge(law, slip_axis_deg=None, textured: str = "support",
                         source_name: str = "") -> Friction:
     """mu+ and mu- of a fitted law (:class:`~asperity.laws.fitting.GaugeLaw`) along the slip axis
-    (default: the law's principal direction t_a), as :func:`friction_from_texture`."""
+    (default: the law's principal direction t_a), as :func:`friction_from_texture`; a law
+    family is refused (take its law at a pressure first: :func:`law_at_assembly`)."""
+    from ..laws.family import GaugeFamily
+    if isinstance(law, GaugeFamily):
+        from ..errors import InputError
+        raise InputError(f"{source_name or 'the gauge'} holds a law family over the pressures "
+                         f"{law.pressures[0]:g} to {law.pressures[-1]:g} Pa: take its law at "
+                         "the contact pressure first (GaugeFamily.at)")
     psi_deg = law.principal_direction_deg if slip_axis_deg is None else float(slip_axis_deg)
     psi = math.radians(psi_deg) + np.array([0.0, math.pi])
     f = law.force(psi)
