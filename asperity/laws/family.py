@@ -94,16 +94,20 @@ class GaugeFamily:
     members: tuple
 
     def __post_init__(self):
-        from ..errors import check_range
-        ps = tuple(check_range("pressure", p, 0.0, None, low_open=True, unit="Pa")
-                   for p in self.pressures)
+        from ..errors import check_array, check_range
+        raw = check_array("pressures", self.pressures, ndim=1, finite=False)
+        ps = tuple(check_range("pressures", float(p), 0.0, None, low_open=True, unit="Pa")
+                   for p in raw)
+        if not isinstance(self.members, (list, tuple)):
+            raise InputError(f"members must be a tuple of GaugeLaw, got "
+                             f"{type(self.members).__name__}")
         ms = tuple(self.members)
         if not 1 <= len(ms) <= MAX_MEMBERS or len(ms) != len(ps):
             raise InputError(f"a family needs 1 to {MAX_MEMBERS} members, one a pressure, got "
                              f"{len(ms)} members for {len(ps)} pressures")
         for k in range(1, len(ps)):
             if not ps[k] > ps[k - 1]:
-                raise InputError(f"pressure must be strictly increasing, got {ps[k]:g} Pa after "
+                raise InputError(f"pressures must be strictly increasing, got {ps[k]:g} Pa after "
                                  f"{ps[k - 1]:g} Pa")
         for k, m in enumerate(ms):
             if not isinstance(m, GaugeLaw):
