@@ -192,6 +192,9 @@ def test_a_family_needs_one_source_and_increasing_pressures():
         GaugeFamily((1e6, 2e6), (fam.members[0], other))
     with pytest.raises(InputError, match="law family"):            # take it at a pressure
         friction_from_gauge(fam, 0.0)
+    from asperity.laws.planar import from_gauge
+    with pytest.raises(InputError, match="law family"):
+        from_gauge(fam)
 
 
 # ----------------------------------------------------------------------------- interpolation

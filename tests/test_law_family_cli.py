@@ -158,6 +158,20 @@ def test_two_node_pressure_is_N_over_its_contact_area(strong, capsys, tmp_path):
     assert out["assembly"]["contact_area"] == 1e-5
 
 
+def test_a_single_law_fitted_at_another_pressure_is_used_with_a_note(strong, capsys,
+                                                                       tmp_path):
+    _, fam = strong
+    one = tmp_path / "one.json"
+    write_gauge(one, fam.members[0])                 # version 1, fitted at P0
+    out = run_json(capsys, "risk", assembly(tmp_path, 1e7, one.name))
+    cp = out["friction"]["contact_pressure"]
+    assert cp["law_pressure_Pa"] == P0 and cp["pressure_Pa"] == 1e7
+    assert "derived at p = 1e+06 Pa, not at the assembly's 1e+07 Pa" in cp["note"]
+    assert out["mu_plus"] == friction_from_gauge(fam.members[0], 0.0).mu_plus
+    same = run_json(capsys, "risk", assembly(tmp_path, P0, one.name))
+    assert "contact_pressure" not in same["friction"]
+
+
 def test_risk_elastic_without_pressure_solves_at_the_assemblys(capsys, tmp_path):
     asm = SURF / "bushing-strip.toml"                           # p = 5e6 Pa
     a = run_json(capsys, "risk", asm, *WEDGE, "--elastic", "1e9")
