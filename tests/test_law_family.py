@@ -185,7 +185,7 @@ def test_a_family_needs_one_source_and_increasing_pressures():
     with pytest.raises(InputError, match="elastic contact figures"):
         GaugeFamily((1e6, 2e6), (a, b))
     fam = synthetic([a, b], (1e6, 2e6))
-    with pytest.raises(InputError, match="contact pressure"):      # contact at 2e6, said 3e6
+    with pytest.raises(InputError, match="contact.pressure_Pa"):   # contact at 2e6, said 3e6
         GaugeFamily((1e6, 3e6), fam.members)
     other = replace(b, source={**a.source, "elastic_contact": {**contact(2e6), "E_star_Pa": 2e9}})
     with pytest.raises(InputError, match="E_star_Pa"):

@@ -67,6 +67,18 @@ def own_keys(source: dict) -> dict:
     return {k: tex[k] for k in PER_MEMBER if k in tex} if isinstance(tex, dict) else {}
 
 
+def contact_mismatch(c: dict, pressure: float, ref: dict) -> str | None:
+    """What of a member's contact figures ``c`` disagrees with its ``pressure`` or with the
+    family's E*, boundary and hardness (``ref``), in words; None when nothing does."""
+    if not abs(c.get("pressure_Pa", math.nan) - pressure) <= PRESSURE_MATCH * pressure:
+        return (f"contact.pressure_Pa ({c.get('pressure_Pa')}) is not the member's pressure "
+                f"({pressure:g} Pa)")
+    for key in ("E_star_Pa", "boundary", "hardness_Pa"):
+        if c.get(key) != ref.get(key):
+            return f"contact.{key} ({c.get(key)}) is not the family's ({ref.get(key)})"
+    return None
+
+
 def _sides(data: ReservoirData):
     """(distinct psi, left point, right point): an ordinary direction's point twice, a
     set-valued direction's two one-sided limits."""
@@ -115,14 +127,10 @@ class GaugeFamily:
             if not isinstance(m.source.get("elastic_contact"), dict):
                 raise InputError(f"member {k} has no elastic contact figures (fit it with "
                                  "--elastic and --pressure)")
-            c, c0 = m.source["elastic_contact"], ms[0].source["elastic_contact"]
-            if not abs(c.get("pressure_Pa", math.nan) - ps[k]) <= PRESSURE_MATCH * ps[k]:
-                raise InputError(f"member {k}'s contact pressure ({c.get('pressure_Pa')}) is "
-                                 f"not its pressure {ps[k]:g} Pa")
-            for key in ("E_star_Pa", "boundary", "hardness_Pa"):
-                if c.get(key) != c0.get(key):
-                    raise InputError(f"member {k}'s contact has {key} {c.get(key)}, member "
-                                     f"0's {c0.get(key)}: one contact a family")
+            why = contact_mismatch(m.source["elastic_contact"], ps[k],
+                                   ms[0].source["elastic_contact"])
+            if why:
+                raise InputError(f"member {k}: {why}")
             if m.kind != ms[0].kind:
                 raise InputError(f"member {k} is a {m.kind} law, member 0 a {ms[0].kind}: one "
                                  "kind a family")

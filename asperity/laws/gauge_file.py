@@ -188,7 +188,7 @@ def family_to_dict(fam) -> dict:
 def family_from_dict(obj: dict):
     """The family of a version-2 object (checked by the caller's ``validate``), or its
     single member's GaugeLaw when it has one."""
-    from .family import PRESSURE_MATCH, GaugeFamily
+    from .family import GaugeFamily, contact_mismatch
     laws, ps = [], []
     fam = obj["family"]
     for k, m in enumerate(obj["members"]):
@@ -209,13 +209,9 @@ def family_from_dict(obj: dict):
         if k and not p > ps[-1]:
             raise InputError(f"field members[{k}].pressure_Pa must exceed members[{k - 1}]'s "
                              f"(strictly increasing), got {p:g} after {ps[-1]:g}")
-        if abs(c["pressure_Pa"] - p) > PRESSURE_MATCH * p:
-            raise InputError(f"field members[{k}].contact.pressure_Pa ({c['pressure_Pa']:g}) is "
-                             f"not the member's pressure_Pa ({p:g})")
-        for key in ("E_star_Pa", "boundary", "hardness_Pa"):
-            if c.get(key) != fam.get(key):
-                raise InputError(f"field members[{k}].contact.{key} ({c.get(key)}) is not the "
-                                 f"family's ({fam.get(key)})")
+        why = contact_mismatch(c, p, fam)
+        if why:
+            raise InputError(f"field members[{k}].{why}")
         ps.append(p)
     if len(laws) == 1:
         return laws[0]
