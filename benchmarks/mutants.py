@@ -69,6 +69,8 @@ FINGERPRINT = ("test_study_fingerprint.py",)
 WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 CONTACT_FRICTION = ("test_contact_friction.py", "test_contact_friction_cli.py")
 FAMILY = ("test_law_family.py", "test_law_family_cli.py")
+WINDOWS = ("test_contact_windows.py",)
+STUDY_CONTACT = ("test_study_contact.py",)
 
 
 @dataclass(frozen=True)
@@ -610,6 +612,37 @@ MUTANTS = [
            "        args.pressure = [p]\n", "        args.pressure = [1e6]\n", FAMILY,
            "risk --elastic without --pressure solves at a fixed pressure, not the "
            "assembly's"),
+    # ---- issue 19: windows of a scan beyond one solve, contact parameters of studies
+    Mutant("window-read-axes-swapped", "friction/elastic_windows.py",
+           "        a0, b0 = j0, i0", "        a0, b0 = i0, j0", WINDOWS,
+           "a file whose lines are columns (Fortran .npy, x3p, text matrices) read with the "
+           "window's x and y origins swapped"),
+    Mutant("window-origin-past-the-edge", "friction/elastic_windows.py",
+           "sx, sy = nx - window + 1, ny - window + 1", "sx, sy = nx - window + 2, ny - window + 2",
+           WINDOWS, "window origins one pixel too far: the last window runs past the scan"),
+    Mutant("window-sd-population", "friction/window_summary.py",
+           "float(v.std(ddof=1))", "float(v.std())", WINDOWS,
+           "the spread between windows as the population sd (n) instead of the sample's "
+           "(n - 1)"),
+    Mutant("window-axes-not-turned", "friction/window_summary.py",
+           "    if abs(d) <= 90.0:", "    if True:", WINDOWS,
+           "windows whose t_a point opposite ways averaged without exchanging + and -"),
+    Mutant("window-holes-not-skipped", "friction/elastic_windows.py",
+           "    if share < MIN_DEFINED_SHARE:", "    if share < 0.0:", WINDOWS,
+           "windows with too few defined pixels solved as if whole"),
+    Mutant("study-contact-value-ignored", "study/contact.py",
+           '            d[k.split(".", 1)[1]] = float(v)', "            pass", STUDY_CONTACT,
+           "a case's contact.* value never replaces the [contact] table's"),
+    Mutant("study-library-cases-misordered", "study/spec.py",
+           "return tuple(f for f in self.files for _ in range(self._per_file))",
+           "return tuple(self.files) * self._per_file", STUDY_CONTACT,
+           "a library's cases pair each file with another file's grid point"),
+    Mutant("study-contact-zero-allowed", "study/contact.py",
+           "    check_range(where if p.distribution == \"grid\" else f\"{where}.low\", low, 0.0, "
+           "None,\n                low_open=True,",
+           "    check_range(where if p.distribution == \"grid\" else f\"{where}.low\", low, 0.0, "
+           "None,\n                low_open=False,", STUDY_CONTACT,
+           "a contact parameter whose distribution reaches 0 Pa accepted"),
 ]
 
 

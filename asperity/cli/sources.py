@@ -25,7 +25,9 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "max_slope": "--max-slope", "despike_window": "--despike-window",
                 "despike": "--despike", "tile_lines": "--tile-rows",
                 "pressure / E_star": "--pressure / --elastic", "E_star": "--elastic",
-                "pressure": "--pressure", "hardness": "--hardness"}
+                "pressure": "--pressure", "hardness": "--hardness",
+                "window_placement": "--window-placement", "window_seed": "--window-seed",
+                "windows": "--windows", "window ": "--window "}
 #: the elastic-contact flags (dest -> flag)
 ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
                  "hardness": "--hardness"}

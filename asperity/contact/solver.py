@@ -122,7 +122,8 @@ def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
 
 def _pixel_size(pixel_size) -> tuple[float, float]:
     from ..surface.topography import pixel_length
-    if np.ndim(pixel_size) == 0:
+    if not isinstance(pixel_size, (list, tuple, np.ndarray)) or (
+            isinstance(pixel_size, np.ndarray) and pixel_size.ndim == 0):
         d = pixel_length("pixel_size", pixel_size)
         return d, d
     a = check_array("pixel_size", pixel_size, shape=(2,))
