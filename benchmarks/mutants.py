@@ -68,6 +68,7 @@ CONFINE = ("test_study_inputs.py", "test_web_security.py")
 FINGERPRINT = ("test_study_fingerprint.py",)
 WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 CONTACT_FRICTION = ("test_contact_friction.py", "test_contact_friction_cli.py")
+FAMILY = ("test_law_family.py", "test_law_family_cli.py")
 WINDOWS = ("test_contact_windows.py",)
 STUDY_CONTACT = ("test_study_contact.py",)
 WEB_CONTACT = ("test_web_contact.py",)
@@ -569,6 +570,50 @@ MUTANTS = [
     Mutant("contact-block-missing", "friction/derive.py",
            'out["elastic_contact"] = dict(d.texture.elastic)', "pass", CONTACT_FRICTION,
            "derive's JSON loses its elastic_contact block"),
+    # ---- issue 19: law families over the pressure (gauge files version 2)
+    Mutant("family-weight-linear-in-p", "laws/family.py",
+           "return k, math.log(p / ps[k]) / math.log(ps[k + 1] / ps[k])",
+           "return k, (p - ps[k]) / (ps[k + 1] - ps[k])", FAMILY,
+           "the law between members weighted linearly in p, not in ln p"),
+    Mutant("family-weights-swapped", "laws/family.py",
+           "return (1.0 - w) * a + w * b", "return w * a + (1.0 - w) * b", FAMILY,
+           "between two members the weight goes to the farther one"),
+    Mutant("family-wrong-member", "laws/family.py",
+           "return ps.index(p), 0.0", "return min(ps.index(p) + 1, len(ps) - 1), 0.0", FAMILY,
+           "at a member's pressure the next member is taken"),
+    Mutant("family-wrong-pair", "laws/family.py",
+           'k = int(np.searchsorted(ps, p, side="right")) - 1',
+           'k = max(int(np.searchsorted(ps, p, side="right")) - 2, 0)', FAMILY,
+           "between members k and k+1 the pair below them is used"),
+    Mutant("family-ellipse-not-aligned", "laws/family.py",
+           "if abs(turn) > 0.5 * math.pi:", "if False:", FAMILY,
+           "an ellipse member written with t_a reversed is interpolated semi-axis by "
+           "semi-axis as if it were not"),
+    Mutant("family-set-valued-merged", "laws/family.py",
+           "if np.array_equal(left[j], right[j]):", "if True:", FAMILY,
+           "a set-valued direction's right limit dropped from the interpolated points"),
+    Mutant("family-written-as-version-1", "laws/gauge_file.py",
+           '"version": FAMILY_VERSION, "asperity_version"',
+           '"version": VERSION, "asperity_version"', FAMILY,
+           "a family written with the schema version of a single law"),
+    Mutant("family-member-texture-lost", "laws/gauge_file.py",
+           'one["source"]["texture"] = {**obj["source"]["texture"], **m["texture"]}',
+           'one["source"]["texture"] = obj["source"]["texture"]', FAMILY,
+           "a member's load-dependent texture figures (facets carrying load) lost on reading"),
+    Mutant("family-law-at-first-member", "laws/family.py",
+           "gl = gauge.at(pressure, name)", "gl = gauge.members[0]", FAMILY,
+           "slide / law / risk take a family's first member whatever the pressure"),
+    Mutant("risk-family-first-pressure", "microslip/friction.py",
+           "gl, how = law_at(gauge, p, where, name)",
+           "gl, how = law_at(gauge, gauge.pressures[0], where, name)", FAMILY,
+           "risk takes a family at its lightest pressure, not the assembly's"),
+    Mutant("two-node-pressure-times-area", "microslip/assembly.py",
+           'else (self.params["N"] / area, where)', 'else (self.params["N"] * area, where)',
+           FAMILY, "the two-node contact pressure N x contact_area"),
+    Mutant("risk-elastic-pressure-ignored", "cli/risk.py",
+           "        args.pressure = [p]\n", "        args.pressure = [1e6]\n", FAMILY,
+           "risk --elastic without --pressure solves at a fixed pressure, not the "
+           "assembly's"),
     # ---- issue 19: windows of a scan beyond one solve, contact parameters of studies
     Mutant("window-read-axes-swapped", "friction/elastic_windows.py",
            "        a0, b0 = j0, i0", "        a0, b0 = i0, j0", WINDOWS,

@@ -14,6 +14,7 @@ import collections
 import inspect
 import math
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -57,7 +58,10 @@ def _files(folder: Path) -> dict:
     chain = A.two_node_chain(1e6, 0.1, 1.2e-5, 5e5, 100.0, 0.2, 0.1)
     loading = A.Loading([0.0, 125.0, 0.0], [0.0, 0.0, 0.0])
     asm = A.load_assembly(SURF / "two-node-spec.toml")
-    return dict(d=A.derive(TEX, n_directions=72), npy=folder / "z.npy", gauge=folder / "g.json", gl=gl, chain=chain,
+    members = tuple(replace(gl, source={**gl.source, "elastic_contact": {
+        "area_fraction": 0.1, "pressure_Pa": p, "max_pressure_Pa": 1e8, "E_star_Pa": 1e9,
+        "boundary": "periodic", "hardness_Pa": None}}) for p in (1e6, 1e7))
+    return dict(d=A.derive(TEX, n_directions=72), npy=folder / "z.npy", gauge=folder / "g.json", gl=gl, chain=chain, members=members,
                 loading=loading, asm=asm, friction=A.assembly_friction(asm),
                 law=A.ellipse_law(0.2, 0.1), fs=A.load_surface(folder / "z.npy", unit="m",
                                                                pixel_size=1e-6))
@@ -225,6 +229,12 @@ def api_table(folder: Path) -> list[Row]:
                  theta=number(-4 * math.pi, 4 * math.pi))),
         Row("read_gauge", A.read_gauge, dict(path=f["gauge"]), dict(path=gauge),
             {"path": ("gauge file",)}),
+        Row("GaugeFamily", A.GaugeFamily, dict(pressures=(1e6, 1e7), members=f["members"]),
+            dict(pressures=array(0.0, None, lo_open=True, extra=[
+                ("NaN", "NaN", NAN), ("inf", "+inf", math.inf), ("overflow", "10**400", BIG),
+                ("range", "zero", 0.0), ("range", "decreasing", [1e7, 1e6]),
+                ("shape", "one value", [1e6])]),
+                 members=instance()), {"pressures": ("pressure",), "members": ("member",)}),
         Row("write_gauge", A.write_gauge, dict(path=folder / "out.json", gl=f["gl"]),
             dict(path=outfile(folder), gl=instance()), {"gl": ("gauge law",)}),
         Row("PlanarLaw", A.PlanarLaw, dict(name="star", law=f["gl"].law, description="d"),
