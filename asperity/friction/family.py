@@ -5,7 +5,10 @@ pressure of an :class:`~asperity.surface.contact_facets.ElasticContact` (the fac
 by the contact force, :mod:`asperity.friction.elastic`; each contact solve starts from the
 previous pressure's), :func:`family_json` is the JSON object ``asperity derive --pressure
 P1 P2 ... --json`` prints and :func:`family_text` its summary.  Each member is derived on
-its own: its principal direction is found again (it may turn with the load).
+its own: its principal direction is found again (it may turn with the load); side by side
+(the summary's rows, text and plot) their axis coefficients are turned to one reference
+direction, the axial mean of the members' t_a (:func:`asperity.friction.axes.align_rows`),
+while each member keeps its own t_a and its full derivation as found.
 """
 from __future__ import annotations
 
@@ -14,9 +17,7 @@ from dataclasses import dataclass
 
 from .. import __version__
 from ..errors import InputError, check_int
-
-#: the members' axis coefficients, in the order of the text's table
-AXES = ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus")
+from .axes import AXES, REFERENCE_WORDS, align_rows
 
 
 @dataclass(frozen=True)
@@ -59,17 +60,22 @@ def _num(x):
     return float(x) if math.isfinite(x) else None
 
 
-def summary_rows(fam: LawFamily) -> list[dict]:
-    """One row a pressure: the contact's area fraction and the axis coefficients."""
+def summary_rows(fam: LawFamily) -> tuple[list[dict], float]:
+    """One row a pressure: the contact's area fraction, the axis coefficients along the
+    common reference direction (``axes_reversed``: the member's own t_a points the other
+    way, its + and - exchanged) and the member's own principal direction; and the
+    reference direction (deg)."""
     rows = []
     for p, d in zip(fam.pressures, fam.members):
         c = d.texture.elastic
         rows.append({"pressure_Pa": p, "p_over_E_star": p / fam.elastic.E_star,
-                     "area_fraction": c["area_fraction"],
-                     **{k: _num(d.axes[k]) for k in AXES},
+                     "area_fraction": c["area_fraction"], **dict(d.axes),
                      "principal_direction_deg": d.principal_direction_deg,
                      "self_locking": bool(d.self_locking)})
-    return rows
+    ref = align_rows(rows)
+    for r in rows:
+        r.update({k: _num(r[k]) for k in AXES})
+    return rows, ref
 
 
 def family_json(fam: LawFamily) -> dict:
@@ -77,10 +83,12 @@ def family_json(fam: LawFamily) -> dict:
     from .derive import to_json
     e = fam.elastic
     c = fam.members[0].texture.elastic
+    rows, ref = summary_rows(fam)
     return {"asperity_version": __version__, "family": "pressure",
             "pressures_Pa": list(fam.pressures), "E_star_Pa": e.E_star,
             "boundary": c["boundary"], "hardness_Pa": e.hardness,
-            "summary": summary_rows(fam), "members": [to_json(d) for d in fam.members]}
+            "reference_direction_deg": ref, "summary": rows,
+            "members": [to_json(d) for d in fam.members]}
 
 
 def family_text(fam: LawFamily) -> str:
@@ -100,10 +108,12 @@ def family_text(fam: LawFamily) -> str:
     lines += contact_lines(c)[-2:]
     lines += ["", "  p (Pa)      p/E*       contact    mu_a+      mu_a-      mu_b+      mu_b-"
                   "      t_a (deg)"]
-    for r in summary_rows(fam):
+    rows, ref = summary_rows(fam)
+    for r in rows:
         mus = "".join(f"{'locked':<11}" if r[k] is None else f"{r[k]:<11.6f}" for k in AXES)
         lines.append(f"  {r['pressure_Pa']:<11.4g} {r['p_over_E_star']:<10.3g} "
-                     f"{r['area_fraction']:<10.4f} {mus}{r['principal_direction_deg']:.2f}")
+                     f"{r['area_fraction']:<10.4f} {mus}{r['principal_direction_deg']:.2f}"
+                     + ("  (turned)" if r["axes_reversed"] else ""))
     full = [p for p, d in zip(fam.pressures, fam.members)
             if d.texture.elastic["area_fraction"] >= 1.0]
     if full:
@@ -113,16 +123,16 @@ def family_text(fam: LawFamily) -> str:
     if locked:
         lines.append("SELF-LOCKING at p = " + ", ".join(f"{p:g}" for p in locked) + " Pa "
                      "in some directions: friction is unbounded there (see --json)")
-    lines.append("(mu_a+/-: along and against the principal direction t_a found at each "
-                 "pressure; mu_b+/-: at +/-90 deg from it)")
+    lines.append("(" + REFERENCE_WORDS.format(ref=ref) + "; t_a: each pressure's own)")
     return "\n".join(lines)
 
 
 def plot_family(fam: LawFamily, path) -> None:
-    """mu_a+/-, mu_b+/- and the contact area fraction against p / E*."""
+    """mu_a+/-, mu_b+/- (along the common reference direction) and the contact area
+    fraction against p / E*."""
     from ..io import pyplot, save_figure_atomic
     plt = pyplot()
-    rows = summary_rows(fam)
+    rows, ref = summary_rows(fam)
     x = [r["p_over_E_star"] for r in rows]
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
     for k, style in zip(AXES, ("-o", "--o", "-s", "--s")):
@@ -134,6 +144,7 @@ def plot_family(fam: LawFamily, path) -> None:
         a.set_ylabel(label)
         a.grid(True, alpha=0.3)
     ax.legend()
+    ax.set_title(f"along t_a = {ref:.1f} deg (the members' axial mean)", fontsize=9)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)
     plt.close(fig)

@@ -9,8 +9,8 @@ import numpy as np
 
 from .. import __version__
 from ..errors import InputError
+from .axes import AXES, aligned, axial_spread
 
-AXES = ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus")
 #: a window needs at least this share of its pixels defined
 MIN_DEFINED_SHARE = 0.8
 _LABELS = {"area_fraction": "contact fraction", "mu_a_plus": "mu_a+", "mu_a_minus": "mu_a-",
@@ -24,27 +24,6 @@ def spread(values) -> dict:
         return {"mean": None, "sd": None, "min": None, "max": None, "n": 0}
     return {"mean": float(v.mean()), "sd": float(v.std(ddof=1)) if v.size > 1 else None,
             "min": float(v.min()), "max": float(v.max()), "n": int(v.size)}
-
-
-def axial_spread(degrees) -> dict:
-    """Mean of axes (angles modulo 180 deg) and the largest deviation from it."""
-    a = np.radians(np.asarray(degrees, dtype=float))
-    if a.size == 0:
-        return {"mean": None, "max_deviation": None}
-    m = 0.5 * np.angle(np.exp(2j * a).sum())
-    dev = np.abs((a - m + 0.5 * np.pi) % np.pi - 0.5 * np.pi)
-    return {"mean": float(np.degrees(m) % 180.0), "max_deviation": float(np.degrees(dev.max()))}
-
-
-def aligned(r: dict, mean_deg: float) -> tuple[dict, bool]:
-    """A window's axis coefficients along the common principal direction ``mean_deg``:
-    a principal direction is an axis (in [0, 180)), so a window whose t_a points the other
-    way (more than 90 deg from the mean's) has its + and - exchanged; (axes, reversed)."""
-    d = (r["principal_direction_deg"] - mean_deg + 180.0) % 360.0 - 180.0
-    if abs(d) <= 90.0:
-        return {a: r[a] for a in AXES}, False
-    return {"mu_a_plus": r["mu_a_minus"], "mu_a_minus": r["mu_a_plus"],
-            "mu_b_plus": r["mu_b_minus"], "mu_b_minus": r["mu_b_plus"]}, True
 
 
 def summarise(plan, results: list, placement: str, seed: int) -> dict:

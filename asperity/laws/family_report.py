@@ -8,10 +8,8 @@ import math
 
 import numpy as np
 
+from ..friction.axes import AXES, REFERENCE_WORDS, align_rows
 from .family import INTERPOLATION, GaugeFamily
-
-#: the axis coefficients of a member, in the order of the text's table
-AXES = ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus")
 
 
 def member_axes(gl) -> dict:
@@ -21,19 +19,32 @@ def member_axes(gl) -> dict:
     return dict(zip(AXES, map(float, t)))
 
 
+def common_axes(fam: GaugeFamily) -> tuple[list[dict], float]:
+    """Each member's axis coefficients along the family's reference direction (the axial
+    mean of the members' t_a; ``axes_reversed``: the member's t_a points the other way,
+    its + and - exchanged), and that direction (deg)."""
+    rows = [{**member_axes(gl), "principal_direction_deg": gl.principal_direction_deg}
+            for gl in fam.members]
+    ref = align_rows(rows)
+    for r in rows:
+        del r["principal_direction_deg"]
+    return rows, ref
+
+
 def family_summary(fam: GaugeFamily) -> dict:
     """JSON summary of a family: the shared source and contact options, and per member its
-    pressure, axis coefficients, fit figures and contact figures."""
+    pressure, axis coefficients (along the family's ``reference_direction_deg``), fit
+    figures and contact figures."""
     from .summary import summary
     members = []
+    axes, ref = common_axes(fam)
     for k, (p, gl) in enumerate(zip(fam.pressures, fam.members)):
         s = summary(gl)
         s.pop("source")
-        members.append({"pressure_Pa": p, **s, "axes": member_axes(gl),
-                        "contact": fam.contact(k)})
+        members.append({"pressure_Pa": p, **s, "axes": axes[k], "contact": fam.contact(k)})
     return {"law": fam.kind, "family": {"axis": "pressure_Pa", "pressures_Pa":
                                         list(fam.pressures), "interpolation": INTERPOLATION,
-                                        **fam.elastic},
+                                        "reference_direction_deg": ref, **fam.elastic},
             "source": fam.source, "members": members}
 
 
@@ -49,14 +60,16 @@ def format_family(fam: GaugeFamily) -> str:
              "",
              "  p (Pa)      p/E*       contact    mu_a+      mu_a-      mu_b+      mu_b-"
              "      t_a (deg)  max radial err  admissible"]
+    axes, ref = common_axes(fam)
     for k, (p, gl) in enumerate(zip(fam.pressures, fam.members)):
         c = fam.contact(k)
-        ax = member_axes(gl)
+        ax = axes[k]
         lines.append(f"  {p:<11.4g} {p / e['E_star_Pa']:<10.3g} {c['area_fraction']:<10.4f} "
                      + "".join(f"{ax[a]:<11.6f}" for a in AXES)
                      + f"{gl.principal_direction_deg:<10.2f} {gl.fit.max_radial_error:<15.3e} "
-                     + ("yes" if gl.fit.admissible else "NO"))
-    lines += ["(mu_a+/-: the law's friction along and against its t_a; mu_b+/-: at +/-90 deg)",
+                     + ("yes" if gl.fit.admissible else "NO")
+                     + ("  (turned)" if ax["axes_reversed"] else ""))
+    lines += ["(" + REFERENCE_WORDS.format(ref=ref) + "; t_a: each law's own)",
               "between members: " + INTERPOLATION,
               "load shares: the normal force of a frictionless elastic contact at each "
               "pressure (the facet law unchanged); not right where the pressure reaches the "

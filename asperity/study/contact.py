@@ -129,25 +129,39 @@ MAX_ROWS = 2000
 def load_dependence(store) -> list[dict] | None:
     """The completed cases' contact outputs and axis coefficients, by file then pressure:
     ``file`` (libraries), ``pressure_Pa``, ``E_star_Pa``, ``p_over_E_star``,
-    ``contact_area_fraction``, ``mu_a_plus``, ``mu_a_minus``; None without a contact."""
+    ``contact_area_fraction``, ``mu_a_plus``, ``mu_a_minus``, the case's own
+    ``principal_direction_deg``; None without a contact.  A file's rows side by side give
+    mu_a+/- along one ``reference_direction_deg``, the axial mean of that file's t_a
+    (:func:`asperity.friction.axes.align_rows`; ``axes_reversed``: the case's own t_a points
+    the other way, its + and - exchanged); the cases' stored outputs are left as derived."""
+    from ..friction.axes import align_rows
     outs = dict(store.outputs)
     if "contact_area_fraction" not in outs:
         return None
     cols = (["file"] if "file" in store.inputs else []) + \
         [c for c in ("pressure_Pa", "E_star_Pa", "contact_area_fraction", "mu_a_plus",
-                     "mu_a_minus") if c in outs]
+                     "mu_a_minus", "principal_direction_deg") if c in outs]
     cur = store.con.execute(f"SELECT {', '.join(cols)} FROM cases WHERE status = 'ok' "
                             f"ORDER BY case_id")
     rows = [dict(zip(cols, r)) for r in cur]
     for r in rows:
         r["p_over_E_star"] = r["pressure_Pa"] / r["E_star_Pa"]
     rows.sort(key=lambda r: (r.get("file") or "", r["pressure_Pa"]))
-    return rows[:MAX_ROWS]
+    rows = rows[:MAX_ROWS]
+    if "principal_direction_deg" in cols:
+        groups: dict = {}
+        for r in rows:
+            groups.setdefault(r.get("file") or "", []).append(r)
+        for g in groups.values():
+            ref = align_rows(g)
+            for r in g:
+                r["reference_direction_deg"] = ref
+    return rows
 
 
 def plot_load_dependence(rows: list[dict], path) -> None:
-    """mu_a+ and mu_a- against the pressure, the contact fraction against p / E*: one
-    line a file (or a texture)."""
+    """mu_a+ and mu_a- (along each file's reference direction) against the pressure, the
+    contact fraction against p / E*: one line a file (or a texture)."""
     from pathlib import Path
 
     from ..io import pyplot, save_figure_atomic
@@ -176,7 +190,8 @@ def plot_load_dependence(rows: list[dict], path) -> None:
         a.set_xscale("log")
         a.grid(True, alpha=0.3)
         a.legend(fontsize=7)
-    ax.set_title("Friction along and against t_a against the load", fontsize=9)
+    ax.set_title("Friction along and against t_a (each file's axial mean t_a) against the "
+                 "load", fontsize=9)
     bx.set_title("Contact area fraction", fontsize=9)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)
@@ -187,13 +202,21 @@ def load_lines(rows: list[dict], limit: int = 30) -> list[str]:
     """The load-dependence table of the summary's text."""
     from pathlib import Path
     out = ["load dependence (elastic contact):",
-           f"  {'file':<28}{'p (Pa)':<12}{'p/E*':<11}{'contact':<10}{'mu_a+':<10}mu_a-"]
+           f"  {'file':<28}{'p (Pa)':<12}{'p/E*':<11}{'contact':<10}{'mu_a+':<10}"
+           f"{'mu_a-':<10}{'t_a (deg)':<11}ref (deg)"]
     for r in rows[:limit]:
         mus = "".join("-".ljust(10) if r.get(k) is None else f"{r[k]:<10.5f}"
                       for k in ("mu_a_plus", "mu_a_minus"))
+        dirs = "" if r.get("principal_direction_deg") is None else \
+            f"{r['principal_direction_deg']:<11.2f}{r['reference_direction_deg']:.2f}" + \
+            ("  (turned)" if r["axes_reversed"] else "")
         out.append(f"  {Path(r.get('file') or 'texture').name[:27]:<28}"
                    f"{r['pressure_Pa']:<12.4g}{r['p_over_E_star']:<11.3g}"
-                   f"{r['contact_area_fraction']:<10.4f}{mus}".rstrip())
+                   f"{r['contact_area_fraction']:<10.4f}{mus}{dirs}".rstrip())
     if len(rows) > limit:
         out.append(f"  ... {len(rows) - limit} more (summary.json, --export)")
+    if rows and rows[0].get("reference_direction_deg") is not None:
+        out.append("  (mu_a+/-: along and against each case's t_a turned to point within 90 "
+                   "deg of its file's reference direction ref, the axial mean of that file's "
+                   "t_a; where a t_a points the other way its + and - are exchanged)")
     return out
