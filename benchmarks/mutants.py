@@ -73,6 +73,7 @@ WINDOWS = ("test_contact_windows.py",)
 STUDY_CONTACT = ("test_study_contact.py",)
 WEB_CONTACT = ("test_web_contact.py",)
 REPORT = ("test_report.py",)
+FAMILY_AXES = ("test_family_axes.py",)
 
 
 @dataclass(frozen=True)
@@ -626,7 +627,7 @@ MUTANTS = [
            "float(v.std(ddof=1))", "float(v.std())", WINDOWS,
            "the spread between windows as the population sd (n) instead of the sample's "
            "(n - 1)"),
-    Mutant("window-axes-not-turned", "friction/window_summary.py",
+    Mutant("window-axes-not-turned", "friction/axes.py",
            "    if abs(d) <= 90.0:", "    if True:", WINDOWS,
            "windows whose t_a point opposite ways averaged without exchanging + and -"),
     Mutant("window-holes-not-skipped", "friction/elastic_windows.py",
@@ -684,6 +685,36 @@ MUTANTS = [
     Mutant("report-westergaard-width-wrong", "report/contact.py",
            "2.0 / math.pi * math.asin(math.sqrt(f))", "1.0 / math.pi * math.asin(f)", REPORT,
            "the Westergaard closed form of the report mis-stated"),
+    # ---- issue 19: family summaries read every member along one common axis
+    Mutant("family-summary-axes-not-aligned", "friction/family.py",
+           "    ref = align_rows(rows)\n", "    ref = align_rows([dict(r) for r in rows])\n",
+           FAMILY_AXES, "derive's family summary lists each member along its own t_a (a "
+           "member whose t_a crosses 0/180 deg shows mu_a+ and mu_a- exchanged)"),
+    Mutant("fit-family-axes-not-aligned", "laws/family_report.py",
+           '"axes": axes[k],', '"axes": member_axes(gl),', FAMILY_AXES,
+           "fit's family summary gives each law's axes along its own t_a"),
+    Mutant("study-load-axes-over-all-files", "study/contact.py",
+           '            groups.setdefault(r.get("file") or "", [])',
+           '            groups.setdefault("", [])',
+           FAMILY_AXES, "a study's load-dependence rows turned to one axis over all the "
+           "files, not each file's own"),
+    Mutant("study-load-axes-not-aligned", "study/contact.py",
+           "            ref = align_rows(g)\n",
+           "            ref = align_rows([dict(r) for r in g])\n",
+           FAMILY_AXES, "a study's load-dependence rows listed along each case's own t_a"),
+    Mutant("family-reference-first-member", "friction/axes.py",
+           'ref = axial_spread([r["principal_direction_deg"] for r in rows])["mean"]',
+           'ref = rows[0]["principal_direction_deg"] if rows else None', FAMILY_AXES,
+           "the reference direction is the first member's t_a, not the axial mean the "
+           "output states"),
+    Mutant("family-reference-directional-mean", "friction/axes.py",
+           "m = 0.5 * np.angle(np.exp(2j * a).sum())", "m = np.angle(np.exp(1j * a).sum())",
+           FAMILY_AXES + WINDOWS, "the reference is the mean of the t_a as directions, not "
+           "as axes (two t_a 179 and 1 deg average to 90)"),
+    Mutant("family-mu-b-not-exchanged", "friction/axes.py",
+           '"mu_b_plus": r["mu_b_minus"], "mu_b_minus": r["mu_b_plus"]}',
+           '"mu_b_plus": r["mu_b_plus"], "mu_b_minus": r["mu_b_minus"]}', FAMILY_AXES,
+           "a turned member's mu_a+/- exchanged but not its mu_b+/-"),
 ]
 
 
