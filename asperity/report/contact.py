@@ -154,7 +154,7 @@ MEASURED_RATIOS = (1e-3, 3e-3, 1e-2, 3e-2, 1e-1)
 def measured(root: Path) -> list:
     """mu_a+/- and the contact fraction against p/E* of each measured surface (free
     boundary, slope removed, mu 0.1)."""
-    from ..friction.family import derive_family
+    from ..friction.family import derive_family, summary_rows
     from ..surface.contact_facets import ElasticContact, elastic_facets
     from ..surface.prepare import prepare_surface
     from ..surface.topography import HeightMap
@@ -169,12 +169,18 @@ def measured(root: Path) -> list:
             hm = HeightMap(np.array(hm.heights[crop]), hm.dx, hm.dy, source=name)
         fam = derive_family(list(elastic_facets(hm, e, mu=0.1, level_slope=prep.level_slope)),
                             e, n_directions=72)
-        rows.append({"name": name, "shape": hm.heights.shape,
-                     "plus": [d.axes["mu_a_plus"] for d in fam.members],
-                     "minus": [d.axes["mu_a_minus"] for d in fam.members],
+        axes, ref = summary_rows(fam)          # side by side: along one reference axis
+        rows.append({"name": name, "shape": hm.heights.shape, "reference": ref,
+                     "plus": [_locked_inf(r["mu_a_plus"]) for r in axes],
+                     "minus": [_locked_inf(r["mu_a_minus"]) for r in axes],
                      "t_a": [d.principal_direction_deg for d in fam.members],
                      "contact": [d.texture.elastic["area_fraction"] for d in fam.members]})
     return rows
+
+
+def _locked_inf(x):
+    """A summary row's coefficient: None (self-locking) as unbounded, as the member's."""
+    return float("inf") if x is None else x
 
 
 # ----------------------------------------------------------------- the section
@@ -281,13 +287,15 @@ def section(folder: Path) -> list[str]:
         out += ["Measured surfaces (free boundary, slope removed, mu 0.1; the ski scan "
                 "cropped to 192 x 192 pixels). At the lightest loads a few spots of a few "
                 "pixels carry the load: their friction and principal direction are those "
-                "spots' (not resolved: give each spot tens of pixels), not the surface's.",
+                "spots' (not resolved: give each spot tens of pixels), not the surface's. "
+                "mu_a+/-: along and against t_a turned to point within 90 deg of the "
+                "surface's reference direction (ref, the axial mean of its t_a).",
                 "",
-                "| file | pixels | p/E* | contact | mu_a+ | mu_a- | t_a (deg) |",
-                "|---|---|---|---|---|---|---|"]
+                "| file | pixels | p/E* | contact | mu_a+ | mu_a- | t_a (deg) | ref (deg) |",
+                "|---|---|---|---|---|---|---|---|"]
         for m in meas:
             out += [f"| {m['name']} | {m['shape'][0]} x {m['shape'][1]} | {r:g} | {a:.4f} | "
-                    f"{p:.5f} | {q:.5f} | {t:.1f} |"
+                    f"{p:.5f} | {q:.5f} | {t:.1f} | {m['reference']:.1f} |"
                     for r, a, p, q, t in zip(MEASURED_RATIOS, m["contact"], m["plus"],
                                              m["minus"], m["t_a"])]
     else:
