@@ -175,9 +175,20 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
     progress       : callable(fraction, text), else the active progress bar
     workers        : threads of the transforms (default: the cores this process may use)
     """
-    from ..resources import check_memory, cpu_cores
     z, (dx, dy), E, pbar, boundary, H, n_def = check_inputs(heights, pixel_size, E_star,
                                                             pressure, boundary, hardness)
+    tol, maxit, workers = check_options(tol, max_iterations, progress, workers)
+    check_solver_memory(z.shape, boundary)
+    p0 = None if initial is None else check_array("initial", initial, shape=z.shape,
+                                                  finite=False)
+    space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
+    return solve_on(space, z, pbar, H, n_def, tol, maxit, p0, progress)
+
+
+def check_options(tol, max_iterations, progress, workers):
+    """(tol, iteration limit, transform threads) checked (``progress`` a callable or
+    None)."""
+    from ..resources import cpu_cores
     tol = check_range("tol", tol, 1e-15, 0.1)
     maxit = MAX_ITERATIONS if max_iterations is None else \
         check_int("max_iterations", max_iterations, 1, 10 ** 7)
@@ -185,17 +196,25 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
         raise InputError(f"progress must be a callable(fraction, text), got "
                          f"{type(progress).__name__}")
     workers = cpu_cores() if workers is None else check_int("workers", workers, 1, 4096)
-    nx, ny = z.shape
-    check_memory(elastic.solver_bytes(z.shape, boundary),
-                 f"the {boundary} contact solve of {nx} x {ny} pixels",
+    return tol, maxit, workers
+
+
+def check_solver_memory(shape, boundary: str) -> None:
+    """Refuse a solve whose arrays do not fit in the free memory, in one line."""
+    from ..resources import check_memory
+    check_memory(elastic.solver_bytes(shape, boundary),
+                 f"the {boundary} contact solve of {shape[0]} x {shape[1]} pixels",
                  "crop or resample the map to fewer pixels")
-    p0 = None if initial is None else check_array("initial", initial, shape=(nx, ny),
-                                                  finite=False)
-    space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
+
+
+def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
+             progress) -> ContactResult:
+    """The solve of checked arguments (:func:`check_inputs`) on the half-space ``space``
+    (an :class:`.elastic.HalfSpace` of z's shape, reused along a load curve)."""
     out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, maxit, p0,
                    progress)
-    res = ContactResult(**out, E_star=E, boundary=boundary, hardness=H,
-                        pixel_size=(dx, dy), pressure_asked=pbar)
+    res = ContactResult(**out, E_star=space.E_star, boundary=space.boundary, hardness=H,
+                        pixel_size=(space.dx, space.dy), pressure_asked=pbar)
     if not res.converged:
         raise ContactNotConverged(
             f"the contact solve did not converge in {res.iterations} iterations (residual "
