@@ -125,9 +125,6 @@ def _map(args, ec):
             raise InputError(f"{args.texture}: asperity contact needs a height map (a grid "
                              "of heights) or a wedge texture; a mesh has none yet (resample "
                              "it to a height map)")
-        if not np.isfinite(hm.heights).any():
-            raise InputError(f"{args.texture}: the height map has no defined (finite) "
-                             "pixel: nothing can carry the load")
         res = next(contact_solutions(hm, ec, boundary, prep.level_slope))
     nx, ny = hm.heights.shape
     dx, dy = float(hm.dx), float(hm.dy)

@@ -16,8 +16,14 @@ import numpy as np
 
 from ..errors import InputError, check_array, check_int, check_range
 from . import elastic
-from .solver import PRESSURE_OVER_E, ContactResult, check_inputs, check_options, check_solver_memory, \
-    solve_on
+from .solver import (
+    PRESSURE_OVER_E,
+    ContactResult,
+    check_inputs,
+    check_options,
+    check_solver_memory,
+    solve_on,
+)
 
 #: most pressures of one load curve
 MAX_PRESSURES = 1000

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import AsperityError, InputError, check_array, check_choice, check_int, \
-    check_range
+    check_range, is_array
 from . import elastic
 
 #: iterations between two full products u = K p when u is updated incrementally
@@ -129,10 +129,12 @@ def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
 
 def _pixel_size(pixel_size) -> tuple[float, float]:
     from ..surface.topography import pixel_length
-    if np.ndim(pixel_size) == 0:
+    if not is_array(pixel_size):
         d = pixel_length("pixel_size", pixel_size)
         return d, d
     a = check_array("pixel_size", pixel_size, shape=(2,))
+    if a.dtype == object:
+        raise InputError("pixel_size must be one number or two (dx dy), in m")
     return pixel_length("pixel_size dx", float(a[0])), pixel_length("pixel_size dy",
                                                                      float(a[1]))
 
@@ -322,9 +324,9 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
             tau = sgt / denom if denom > 0.0 else 0.0
-        else:                                  # (nearly) every contact pixel plastic
+        else:                                  # one free pixel or none (all plastic)
             G = 0.0
-            gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
+            gbar = c + s1 if n == 1 else float(np.max(np.where(p >= H, u - h, -np.inf)))
             t[...] = 0.0
             r[...] = 0.0
             tau = 1.0 / space.self_compliance
