@@ -19,7 +19,8 @@ from contact_peers import self_affine  # noqa: E402
 
 WEDGE = ["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.2"]
 KEYS = {"area_fraction", "pressure_Pa", "max_pressure_Pa", "mean_gap_m", "E_star_Pa",
-        "boundary", "hardness_Pa", "iterations", "residual", "converged", "full_contact"}
+        "boundary", "hardness_Pa", "iterations", "residual", "converged", "full_contact",
+        "plastic_fraction"}
 E = 1e11
 
 
@@ -80,7 +81,7 @@ def test_periodic_boundary_and_hardness(scan, capsys):
                                            "--boundary", "periodic", "--hardness", "5e9"))
     assert d["boundary"] == "periodic" and d["hardness_Pa"] == 5e9
     assert d["max_pressure_Pa"] == pytest.approx(5e9, rel=1e-12)
-    assert d["texture"]["periodic"] is True
+    assert d["texture"]["periodic"] is True and 0 < d["plastic_fraction"] < d["area_fraction"]
     code, out, _ = run(capsys, "contact", *files(path, "--elastic", "1e11", "--pressure", "1e9",
                                                  "--boundary", "periodic", "--hardness", "5e9"))
     assert code == 0 and "at the hardness (plastic)" in out and "hardness 5e+09 Pa" in out

@@ -92,11 +92,9 @@ def run(args) -> tuple[dict, object, dict]:
 
 
 def _core(res) -> dict:
-    """The contact's keys (README): those of ContactResult.to_dict but the plastic share,
-    with full_contact."""
-    d = res.to_dict()
-    d.pop("plastic_fraction", None)
-    return {**d, "full_contact": res.full_contact}
+    """The contact's keys (README): ContactResult.to_dict (derive's elastic_contact
+    block) and full_contact."""
+    return {**res.to_dict(), "full_contact": res.full_contact}
 
 
 def _map(args, ec):

@@ -31,6 +31,10 @@ Polonsky & Keer (Wear 231, 206, 1999), one iteration:
    half-space, none in contact off it, within :data:`GAP_TOL` of the height range; else the
    residual reported is that violation and the solve did not converge).
 
+A capped solve that does not converge in :data:`PLASTIC_FIRST_TRY` iterations (a cap close
+to the mean pressure: the clipped steps and the load control undo each other) turns to an
+outer loop over the plastic set (:mod:`.plastic`).
+
 u is updated without a transform (u - tau r, scaled) when no pixel was clipped or moved
 by the gap; else, and every :data:`REFRESH` iterations, recomputed as K p.
 """
@@ -56,6 +60,9 @@ THETA = 0.9
 #: out of contact below the half-space, one in contact off it); converged solves stay
 #: near 1e-9 (measured), a solve stuck in a wrong contact set near 0.1
 GAP_TOL = 1e-6
+#: iterations a capped solve tries before the outer loop over the plastic set (:mod:`.plastic`;
+#: converged capped solves take 15 to 60, one whose set stalls never converges)
+PLASTIC_FIRST_TRY = 300
 #: default iteration limit
 MAX_ITERATIONS = 10_000
 #: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
@@ -220,8 +227,16 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
              progress) -> ContactResult:
     """The solve of checked arguments (:func:`check_inputs`) on the half-space ``space``
     (an :class:`.elastic.HalfSpace` of z's shape, reused along a load curve)."""
-    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, maxit, p0,
+    first = maxit if H is None else min(maxit, PLASTIC_FIRST_TRY)
+    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, first, p0,
                    progress)
+    if not out["converged"] and H is not None and maxit > out["iterations"]:
+        from .plastic import solve_plastic    # the plastic set by an outer loop
+        used = out["iterations"]
+        del out
+        out = solve_plastic(_iterate, GAP_TOL, space, z, pbar, H, n_def, tol, maxit - used,
+                            progress)
+        out["iterations"] += used
     res = ContactResult(**out, E_star=space.E_star, boundary=space.boundary, hardness=H,
                         pixel_size=(space.dx, space.dy), pressure_asked=pbar)
     if not res.converged:
