@@ -48,8 +48,7 @@ def plot_contact(result, path, *, heights=None, title: str = "", profile: bool =
         extent = (0.0, p.shape[0] * dx * f, 0.0, p.shape[1] * dy * f)
         state = np.where(np.isnan(ps), np.nan, result.contact[::sx, ::sy].astype(float))
         fig, (a0, a1) = plt.subplots(1, 2, figsize=(11, 4.8))
-        cmap = plt.get_cmap("Greys").copy()
-        cmap.set_bad("tab:orange")
+        cmap = plt.get_cmap("Greys").with_extremes(bad="tab:orange")
         a0.imshow(state.T, origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=1,
                   interpolation="nearest", aspect="equal")
         a0.set_title(f"contact (black; undefined: orange), area fraction "
