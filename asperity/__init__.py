@@ -38,6 +38,7 @@ _LAZY = {
     "TruncatedEllipse": "asperity.laws.sets",
     "read_gauge": "asperity.laws.gauge_file",
     "write_gauge": "asperity.laws.gauge_file",
+    "GaugeFamily": "asperity.laws.family",
     "PlanarLaw": "asperity.laws.planar",
     "coulomb_law": "asperity.laws.planar",
     "ellipse_law": "asperity.laws.planar",

@@ -70,6 +70,11 @@ WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 CONTACT_FRICTION = ("test_contact_friction.py", "test_contact_friction_cli.py")
 CONTACT_SOLVER = ("test_contact_solver.py",)
 CONTACT_CLI = ("test_contact_cli.py",)
+FAMILY = ("test_law_family.py", "test_law_family_cli.py")
+WINDOWS = ("test_contact_windows.py",)
+STUDY_CONTACT = ("test_study_contact.py",)
+WEB_CONTACT = ("test_web_contact.py",)
+REPORT = ("test_report.py",)
 
 
 @dataclass(frozen=True)
@@ -605,6 +610,120 @@ MUTANTS = [
     Mutant("contact-default-boundary-periodic", "cli/contact.py",
            'boundary = ec.boundary_or("free")', 'boundary = ec.boundary_or("periodic")',
            CONTACT_CLI, "a measured file taken as one period by default"),
+    # ---- issue 19: law families over the pressure (gauge files version 2)
+    Mutant("family-weight-linear-in-p", "laws/family.py",
+           "return k, math.log(p / ps[k]) / math.log(ps[k + 1] / ps[k])",
+           "return k, (p - ps[k]) / (ps[k + 1] - ps[k])", FAMILY,
+           "the law between members weighted linearly in p, not in ln p"),
+    Mutant("family-weights-swapped", "laws/family.py",
+           "return (1.0 - w) * a + w * b", "return w * a + (1.0 - w) * b", FAMILY,
+           "between two members the weight goes to the farther one"),
+    Mutant("family-wrong-member", "laws/family.py",
+           "return ps.index(p), 0.0", "return min(ps.index(p) + 1, len(ps) - 1), 0.0", FAMILY,
+           "at a member's pressure the next member is taken"),
+    Mutant("family-wrong-pair", "laws/family.py",
+           'k = int(np.searchsorted(ps, p, side="right")) - 1',
+           'k = max(int(np.searchsorted(ps, p, side="right")) - 2, 0)', FAMILY,
+           "between members k and k+1 the pair below them is used"),
+    Mutant("family-ellipse-not-aligned", "laws/family.py",
+           "if abs(turn) > 0.5 * math.pi:", "if False:", FAMILY,
+           "an ellipse member written with t_a reversed is interpolated semi-axis by "
+           "semi-axis as if it were not"),
+    Mutant("family-set-valued-merged", "laws/family.py",
+           "if np.array_equal(left[j], right[j]):", "if True:", FAMILY,
+           "a set-valued direction's right limit dropped from the interpolated points"),
+    Mutant("family-written-as-version-1", "laws/gauge_file.py",
+           '"version": FAMILY_VERSION, "asperity_version"',
+           '"version": VERSION, "asperity_version"', FAMILY,
+           "a family written with the schema version of a single law"),
+    Mutant("family-member-texture-lost", "laws/gauge_file.py",
+           'one["source"]["texture"] = {**obj["source"]["texture"], **m["texture"]}',
+           'one["source"]["texture"] = obj["source"]["texture"]', FAMILY,
+           "a member's load-dependent texture figures (facets carrying load) lost on reading"),
+    Mutant("family-law-at-first-member", "laws/family.py",
+           "gl = gauge.at(pressure, name)", "gl = gauge.members[0]", FAMILY,
+           "slide / law / risk take a family's first member whatever the pressure"),
+    Mutant("risk-family-first-pressure", "microslip/friction.py",
+           "gl, how = law_at(gauge, p, where, name)",
+           "gl, how = law_at(gauge, gauge.pressures[0], where, name)", FAMILY,
+           "risk takes a family at its lightest pressure, not the assembly's"),
+    Mutant("two-node-pressure-times-area", "microslip/assembly.py",
+           'else (self.params["N"] / area, where)', 'else (self.params["N"] * area, where)',
+           FAMILY, "the two-node contact pressure N x contact_area"),
+    Mutant("risk-elastic-pressure-ignored", "cli/risk.py",
+           "        args.pressure = [p]\n", "        args.pressure = [1e6]\n", FAMILY,
+           "risk --elastic without --pressure solves at a fixed pressure, not the "
+           "assembly's"),
+    # ---- issue 19: windows of a scan beyond one solve, contact parameters of studies
+    Mutant("window-read-axes-swapped", "friction/elastic_windows.py",
+           "        a0, b0 = j0, i0", "        a0, b0 = i0, j0", WINDOWS,
+           "a file whose lines are columns (Fortran .npy, x3p, text matrices) read with the "
+           "window's x and y origins swapped"),
+    Mutant("window-origin-past-the-edge", "friction/elastic_windows.py",
+           "sx, sy = nx - window + 1, ny - window + 1", "sx, sy = nx - window + 2, ny - window + 2",
+           WINDOWS, "window origins one pixel too far: the last window runs past the scan"),
+    Mutant("window-sd-population", "friction/window_summary.py",
+           "float(v.std(ddof=1))", "float(v.std())", WINDOWS,
+           "the spread between windows as the population sd (n) instead of the sample's "
+           "(n - 1)"),
+    Mutant("window-axes-not-turned", "friction/window_summary.py",
+           "    if abs(d) <= 90.0:", "    if True:", WINDOWS,
+           "windows whose t_a point opposite ways averaged without exchanging + and -"),
+    Mutant("window-holes-not-skipped", "friction/elastic_windows.py",
+           "    if share < MIN_DEFINED_SHARE:", "    if share < 0.0:", WINDOWS,
+           "windows with too few defined pixels solved as if whole"),
+    Mutant("study-contact-value-ignored", "study/contact.py",
+           '            d[k.split(".", 1)[1]] = float(v)', "            pass", STUDY_CONTACT,
+           "a case's contact.* value never replaces the [contact] table's"),
+    Mutant("study-library-cases-misordered", "study/spec.py",
+           "return tuple(f for f in self.files for _ in range(self._per_file))",
+           "return tuple(self.files) * self._per_file", STUDY_CONTACT,
+           "a library's cases pair each file with another file's grid point"),
+    Mutant("study-contact-zero-allowed", "study/contact.py",
+           "    check_range(where if p.distribution == \"grid\" else f\"{where}.low\", low, 0.0, "
+           "None,\n                low_open=True,",
+           "    check_range(where if p.distribution == \"grid\" else f\"{where}.low\", low, 0.0, "
+           "None,\n                low_open=False,", STUDY_CONTACT,
+           "a contact parameter whose distribution reaches 0 Pa accepted"),
+    # ---- issue 19: the Surface page's elastic contact and the report's section
+    Mutant("web-contact-family-collapsed", "web/elastic.py",
+           "ps[0] if len(ps) == 1 else tuple(ps)", "ps[0]", WEB_CONTACT,
+           "several pressures of the Surface page solved at the first only"),
+    Mutant("web-contact-range-linear", "web/elastic.py",
+           "lo * math.exp(r * k / (n - 1))", "lo + (hi - lo) * k / (n - 1)", WEB_CONTACT,
+           "a range of pressures spaced linearly while the page says in log"),
+    Mutant("web-contact-materials-nu-dropped", "web/elastic.py",
+           'E = effective_modulus(mat["E1"], mat["nu1"], mat["E2"], mat["nu2"])',
+           'E = effective_modulus(mat["E1"], 0.0, mat["E2"], mat["nu2"])', WEB_CONTACT,
+           "E* from the materials without the body's Poisson ratio"),
+    Mutant("web-contact-hardness-unplaced", "web/elastic.py",
+           "if H is not None and H <= max(ps):", "if H is not None and H <= 0:", WEB_CONTACT,
+           "a hardness below the pressure refused by the library, not next to its field"),
+    Mutant("web-contact-boundary-periodic", "web/elastic.py",
+           'boundary=e.get("boundary"), hardness', 'boundary=e.get("boundary") or '
+           '"periodic", hardness', WEB_CONTACT,
+           "a measured scan solved as periodic by default on the page"),
+    Mutant("web-contact-law-first-pressure", "web/elastic.py",
+           "        k = int(idx)", "        k = 0", WEB_CONTACT,
+           "the Law page fits the first pressure of a family whatever was chosen"),
+    Mutant("web-contact-map-unit-fixed", "web/figures_contact.py",
+           'for m in maps], "Pa")', 'for m in maps][:0] + [1e6], "Pa")', WEB_CONTACT,
+           "the contact map in MPa whatever the pressures"),
+    Mutant("web-contact-undefined-hidden", "web/figures_contact.py",
+           '"z": np.where(undefined, 1.0, np.nan).T.tolist(),',
+           '"z": np.full(z.shape, np.nan).T.tolist(),', WEB_CONTACT,
+           "undefined pixels of the contact map not drawn as such"),
+    Mutant("web-contact-undefined-as-zero", "web/figures_contact.py",
+           "return np.where(n > 0, s / np.where(n > 0, n, 1), np.nan)",
+           "return np.where(n > 0, s / np.where(n > 0, n, 1), 0.0)", WEB_CONTACT,
+           "undefined blocks of a large contact map shown as out of contact"),
+    Mutant("report-hertz-radius-halved-area", "report/contact.py",
+           "a_num = math.sqrt(res.contact.sum() * dx * dx / math.pi)",
+           "a_num = math.sqrt(res.contact.sum() * dx * dx / (2 * math.pi))", REPORT,
+           "the Hertz contact radius measured from half the contact area"),
+    Mutant("report-westergaard-width-wrong", "report/contact.py",
+           "2.0 / math.pi * math.asin(math.sqrt(f))", "1.0 / math.pi * math.asin(f)", REPORT,
+           "the Westergaard closed form of the report mis-stated"),
 ]
 
 

@@ -94,10 +94,10 @@ def test_fit_records_the_contact_in_the_gauge_source(scan, capsys, tmp_path):
                                    "--directions", "72"))
     src = json.loads(gauge.read_text())["source"]
     assert src["elastic_contact"]["pressure_Pa"] == pytest.approx(5e6)
-    bad = tmp_path / "h.json"
-    code, _, err = run(capsys, "fit", *files(path, "--elastic", "1e9", "--pressure", "1e6",
-                                             "5e6", "-o", bad))
-    assert code == 1 and "family of laws" in err and not bad.exists()
+    bad = tmp_path / "h.json"                   # a family must be increasing
+    code, _, err = run(capsys, "fit", *files(path, "--elastic", "1e9", "--pressure", "5e6",
+                                             "1e6", "-o", bad))
+    assert code == 1 and "strictly increasing" in err and not bad.exists()
 
 
 def test_risk_takes_the_weighted_friction(capsys, tmp_path):

@@ -348,7 +348,9 @@ def test_contact_benchmark_runs_every_solver_on_the_same_problem(capsys):
         for solver in ("asperity", "contactmechanics", "plain"):
             r = case_[solver]
             assert "error" not in r, (key, solver, r)
-            assert r["pixels"] == 64 * 64 and r["peak_bytes"] > 0 and r["iterations"] > 0
+            # the peak above the loaded map is a figure of big maps: at 64^2 it can be 0
+            assert r["pixels"] == 64 * 64 and r["iterations"] > 0
+            assert r["bytes_per_pixel"] == pytest.approx(r["peak_bytes"] / r["pixels"])
             assert len(r["iterations_each"]) == (8 if key == "periodic curve" else 1)
             if solver != "asperity":
                 assert r["rel_l2_vs_asperity"] < 1e-6, (key, solver)

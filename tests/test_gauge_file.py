@@ -54,7 +54,7 @@ def _mutate(obj, path, value):
 
 
 @pytest.mark.parametrize("path,value,msg", [
-    (["version"], 2, "field version: unknown gauge-file version 2"),
+    (["version"], 3, "field version: unknown gauge-file version 3"),
     (["format"], "other", "field format must be 'asperity-gauge'"),
     (["law"], KeyError, "missing field law"),
     (["parameters", "D", "h"], KeyError, "missing field parameters.D.h"),

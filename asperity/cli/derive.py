@@ -58,6 +58,22 @@ def add_parser(sub) -> None:
                              "to 4096; 0: in this process, the default)",
                           "run the tiles on an existing Dask cluster; the workers read the "
                           "tiles from the file's path")
+    w = p.add_argument_group(
+        "elastic contact of scans beyond one solve (windows)",
+        "The contact is long-range: tiles do not decouple.  With --elastic and one "
+        "--pressure, --window W solves K windows of W x W pixels, each on its own (read "
+        "from the file alone, free boundary by default), and reports each window's contact "
+        "and friction, their mean and spread: an estimate from K windows, not the whole "
+        "scan's contact.  --workers / --scheduler run the windows on a Dask cluster.")
+    w.add_argument("--window", metavar="W", default=None,
+                   help="window side in pixels, 16 to the scan's smaller side (None: no windows)")
+    w.add_argument("--windows", metavar="K", default=None,
+                   help="number of windows, 1 to 10000 (None: 8)")
+    w.add_argument("--window-placement", choices=["grid", "random"], default=None,
+                   help="grid: a regular grid from edge to edge of the scan; random: a uniform "
+                        "position in each stratum (--window-seed) (None: grid)")
+    w.add_argument("--window-seed", metavar="S", default=None,
+                   help="seed of --window-placement random (None: 0)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
                                                       "(surfaces: and a height-map preview)")
@@ -68,6 +84,10 @@ def add_parser(sub) -> None:
 def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json."""
     from ..friction.derive import derive, to_json
+    if _windowed(args):
+        from .derive_windows import derive_windows_args
+        s = derive_windows_args(args)
+        return s, s
     scan = _scan(args)
     if scan is not None:
         d = _derive_tiles(args, *scan)
@@ -87,6 +107,18 @@ def run(args) -> dict:
     return d, to_json(d)
 
 
+def _windowed(args) -> bool:
+    """--window is given (its companions without it are refused)."""
+    from ..errors import InputError
+    if args.window is None:
+        for d in ("windows", "window_placement", "window_seed"):
+            if getattr(args, d) is not None:
+                raise InputError(f"--{d.replace('_', '-')} needs --window (the window side "
+                                 "in pixels)")
+        return False
+    return True
+
+
 def _scan(args):
     """(lines of the height map, tile lines, workers) when it is derived in tiles, else None."""
     from ..errors import InputError
@@ -98,7 +130,8 @@ def _scan(args):
         if rows or distributed:
             flag = "--tile-rows" if rows else "--workers" if workers else "--scheduler"
             raise InputError(f"--elastic solves the whole map in memory; not with {flag} "
-                             "(the contact is long-range: tiles do not decouple)")
+                             "(the contact is long-range: tiles do not decouple; --window W "
+                             "estimates it from windows)")
         return None
     if args.texture is None or is_texture_file(args.texture):
         if rows is not None or distributed:
@@ -163,6 +196,12 @@ def main(args) -> int:
     except ContactNotConverged as exc:
         return contact_failed("derive", exc)
     from ..friction.family import LawFamily
+    if isinstance(d, dict):                     # --window: an estimate from windows
+        from ..friction.window_summary import plot_windows, window_text
+        if args.plot:
+            plot_windows(d, args.plot)
+        emit(args, obj, window_text(d))
+        return 0
     if isinstance(d, LawFamily):                # several --pressure values
         from ..friction.family import family_text, plot_family
         if args.plot:

@@ -23,7 +23,10 @@ def add_parser(sub) -> None:
                     "associated sliding. Prints the fit quality: radial error, force-direction "
                     "error, and the law against the texture at the directions midway between "
                     "the fitted ones (not used in the fit). Exports (CSV table, Abaqus block) "
-                    "are made from the gauge file by `asperity law`.",
+                    "are made from the gauge file by `asperity law`. With --elastic and several "
+                    "--pressure values (strictly increasing) one law is fitted a pressure, "
+                    "the same kind for each: a law family, written as a version-2 gauge file "
+                    "(README); --plot then draws the members' reservoirs coloured by pressure.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
@@ -41,21 +44,54 @@ def add_parser(sub) -> None:
 
 
 def run(args):
-    """Python API of the command: (GaugeLaw, the JSON object printed with --json)."""
+    """Python API of the command: (GaugeLaw, or GaugeFamily with several --pressure values,
+    the JSON object printed with --json)."""
     from ..friction.derive import derive
     from ..laws.fitting import fit_derivation
     from ..progress import progress_bar
-    from .sources import texture_from_args
-    texture, _ = texture_from_args(args)
-    with progress_bar("facets") as progress:
-        d = derive(texture, args.contact, "closed-form", args.directions, progress=progress)
-    gl = fit_derivation(d, LAWS[args.law])
-    obj = summary(gl)
+    from .sources import elastic_from_args, texture_from_args
+    elastic = elastic_from_args(args, several=True)
+    if elastic is not None and elastic.family:
+        gl = _fit_family(args, elastic)
+        from ..laws.family_report import family_summary
+        obj = family_summary(gl)
+    else:
+        texture, _ = texture_from_args(args)
+        with progress_bar("facets") as progress:
+            d = derive(texture, args.contact, "closed-form", args.directions,
+                       progress=progress)
+        gl = fit_derivation(d, LAWS[args.law])
+        obj = summary(gl)
     if args.output:
         from ..laws.gauge_file import write_gauge
         write_gauge(args.output, gl)
         obj["output"] = str(args.output)
     return gl, obj
+
+
+def _fit_family(args, elastic):
+    """One law per --pressure value (same kind and options), as a GaugeFamily."""
+    from ..errors import InputError
+    from ..friction.family import derive_family
+    from ..laws.family import GaugeFamily
+    from ..laws.fitting import fit_derivation
+    from ..progress import progress_bar
+    from .sources import texture_from_args
+    ps = elastic.pressures
+    for a, b in zip(ps, ps[1:]):
+        if not b > a:
+            raise InputError(f"--pressure values of a law family must be strictly increasing, "
+                             f"got {b:g} after {a:g}")
+    textures, _ = texture_from_args(args, several=True)
+    with progress_bar("facets") as progress:
+        fam = derive_family(textures, elastic, args.contact, args.directions, progress)
+    laws = []
+    for p, d in zip(ps, fam.members):
+        try:
+            laws.append(fit_derivation(d, LAWS[args.law]))
+        except InputError as exc:
+            raise InputError(f"--pressure {p:g} Pa: {exc}") from None
+    return GaugeFamily(ps, tuple(laws))
 
 
 def main(args) -> int:
@@ -65,6 +101,14 @@ def main(args) -> int:
         gl, obj = run(args)
     except ContactNotConverged as exc:
         return contact_failed("fit", exc)
+    from ..laws.family import GaugeFamily
+    if isinstance(gl, GaugeFamily):
+        from ..laws.family_report import format_family, plot_family
+        if args.plot:
+            plot_family(gl, args.plot)
+        emit(args, obj, format_family(gl), (("gauge file (version 2, a law family)",
+                                             args.output),))
+        return 0
     if args.plot:
         from ..laws.plot import plot_law
         plot_law(gl, args.plot)

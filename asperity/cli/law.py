@@ -20,10 +20,17 @@ def add_parser(sub) -> None:
                     "principal frame, t_a along the gauge's principal direction) and --abaqus "
                     "(*FRICTION, ANISOTROPIC block of the best symmetric orthotropic ellipse of "
                     "the gauge's own law, with comment lines naming the law and its source and "
-                    "stating what the ellipse loses).",
+                    "stating what the ellipse loses). A law family (a version-2 gauge file) is "
+                    "taken at --pressure; without it --csv adds a pressure_Pa column and holds "
+                    "every member, --abaqus writes one block a member, --plot draws the "
+                    "members' reservoirs coloured by pressure.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("gauge", metavar="GAUGE.json", help="gauge file written by asperity fit")
     p.add_argument("--psi", type=float, metavar="DEG", help="sliding direction in degrees")
+    p.add_argument("--pressure", type=float, metavar="P_PA",
+                   help="a law family (version-2 gauge file): take the law at this nominal "
+                        "pressure, Pa (interpolated between the members, within their range); "
+                        "without it a family's exports hold every member")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw C, D, the data and the sliding rule")
     p.add_argument("--csv", metavar="FILE.csv", help="write the polar table psi_deg,p_a,p_b")
@@ -39,14 +46,23 @@ def add_parser(sub) -> None:
 
 def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json."""
-    from ..errors import check_int, check_range
+    from ..errors import InputError, check_int, check_range
     from ..laws.gauge_file import read_gauge
     from ..laws.summary import force_at, summary
     if args.psi is not None:
         check_range("--psi", args.psi, -3600.0, 3600.0, unit="deg")
     check_int("--csv-directions", args.csv_directions, 4, 1_000_000)
     gl = read_gauge(args.gauge)
+    from ..laws.family import GaugeFamily, law_at
+    if isinstance(gl, GaugeFamily) and args.pressure is None:
+        return _family(args, gl)
+    if args.pressure is not None and not isinstance(gl, GaugeFamily):
+        raise InputError(f"--pressure applies to a law family; {args.gauge} holds one law "
+                         "(version 1)")
+    gl, how = law_at(gl, args.pressure, "--pressure", str(args.gauge))
     obj = force_at(gl, args.psi) if args.psi is not None else summary(gl)
+    if how is not None:
+        obj["family_pressure"] = how
     if args.csv:
         from ..laws.export import write_csv
         write_csv(args.csv, gl, args.csv_directions)
@@ -57,6 +73,24 @@ def run(args) -> dict:
         from ..laws.plot import plot_law
         plot_law(gl, args.plot)
     return gl, obj
+
+
+def _family(args, fam):
+    """A law family without --pressure: its summary and every member's exports."""
+    from ..errors import InputError
+    from ..laws import family_report as R
+    if args.psi is not None:
+        raise InputError(f"{args.gauge} holds a law family over the pressures "
+                         f"{fam.pressures[0]:g} to {fam.pressures[-1]:g} Pa: --psi needs "
+                         "--pressure (the nominal contact pressure, Pa)")
+    from ..io import write_text_atomic
+    if args.csv:
+        write_text_atomic(args.csv, R.family_table(fam, args.csv_directions))
+    if args.abaqus:
+        write_text_atomic(args.abaqus, R.family_abaqus(fam))
+    if args.plot:
+        R.plot_family(fam, args.plot)
+    return fam, R.family_summary(fam)
 
 
 def main(args) -> int:
@@ -81,8 +115,16 @@ def main(args) -> int:
             say(f"set-valued: any force on the segment ({a[0]:.6f}, {a[1]:.6f}) -- "
                 f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
     else:
-        from ..laws.summary import format_fit
+        from ..laws.family import GaugeFamily
         say(f"gauge file: {args.gauge}")
-        say(format_fit(gl))
+        if isinstance(gl, GaugeFamily):
+            from ..laws.family_report import format_family
+            say(format_family(gl))
+        else:
+            from ..laws.summary import format_fit
+            if obj.get("family_pressure"):
+                from ..laws.family import how_words
+                say(how_words(obj["family_pressure"]))
+            say(format_fit(gl))
     written_lines(outputs, stream)
     return 0

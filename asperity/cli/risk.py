@@ -33,7 +33,9 @@ def add_parser(sub) -> None:
                     "cycle, no drift), ratchet (a drift every cycle) or slides-off, with dT_c, the margin dT_range/(2 dT_c), the drift per cycle "
                     "(negative: towards -x), the drift after N cycles and the cycles until the "
                     "tolerance is reached.  Without a texture the assembly file's [friction] "
-                    "table is used.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
+                    "table is used.  With --elastic and no --pressure the contact is solved at "
+                    "the assembly's contact pressure (strip: p; two-node: N / contact_area); a "
+                    "gauge file holding a law family is taken at that pressure.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
                     "of two wedge parameters (alpha, beta, mu_alpha, mu_beta).",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     add_source_arguments(p)
@@ -104,6 +106,7 @@ def run(args) -> dict:
     from ..microslip.risk import assembly_friction, assess_assembly
     asm = load_assembly(args.assembly)
     cycles, tol, mm, dyn = _settings(args, asm)
+    pressure = _elastic_pressure(args, asm)
     if elastic_from_args(args, several=False) is not None:
         if not _texture_given(args):
             raise InputError("--elastic weights the faces of a texture or surface: give one "
@@ -124,8 +127,36 @@ def run(args) -> dict:
     friction = assembly_friction(asm, texture, texture_name=args.texture or "wedge flags",
                                  contact=args.contact, slip_axis_deg=args.slip_axis,
                                  textured=args.textured)
+    if pressure is not None:
+        friction.detail["contact_pressure"] = pressure
     return assess_assembly(asm, friction, cycles=cycles, tolerance=tol, max_marched=mm,
                            dynamic_steps=dyn)
+
+
+def _elastic_pressure(args, asm):
+    """With --elastic: the block ``contact_pressure`` of the friction's JSON.  Without
+    --pressure the contact is solved at the assembly's contact pressure (``args.pressure``
+    set to it); a --pressure other than the assembly's is used as asked, with a note."""
+    import math
+    if args.elastic is None:
+        return None
+    p, where = asm.contact_pressure()
+    if args.pressure is None:
+        if p is None:
+            raise InputError("--elastic without --pressure solves the contact at the "
+                             "assembly's contact pressure, and this two-node assembly gives "
+                             "none: add assembly.contact_area (m^2, the nominal contact area "
+                             "of one node) to the assembly file, or give --pressure")
+        args.pressure = [p]
+        return {"pressure_Pa": p, "from": where, "solved": True}
+    if len(args.pressure) != 1:
+        return None                      # refused by elastic_from_args
+    x = args.pressure[0]
+    out = {"pressure_Pa": x, "from": "--pressure", "solved": True}
+    if p is not None and not math.isclose(x, p, rel_tol=1e-9):
+        out["note"] = (f"--pressure {x:g} Pa is not the assembly's contact pressure {p:g} Pa "
+                       f"({where}): the contact is solved at --pressure, as asked")
+    return out
 
 
 def parse_map_axis(text: str):

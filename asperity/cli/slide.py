@@ -28,12 +28,18 @@ def add_parser(sub) -> None:
                     "along t_a and mu2 along t_b). Prints the rest point, stop time and the "
                     "deflection: the signed angle from the initial velocity to the line from "
                     "start to rest (positive towards t_b). Exit status 3 if the fixed-point "
-                    "iteration did not converge at some step (reported, with the residual).",
+                    "iteration did not converge at some step (reported, with the residual). A "
+                    "gauge file holding a law family (version 2) needs --pressure, the body's "
+                    "nominal normal pressure: its law is taken at it.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
     p.add_argument("--law", choices=LAWS, default=None,
                    help="law (default: the gauge file's; without one coulomb if only --mu1 "
                         "is given or mu1 = mu2, else ellipse)")
+    p.add_argument("--pressure", type=float, metavar="P_PA",
+                   help="nominal normal pressure of the body on the plane, Pa: required when "
+                        "the gauge file holds a law family (version 2), whose law is taken at "
+                        "it (interpolated between the members); refused otherwise")
     p.add_argument("--mu1", type=float, metavar="X", help="friction coefficient along t_a")
     p.add_argument("--mu2", type=float, metavar="Y", help="friction coefficient along t_b")
     p.add_argument("--u0", type=float, required=True, metavar="M_S", help="initial speed (m/s)")
@@ -58,16 +64,29 @@ def add_parser(sub) -> None:
 
 def build_law(args):
     """The PlanarLaw selected by the arguments (validated)."""
+    return _build(args)[0]
+
+
+def _build(args):
+    """(PlanarLaw, how a law family was taken at --pressure or None)."""
     from ..dynamics.moreau import LIMITS
     from ..errors import InputError, check_range
     from ..laws import planar as L
+    if args.pressure is not None and not args.gauge:
+        raise InputError("--pressure takes the law of a law family (a version-2 gauge file) at "
+                         "the body's nominal pressure; built-in laws do not depend on it")
     if args.gauge:
         if args.mu1 is not None or args.mu2 is not None:
             raise InputError("--mu1/--mu2 do not apply with a gauge file (the file holds the law)")
         if args.law == "coulomb":
             raise InputError("--law coulomb takes --mu1, not a gauge file")
         from ..laws.gauge_file import read_gauge
+        from ..laws.family import GaugeFamily, law_at
         gl = read_gauge(args.gauge)
+        if args.pressure is not None and not isinstance(gl, GaugeFamily):
+            raise InputError(f"--pressure applies to a law family; {args.gauge} holds one law "
+                             "(version 1)")
+        gl, how = law_at(gl, args.pressure, "--pressure", str(args.gauge))
         kind = args.law
         if kind == "ellipse" and gl.kind != "truncated-ellipse":
             raise InputError(f"--law ellipse needs a truncated-ellipse gauge file, "
@@ -75,7 +94,7 @@ def build_law(args):
         if kind == "star" and gl.kind != "star":
             raise InputError(f"--law star needs a star gauge file, {args.gauge} holds a "
                              f"{gl.kind} law (use --law ellipse or collinear)")
-        return L.from_gauge(gl, None if kind in (None, "ellipse", "star") else kind)
+        return L.from_gauge(gl, None if kind in (None, "ellipse", "star") else kind), how
     if args.mu1 is None:
         raise InputError("--mu1 is required without a gauge file (friction coefficient along "
                          "t_a, in [1e-6, 100])")
@@ -86,14 +105,14 @@ def build_law(args):
         if mu2 is not None and mu2 != mu1:
             raise InputError(f"--law coulomb is isotropic: give --mu1 alone or --mu2 equal to "
                              f"it, got --mu1 {mu1:g} --mu2 {mu2:g}")
-        return L.coulomb_law(mu1)
+        return L.coulomb_law(mu1), None
     if mu2 is None:
         raise InputError(f"--law {law} needs --mu2 (friction coefficient along t_b, in [1e-6, 100])")
     if law == "ellipse":
-        return L.ellipse_law(mu1, mu2)
+        return L.ellipse_law(mu1, mu2), None
     if law == "collinear":
-        return L.collinear_law(mu1=mu1, mu2=mu2)
-    return L.star_law(mu1, mu2)
+        return L.collinear_law(mu1=mu1, mu2=mu2), None
+    return L.star_law(mu1, mu2), None
 
 
 def run(args):
@@ -108,7 +127,7 @@ def run(args):
     dt = check_range("--dt", args.dt, *LIMITS["dt"], unit="s")
     tol = check_range("--tol", args.tol, 1e-15, 1e-3)
     maxit = check_int("--max-iterations", args.max_iterations, 1, 1_000_000)
-    law = build_law(args)
+    law, how = _build(args)
     halt = args.t_end is None
     if halt:
         t_end = 1.5 * u0 / (g * law.min_tangential()) + 10 * dt
@@ -127,6 +146,8 @@ def run(args):
                         t_end=None if halt else t_end, tol=tol)
     if args.gauge:
         obj["gauge"] = str(args.gauge)
+    if how is not None:
+        obj["family_pressure"] = how
     if args.csv:
         from ..io import write_text_atomic
         write_text_atomic(args.csv, path_csv(res))
@@ -149,6 +170,9 @@ def main(args) -> int:
         say(json_text(obj))
     else:
         say(f"law: {law.description}")
+        if obj.get("family_pressure"):
+            from ..laws.family import how_words
+            say(how_words(obj["family_pressure"]))
         if obj["rest"] is not None:
             say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m after "
                 f"{obj['stop_time']:.6g} s ({obj['steps']} steps of {obj['dt']:g} s), "

@@ -26,7 +26,9 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "despike": "--despike", "tile_lines": "--tile-rows",
                 "pressure / E_star": "--pressure / --elastic", "E_star": "--elastic",
                 "pressure": "--pressure", "hardness": "--hardness",
-                "max_iterations": "--max-iterations", "tol ": "--tol "}
+                "max_iterations": "--max-iterations", "tol ": "--tol ",
+                "window_placement": "--window-placement", "window_seed": "--window-seed",
+                "windows": "--windows", "window ": "--window "}
 #: the elastic-contact flags (dest -> flag)
 ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
                  "hardness": "--hardness"}
@@ -90,7 +92,7 @@ def add_elastic_arguments(p) -> None:
                    help="effective modulus E* of the elastic half-space, Pa (> 0)")
     e.add_argument("--pressure", type=float, nargs="+", metavar="P_PA",
                    help="nominal mean pressure over the map's projected area, Pa (> 0); "
-                        "several (derive only): a law for each")
+                        "several (derive, fit): a law for each, a law family")
     e.add_argument("--boundary", choices=["periodic", "free"], default=None,
                    help="periodic: the map is one period; free: a non-periodic scan "
                         "(default: free for files, periodic for wedge textures)")
@@ -134,8 +136,9 @@ def elastic_from_args(args, several: bool):
         elastic = ElasticContact(args.elastic, p[0] if len(p) == 1 else tuple(p),
                                  boundary=args.boundary, hardness=args.hardness)
     if elastic.family and not several:
-        raise InputError("several --pressure values make a family of laws; a gauge file "
-                         "holding a family is not supported yet: give one --pressure")
+        raise InputError("several --pressure values make a family of laws (derive and fit "
+                         "take them); this command takes the law at one pressure: give one "
+                         "--pressure")
     return elastic
 
 

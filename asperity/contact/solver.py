@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import AsperityError, InputError, check_array, check_choice, check_int, \
-    check_range, is_array
+    check_range
 from . import elastic
 
 #: iterations between two full products u = K p when u is updated incrementally
@@ -136,7 +136,8 @@ def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
 
 def _pixel_size(pixel_size) -> tuple[float, float]:
     from ..surface.topography import pixel_length
-    if not is_array(pixel_size):
+    if not isinstance(pixel_size, (list, tuple, np.ndarray)) or (
+            isinstance(pixel_size, np.ndarray) and pixel_size.ndim == 0):
         d = pixel_length("pixel_size", pixel_size)
         return d, d
     a = check_array("pixel_size", pixel_size, shape=(2,))

@@ -110,8 +110,9 @@ def wedge_heightmap(texture, p_over_E: float):
     return hm, prof, dx
 
 
-def wedge_contact(texture, elastic) -> list[ElasticWedge]:
-    """``texture`` weighted by the contact force at each pressure of ``elastic``."""
+def wedge_contact(texture, elastic, observe=None) -> list[ElasticWedge]:
+    """``texture`` weighted by the contact force at each pressure of ``elastic``
+    (``observe``: see :func:`asperity.surface.contact_facets.contact_solutions`)."""
     from ..surface.contact_facets import contact_solutions
     hm, prof, dx = wedge_heightmap(texture, min(elastic.pressures) / elastic.E_star)
     boundary = elastic.boundary_or("periodic")
@@ -120,7 +121,7 @@ def wedge_contact(texture, elastic) -> list[ElasticWedge]:
                          "by construction), got free")
     nfaces = texture.faces().gradient.shape[0]
     out = []
-    for res in contact_solutions(hm, elastic, boundary, False):
+    for res in contact_solutions(hm, elastic, boundary, False, observe):
         force = segment_forces(res.pressure[:, 0], dx, prof.x[:-1], prof.x[1:])
         w = np.array([force[prof.face == k].sum() for k in range(nfaces)])
         flat = prof.face < 0
@@ -133,17 +134,18 @@ def wedge_contact(texture, elastic) -> list[ElasticWedge]:
     return out
 
 
-def elastic_textures(texture, elastic) -> list:
+def elastic_textures(texture, elastic, observe=None) -> list:
     """One texture per pressure of ``elastic`` whose faces weigh the contact force (see
-    the module's docstring); InputError for what has no height grid."""
+    the module's docstring); InputError for what has no height grid.  ``observe(result)``
+    sees each pressure's ContactResult (a wedge's: its profile, 2 columns)."""
     from ..surface.contact_facets import check_elastic, elastic_facets
     from ..surface.topography import HeightMap
     elastic = check_elastic(elastic)
     if isinstance(texture, HeightMap):
-        return list(elastic_facets(texture, elastic))
+        return list(elastic_facets(texture, elastic, observe=observe))
     if callable(getattr(texture, "profile", None)) and getattr(texture, "kind", "") in (
             "wedge", "gaussian-wedge"):
-        return wedge_contact(texture, elastic)
+        return wedge_contact(texture, elastic, observe)
     what = "a surface's facets (they have lost the height grid: give the HeightMap, or " \
            "load_elastic(path, ...))" if getattr(texture, "kind", "") == "surface" else \
         f"{type(texture).__name__}"

@@ -49,10 +49,13 @@ def default_tile_lines(src) -> int:
 
 
 class _Runner:
-    """Runs a pass over every tile, in this process or on a Dask client."""
+    """Runs a pass over every tile, in this process or on a Dask client (``task``: what
+    runs a group of tiles, :func:`.tile_tasks.run_tiles` by default)."""
 
-    def __init__(self, plan, client):
+    def __init__(self, plan, client, task=run_tiles, lower="lower --tile-rows"):
         self.client = client
+        self.task = task
+        self.lower = lower
         self.n = plan.n_tiles
         self.passes = 0
         if client is not None:
@@ -68,7 +71,7 @@ class _Runner:
         if self.client is None:
             out = []
             for t in range(self.n):
-                out += run_tiles(kind, plan, [t], args,
+                out += self.task(kind, plan, [t], args,
                                  tick=lambda f, t=t: report((t + f) / self.n, label))
             return out
         return self._dask(kind, plan, args, label)
@@ -77,7 +80,7 @@ class _Runner:
         from distributed import as_completed
         c = self.client
         pf = c.scatter(plan, broadcast=True, hash=False)
-        futs = [c.submit(run_tiles, kind, pf, g, args, pure=False) for g in self.groups]
+        futs = [c.submit(self.task, kind, pf, g, args, pure=False) for g in self.groups]
         where = {f.key: i for i, f in enumerate(futs)}
         parts = [None] * len(futs)
         try:
@@ -92,9 +95,9 @@ class _Runner:
                     if type(exc).__name__ != "KilledWorker":
                         raise
                     from ..errors import ResourceError
-                    raise ResourceError("a Dask worker died running the tiles (out of memory?); "
-                                        "lower --tile-rows or give the workers more memory") \
-                        from None
+                    raise ResourceError(f"a Dask worker died running the tiles (out of "
+                                        f"memory?); {self.lower} or give the workers more "
+                                        f"memory") from None
                 report(done / len(futs), label)
         finally:
             for f in futs:

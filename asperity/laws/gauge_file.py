@@ -1,4 +1,5 @@
-"""Gauge files: a fitted friction law as versioned JSON (format "asperity-gauge", version 1).
+"""Gauge files: a fitted friction law as versioned JSON (format "asperity-gauge", version 1;
+a law family over the nominal pressure is version 2, :mod:`asperity.laws.family`).
 
 The layout is the JSON Schema shipped with the package, ``asperity/schemas/gauge-1.schema.json``
 (:func:`schema`).  :func:`write_gauge` writes atomically; :func:`read_gauge` refuses an
@@ -21,7 +22,7 @@ from ..errors import InputError
 from .convex_set import ConvexSet
 from .fitting import FitReport, GaugeLaw, ReservoirData
 from .gauge_checks import check_consistency, check_ranges
-from .gauge_schema import FORMAT, VERSION, parse_constant, validate
+from .gauge_schema import FAMILY_VERSION, FORMAT, VERSION, parse_constant, validate
 from .sets import StarSet, TruncatedEllipse
 from .walker_leine import WalkerLeineLaw, associated
 
@@ -83,13 +84,17 @@ def dumps(obj) -> str:
     return enc(obj, 0) + "\n"
 
 
-def write_gauge(path, gl: GaugeLaw) -> dict:
-    """Write the gauge file of ``gl`` atomically; returns its JSON object."""
+def write_gauge(path, gl) -> dict:
+    """Write the gauge file of ``gl`` (a GaugeLaw: version 1; a GaugeFamily of two or more
+    members: version 2, of one: its law, version 1) atomically; returns its JSON object."""
     from ..errors import check_instance
     check_instance("path", path, (str, Path), "file name")
     from ..io import check_output, write_text_atomic
+    from .family import GaugeFamily
     check_output(path, "path")
-    obj = to_dict(gl)
+    if isinstance(gl, GaugeFamily) and len(gl.members) == 1:
+        gl = gl.members[0]
+    obj = family_to_dict(gl) if isinstance(gl, GaugeFamily) else to_dict(gl)
     try:
         text = dumps(obj)
     except ValueError as exc:                                   # a non-finite number
@@ -99,8 +104,10 @@ def write_gauge(path, gl: GaugeLaw) -> dict:
     return obj
 
 
-def read_gauge(path) -> GaugeLaw:
-    """Read and check a gauge file; raises GaugeFileError with one line naming the field."""
+def read_gauge(path):
+    """Read and check a gauge file: a GaugeLaw (version 1), or a GaugeFamily (version 2;
+    a family of one member: its GaugeLaw); raises GaugeFileError with one line naming the
+    field."""
     from ..errors import check_instance
     from ..io import read_json
     check_instance("gauge file", path, (str, Path), "file name")
@@ -114,9 +121,11 @@ def read_gauge(path) -> GaugeLaw:
         raise GaugeFileError(f"{p}: not a usable gauge file (nested too deeply)") from None
 
 
-def from_dict(obj) -> GaugeLaw:
-    """Rebuild the law of a gauge-file object (checked first)."""
+def from_dict(obj):
+    """Rebuild the law (or law family, version 2) of a gauge-file object (checked first)."""
     validate(obj)
+    if obj["version"] != VERSION:
+        return family_from_dict(obj)
     check_ranges(obj)
     kind = obj["law"]
     prm = obj["parameters"]
@@ -153,3 +162,57 @@ def from_dict(obj) -> GaugeLaw:
                   float(obj["frame"]["principal_direction_deg"]))
     check_consistency(gl)
     return gl
+
+
+def family_to_dict(fam) -> dict:
+    """The version-2 gauge-file object of a GaugeFamily of two or more members: the shared
+    fields once (law, units, source without what depends on the pressure), each member's
+    pressure, frame, parameters, data, fit, contact figures (and texture keys that depend
+    on the load)."""
+    from .family import INTERPOLATION, own_keys
+    members = []
+    for p, gl in zip(fam.pressures, fam.members):
+        d = to_dict(gl)
+        members.append({"pressure_Pa": p, "frame": d["frame"], "parameters": d["parameters"],
+                        "data": d["data"], "fit": d["fit"],
+                        "contact": dict(gl.source["elastic_contact"])})
+        if own_keys(gl.source):
+            members[-1]["texture"] = own_keys(gl.source)
+    first = to_dict(fam.members[0])
+    return {"format": FORMAT, "version": FAMILY_VERSION, "asperity_version": __version__,
+            "law": fam.kind, "units": first["units"],
+            "family": {"axis": "pressure_Pa", "interpolation": INTERPOLATION, **fam.elastic},
+            "members": members, "source": fam.source}
+
+
+def family_from_dict(obj: dict):
+    """The family of a version-2 object (checked by the caller's ``validate``), or its
+    single member's GaugeLaw when it has one."""
+    from .family import GaugeFamily, contact_mismatch
+    laws, ps = [], []
+    fam = obj["family"]
+    for k, m in enumerate(obj["members"]):
+        one = {"format": FORMAT, "version": VERSION, "asperity_version": obj["asperity_version"],
+               "law": obj["law"], "units": obj["units"], "frame": m["frame"],
+               "parameters": m["parameters"], "data": m["data"], "fit": m["fit"],
+               "source": {**obj["source"], "elastic_contact": m["contact"]}}
+        if "texture" in m:
+            one["source"]["texture"] = {**obj["source"]["texture"], **m["texture"]}
+        try:
+            laws.append(from_dict(one))
+        except InputError as exc:             # the member's field named in the file's terms
+            msg = str(exc)
+            msg = (msg.replace("field ", f"field members[{k}].", 1) if "field " in msg else
+                   f"members[{k}]: {msg}")
+            raise InputError(msg) from None
+        p, c = m["pressure_Pa"], m["contact"]
+        if k and not p > ps[-1]:
+            raise InputError(f"field members[{k}].pressure_Pa must exceed members[{k - 1}]'s "
+                             f"(strictly increasing), got {p:g} after {ps[-1]:g}")
+        why = contact_mismatch(c, p, fam)
+        if why:
+            raise InputError(f"field members[{k}].{why}")
+        ps.append(p)
+    if len(laws) == 1:
+        return laws[0]
+    return GaugeFamily(tuple(ps), tuple(laws))

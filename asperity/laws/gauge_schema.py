@@ -13,14 +13,19 @@ from ..errors import InputError
 
 FORMAT = "asperity-gauge"
 VERSION = 1
+#: a law family over the nominal pressure (asperity.laws.family); one law is still version 1
+FAMILY_VERSION = 2
+VERSIONS = (VERSION, FAMILY_VERSION)
 SCHEMA_NAME = f"gauge-{VERSION}.schema.json"
 
 
-@lru_cache(maxsize=1)
-def schema() -> dict:
-    """The JSON Schema of gauge files (shipped as package data)."""
+@lru_cache(maxsize=2)
+def schema(version: int = VERSION) -> dict:
+    """The JSON Schema of gauge files of ``version`` (1: one law, 2: a law family; shipped
+    as package data)."""
     from importlib.resources import files
-    return json.loads(files("asperity").joinpath("schemas", SCHEMA_NAME).read_text("utf-8"))
+    name = f"gauge-{version}.schema.json"
+    return json.loads(files("asperity").joinpath("schemas", name).read_text("utf-8"))
 
 
 class _NonFinite:
@@ -45,12 +50,12 @@ def validate(obj) -> None:
     if "version" not in obj:
         raise InputError("missing field version")
     v = obj["version"]
-    if v != VERSION or isinstance(v, bool):
+    if v not in VERSIONS or isinstance(v, bool) or not isinstance(v, int):
         raise InputError(f"field version: unknown gauge-file version {_show(v)}; this asperity "
-                         f"({__version__}) reads version {VERSION}: upgrade asperity, or refit "
-                         "with `asperity fit`")
+                         f"({__version__}) reads versions {VERSION} and {FAMILY_VERSION}: "
+                         "upgrade asperity, or refit with `asperity fit`")
     _check_finite(obj, "")
-    sch = schema()
+    sch = schema(v)
     _check(obj, sch, sch, "")
 
 
@@ -139,7 +144,7 @@ def _matches(x, sch, root, path) -> bool:
 
 
 def _check(x, sch: dict, root: dict, path: str) -> None:
-    """The subset of JSON Schema 2020-12 that gauge-1.schema.json uses."""
+    """The subset of JSON Schema 2020-12 that the gauge schemas use."""
     if "$ref" in sch:
         _check(x, _resolve(sch["$ref"], root), root, path)
     where = _field(path)
@@ -159,6 +164,8 @@ def _check(x, sch: dict, root: dict, path: str) -> None:
     if isinstance(x, (int, float)) and not isinstance(x, bool):
         if "minimum" in sch and x < sch["minimum"]:
             raise InputError(f"field {where} must be >= {sch['minimum']}, got {_show(x)}")
+        if "maximum" in sch and x > sch["maximum"]:
+            raise InputError(f"field {where} must be <= {sch['maximum']}, got {_show(x)}")
         if "exclusiveMinimum" in sch and x <= sch["exclusiveMinimum"]:
             raise InputError(f"field {where} must be > {sch['exclusiveMinimum']}, got {_show(x)}")
     if isinstance(x, dict):

@@ -276,10 +276,15 @@ def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
 
     kind: None or the file's own law ("ellipse" for a truncated-ellipse file, "star" for a
     star file), or "collinear" (force along the sliding direction, |p| from the file's C)."""
+    from .family import GaugeFamily
     from .fitting import GaugeLaw
-    if not isinstance(gauge, GaugeLaw):
+    if not isinstance(gauge, (GaugeLaw, GaugeFamily)):
         from .gauge_file import read_gauge
         gauge = read_gauge(gauge)
+    if isinstance(gauge, GaugeFamily):
+        raise InputError(f"the gauge file holds a law family over the pressures "
+                         f"{gauge.pressures[0]:g} to {gauge.pressures[-1]:g} Pa: take its law "
+                         "at the nominal pressure first (GaugeFamily.at, or --pressure)")
     own = "ellipse" if gauge.kind == "truncated-ellipse" else "star"
     kind = own if kind is None else check_choice("kind", kind, (own, "collinear"))
     src = gauge.source.get("texture", {})

@@ -13,7 +13,9 @@ width, so its pressure is in Pa, its bed stiffness in Pa/m and its force in N/m)
     #        to the support, 1/K, signed: < 0 if the part expands less), n (nodes,
     #        default 201)
     # two-node: k (bar stiffness, N/m), l0 (length), alpha_T, k_t (contact stiffness of
-    #        one node, N/m), N (normal force on each node)
+    #        one node, N/m), N (normal force on each node), contact_area (optional:
+    #        the nominal contact area of one node, m^2; its contact pressure N /
+    #        contact_area picks the law of a law family)
     # (ranges: asperity.microslip.limits)
 
     [friction]                          # optional when a texture is given on the command line
@@ -56,6 +58,7 @@ import numpy as np
 from ..errors import InputError, check_choice, check_range, check_text
 from ..io import read_toml
 from .limits import (
+    CONTACT_AREA,
     MU_FILE,
     STRIP,
     TWO_NODE,
@@ -135,6 +138,15 @@ class Assembly:
         return two_node_dT_c(p["k"], p["k_t"], p["N"], mu_plus, mu_minus, p["alpha_T"],
                              p["l0"])
 
+    def contact_pressure(self) -> tuple[float | None, str]:
+        """(nominal contact pressure in Pa, where it comes from): the strip's p; the
+        two-node model's N / contact_area, None when the file gives no contact_area."""
+        if self.model == "strip":
+            return float(self.params["p"]), "assembly.p"
+        area = self.params.get("contact_area")
+        where = "assembly.N / assembly.contact_area"
+        return (None, where) if area is None else (self.params["N"] / area, where)
+
     def to_dict(self) -> dict:
         return {"name": self.name, "model": self.model,
                 **{k: v for k, v in self.params.items()}, "force_at": self.force_at}
@@ -203,7 +215,7 @@ def assembly_from_dict(data: dict, path) -> Assembly:
         raise AssemblyFileError(f"{p}: assembly.model must be one of {', '.join(MODELS)}, "
                                 f"got {_short(model)}")
     keys = _MODEL_KEYS[model]
-    allowed = set(keys) | {"model"} | ({"n"} if model == "strip" else set())
+    allowed = set(keys) | {"model"} | ({"n"} if model == "strip" else {"contact_area"})
     a = _table(data, "assembly", allowed, p)
     missing = [k for k in keys if k not in a]
     if missing:
@@ -217,6 +229,9 @@ def assembly_from_dict(data: dict, path) -> Assembly:
                       _field("assembly", check_param, k, a[k], ranges[k])) for k in keys}
         if model == "strip":
             params["n"] = _field("assembly", check_nodes, "n", a.get("n", 201))
+        elif "contact_area" in a:
+            params["contact_area"] = _field("assembly", check_param, "contact_area",
+                                            a["contact_area"], CONTACT_AREA)
         fr = _table(data, "friction", _FRICTION_KEYS, p)
         lo = _table(data, "loading", _LOADING_KEYS, p)
         loading, force_at, cycles, tolerance = _loading(lo)

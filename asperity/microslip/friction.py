@@ -88,7 +88,14 @@ def _check_some_friction(mu_plus: float, mu_minus: float, name: str) -> None:
 def friction_from_gauge(law, slip_axis_deg=None, textured: str = "support",
                         source_name: str = "") -> Friction:
     """mu+ and mu- of a fitted law (:class:`~asperity.laws.fitting.GaugeLaw`) along the slip axis
-    (default: the law's principal direction t_a), as :func:`friction_from_texture`."""
+    (default: the law's principal direction t_a), as :func:`friction_from_texture`; a law
+    family is refused (take its law at a pressure first: :func:`law_at_assembly`)."""
+    from ..laws.family import GaugeFamily
+    if isinstance(law, GaugeFamily):
+        from ..errors import InputError
+        raise InputError(f"{source_name or 'the gauge'} holds a law family over the pressures "
+                         f"{law.pressures[0]:g} to {law.pressures[-1]:g} Pa: take its law at "
+                         "the contact pressure first (GaugeFamily.at)")
     psi_deg = law.principal_direction_deg if slip_axis_deg is None else float(slip_axis_deg)
     psi = math.radians(psi_deg) + np.array([0.0, math.pi])
     f = law.force(psi)
@@ -115,13 +122,44 @@ def resolve_friction(asm: Assembly) -> Friction:
     if "gauge" in fr:
         from ..laws.gauge_file import read_gauge
         path = named_path(fr["gauge"], asm.folder)
-        return friction_from_gauge(read_gauge(path), axis, textured, str(path))
+        gl, block = law_at_assembly(read_gauge(path), asm, str(path))
+        f = friction_from_gauge(gl, axis, textured, str(path))
+        if block is not None:
+            f.detail["contact_pressure"] = block
+        return f
     if "texture" in fr:
         path = named_path(fr["texture"], asm.folder)
         return friction_from_texture(load_texture_or_surface(path), fr.get("contact", "all-faces"),
                                      axis, textured, str(path))
     raise AssemblyFileError("no friction: give a texture on the command line, or mu_plus and "
                             "mu_minus, a gauge or a texture in the assembly's [friction] table")
+
+
+def law_at_assembly(gauge, asm: Assembly, name: str):
+    """(GaugeLaw, the JSON block ``contact_pressure`` or None) of a gauge file's law or law
+    family at the assembly's contact pressure (:meth:`Assembly.contact_pressure`): a family
+    is taken at it (interpolated between its members, or refused outside their range); a
+    single law derived from an elastic contact at another pressure is used as it is, with
+    a note."""
+    from ..errors import InputError
+    from ..laws.family import GaugeFamily, law_at
+    p, where = asm.contact_pressure()
+    if isinstance(gauge, GaugeFamily):
+        if p is None:
+            raise InputError(f"{name} holds a law family (pressures {gauge.pressures[0]:g} to "
+                             f"{gauge.pressures[-1]:g} Pa) and the two-node assembly gives no "
+                             "contact pressure: add assembly.contact_area (m^2, the nominal "
+                             "contact area of one node) to the assembly file")
+        gl, how = law_at(gauge, p, where, name)
+        return gl, {"from": where, **how}
+    c = gauge.source.get("elastic_contact")
+    if p is not None and isinstance(c, dict) and isinstance(c.get("pressure_Pa"), float) \
+            and not math.isclose(c["pressure_Pa"], p, rel_tol=1e-6):
+        return gauge, {"pressure_Pa": p, "from": where, "law_pressure_Pa": c["pressure_Pa"],
+                       "note": f"the gauge's law was derived at p = {c['pressure_Pa']:g} Pa, "
+                               f"not at the assembly's {p:g} Pa ({where}): fit a law family "
+                               "(several --pressure) to take the law at the assembly's"}
+    return gauge, None
 
 
 def _num(x) -> float | None:

@@ -21,6 +21,8 @@ STRIP = {"h": (1e-7, 10.0, "m"), "E": (1e4, 1e13, "Pa"), "p": (1e-3, 1e10, "Pa")
 #: field -> (low, high, unit) of the two-node model
 TWO_NODE = {"k": (1e-3, 1e15, "N/m"), "l0": (1e-6, 1e3, "m"), "k_t": (1e-3, 1e15, "N/m"),
             "N": (1e-6, 1e9, "N")}
+#: (low, high, unit) of the two-node model's optional contact_area (one node's)
+CONTACT_AREA = (1e-12, 1e6, "m^2")
 #: |alpha_T| (1/K): invar against its housing to a polymer against steel, with room
 ALPHA_T = (1e-9, 1e-3)
 #: a slider's friction coefficient (a texture near self-locking gives large values;

@@ -33,6 +33,9 @@ def format_text(out: dict) -> str:
                      f"({f['slip_axis']}), texture on the {f['textured']}")
     if f.get("note"):
         lines.append(f"  ({f['note']})")
+    cp = f.get("contact_pressure")
+    if cp:
+        lines.append(f"  {pressure_words(cp)}")
     if f.get("elastic_contact"):
         from ..surface.contact_facets import contact_lines
         lines += ["  " + x for x in contact_lines(f["elastic_contact"])]
@@ -130,3 +133,15 @@ def format_map(out: dict) -> str:
         lines.append(f"{y:>14.4g} " + " ".join(cells))
     lines.append(f"sign convention: {out['sign_convention']}")
     return "\n".join(lines)
+
+
+def pressure_words(cp: dict) -> str:
+    """The line saying at which contact pressure the friction was taken, and how."""
+    head = f"contact pressure {cp['pressure_Pa']:g} Pa ({cp['from']}): "
+    if "members_Pa" in cp:
+        from ..laws.family import how_words
+        return head + how_words(cp)
+    if cp.get("solved"):
+        return head + "the elastic contact solved at it" + (
+            f"; {cp['note']}" if cp.get("note") else "")
+    return head + cp.get("note", "")

@@ -39,28 +39,44 @@ STATUSES = ("ok", "failed", "error")
 LAWS = {"star": "star", "ellipse": "truncated-ellipse"}
 
 
-def output_columns(stages) -> list[tuple[str, str]]:
-    """The output columns of the stages a study runs (fit implies derive)."""
+def output_columns(stages, elastic: bool = False) -> list[tuple[str, str]]:
+    """The output columns of the stages a study runs (fit implies derive); ``elastic``: the
+    study weights the faces by an elastic contact (its outputs follow)."""
+    from .contact import OUTPUTS as CONTACT
     run = set(stages) | ({"derive"} if "fit" in stages else set())
-    return [c for s in ("derive", "fit", "risk") if s in run for c in OUTPUTS[s]]
+    return [c for s in ("derive", "fit", "risk") if s in run for c in OUTPUTS[s]] + \
+        (CONTACT if elastic else [])
 
 
-def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None = None):
+def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None = None,
+                 weigh: bool = True):
     """(texture or surface or None, Assembly or None) of one case.
 
     values: {"texture.alpha_deg": 31.2, "loading.dT_max": 120.0, ...}; file: the scan of a
     files study (read here, on the worker).  cache: texture and assembly objects of earlier
     cases of the same batch, by the values that built them (immutable objects: a case that
-    varies only the texture parses the assembly once per batch)."""
+    varies only the texture parses the assembly once per batch).  With a ``[contact]``
+    table (``spec["elastic"]``) the texture's faces are weighted by the contact force at
+    the case's values (``weigh`` False: the values only checked)."""
     cache = {} if cache is None else cache
     texture = None
+    elastic = None
+    if spec.get("elastic") is not None:
+        from .contact import elastic_for
+        elastic = elastic_for(spec["elastic"], values)
+        elastic = elastic if weigh else None
     if file is not None:
-        texture = _load_file(file, spec.get("surface", {}))
+        texture = _load_file(file, spec.get("surface", {}), elastic)
+    elif isinstance(spec.get("texture"), str) and elastic is not None:
+        texture = _load_file(spec["texture"], {}, elastic)
     elif spec.get("texture") is not None:
         key = ("texture", *((k, v) for k, v in values.items() if k.startswith("texture.")))
         if key not in cache:
             cache[key] = _texture(spec, values)
         texture = cache[key]
+        if elastic is not None:
+            from .contact import weighted
+            texture = weighted(texture, None, elastic, {})
     asm = spec.get("assembly_object")       # risk maps: a parsed assembly, not varied
     if spec.get("assembly") is not None:
         varied = {k: v for k, v in values.items() if not k.startswith("texture.")}
@@ -112,11 +128,15 @@ def _assembly(spec: dict, values: dict):
     return assembly_from_dict(data, spec["assembly_path"])
 
 
-def _load_file(path: str, opts: dict):
+def _load_file(path: str, opts: dict, elastic=None):
     from ..friction.sources import is_texture_file
+    from .contact import weighted
     if is_texture_file(path):
         from ..texture.wedges import load_texture
-        return load_texture(path)
+        t = load_texture(path)
+        return t if elastic is None else weighted(t, None, elastic, opts)
+    if elastic is not None:
+        return weighted(None, path, elastic, opts)
     from ..surface.facets import load_surface
     px = opts.get("pixel_size")
     return load_surface(path, unit=opts.get("unit"),
@@ -174,6 +194,9 @@ def evaluate(spec: dict, values: dict, file: str | None = None, cache: dict | No
         out["verdict"] = r["verdict"]
         out["stabilised_at_cycle"] = r.get("stabilised_at_cycle")
         out["extrapolated"] = None if r.get("extrapolated") is None else int(r["extrapolated"])
+    if spec.get("elastic") is not None:
+        from .contact import outputs
+        out.update(outputs(texture))
     return out
 
 

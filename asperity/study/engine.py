@@ -105,10 +105,11 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
     todo = np.setdiff1d(np.arange(n, dtype=np.int64), done, assume_unique=True)
     matrix = study.matrix()
     names = study.parameter_names
-    files = study.files if study.kind == "files" else None
+    files = study.case_files if study.kind == "files" else None
 
     def inputs_of(cid):
-        return (files[cid],) if files is not None else tuple(float(v) for v in matrix[cid])
+        values = tuple(float(v) for v in matrix[cid]) if names else ()
+        return values if files is None else (files[cid], *values)
 
     if workers is not None:
         workers = check_int("--workers", workers, 0, 4096)

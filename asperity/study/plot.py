@@ -35,6 +35,10 @@ def figures(store, summary: dict, folder, prefix: str = "") -> list[str]:
     if summary.get("ranking"):
         _ranking(summary["ranking"], folder / f"{prefix}ranking.png")
         out.append(f"{prefix}ranking.png")
+    if summary.get("load_dependence"):
+        from .contact import plot_load_dependence
+        plot_load_dependence(summary["load_dependence"], folder / f"{prefix}load.png")
+        out.append(f"{prefix}load.png")
     return out
 
 

@@ -45,8 +45,8 @@ from .inputs import StudyFiles, assembly_key, read_input_toml, study_files
 from .sampling import KINDS, Parameter, case_count, check_sobol_base, parse_parameter
 
 STAGES = ("derive", "fit", "risk")
-TABLES = ("texture", "assembly", "friction", "loading")
-_TOP = {"name", "description", "study", "texture", "parameters"}
+TABLES = ("texture", "assembly", "friction", "loading", "contact")
+_TOP = {"name", "description", "study", "texture", "parameters", "contact"}
 _STUDY = {"kind", "samples", "seed", "stages", "texture", "assembly", "files", "unit",
           "pixel_size", "height_scale", "detrend", "mu", "max_slope", "despike",
           "despike_window", "contact", "directions", "law",
@@ -78,8 +78,18 @@ class Study:
     @property
     def n_cases(self) -> int:
         if self.kind == "files":
-            return len(self.files)
+            return len(self.files) * self._per_file
         return case_count(self.kind, list(self.parameters), self.samples)
+
+    @property
+    def _per_file(self) -> int:
+        """Cases of each file of a library: the grid of its contact parameters (or 1)."""
+        return case_count("grid", list(self.parameters), None) if self.parameters else 1
+
+    @property
+    def case_files(self) -> tuple[str, ...]:
+        """The file of every case of a library (each file at every grid point in turn)."""
+        return tuple(f for f in self.files for _ in range(self._per_file))
 
     @property
     def parameter_names(self) -> list[str]:
@@ -107,7 +117,10 @@ class Study:
 
         from .sampling import sample_matrix
         if self.kind == "files":
-            return np.zeros((len(self.files), 0))
+            if not self.parameters:
+                return np.zeros((len(self.files), 0))
+            grid = sample_matrix("grid", list(self.parameters), None, self.seed)
+            return np.tile(grid, (len(self.files), 1))
         return sample_matrix(self.kind, list(self.parameters), self.samples, self.seed)
 
     def to_dict(self) -> dict:
@@ -195,9 +208,10 @@ def _parameters(table, kind: str) -> list[Parameter]:
         if not isinstance(name, str) or "." not in name or name.split(".", 1)[0] not in TABLES:
             raise InputError(f"parameters: {name!r} must be TABLE.KEY with TABLE one of "
                              f"{', '.join(TABLES)} (e.g. \"texture.alpha_deg\")")
-        out.append(parse_parameter(name, t, kind))
-    if kind == "files" and out:
-        raise InputError("kind = \"files\" takes no [parameters] (its cases are the files)")
+        out.append(parse_parameter(name, t, "grid" if kind == "files" else kind))
+    if kind == "files" and any(not p.name.startswith("contact.") for p in out):
+        raise InputError("kind = \"files\" takes no [parameters] but contact.* ones (its "
+                         "cases are the files, each at every point of their grid)")
     if kind not in ("files",) and not out:
         raise InputError(f"kind = \"{kind}\" needs at least one entry in [parameters]")
     if kind == "sobol" and len(out) < 2:
@@ -239,8 +253,17 @@ def _spec(st: dict, data: dict, kind: str, params, named: StudyFiles) -> dict:
         if k in st:
             spec[k] = check_range(f"study.{k}", st[k], 1.0 if k == "cycles" else 1e-12,
                                   1e15 if k == "cycles" else 1.0)
-    spec["output"] = _output(st, stages)
+    spec["output"] = _output(st, stages, bool(data.get("contact")) or any(
+        p.name.startswith("contact.") for p in params))
     spec["surface"] = _surface_options(st, kind)
+    from .contact import contact_spec
+    elastic = contact_spec(data, params)
+    if elastic is not None:                # (absent otherwise: older fingerprints hold)
+        spec["elastic"] = elastic
+    if elastic is not None and spec["texture"] is None and kind != "files":
+        raise InputError("[contact] weighs the faces of a texture or scan by the contact "
+                         "force: the study has none (study.texture, a [texture] table, or "
+                         "kind = \"files\")")
     used = {p.name.split(".", 1)[0] for p in params}
     if "texture" in used and not isinstance(spec["texture"], dict):
         raise InputError("texture.* parameters need a wedge texture (a texture TOML or a "
@@ -280,9 +303,9 @@ def _texture(st, data, named: StudyFiles, kind):
     return str(tp), str(tp), contact      # a surface file: read on the workers
 
 
-def _output(st: dict, stages: list) -> str:
+def _output(st: dict, stages: list, elastic: bool = False) -> str:
     from .cases import output_columns
-    cols = [c for c, kind in output_columns(stages) if kind == "REAL"]
+    cols = [c for c, kind in output_columns(stages, elastic) if kind == "REAL"]
     default = "drift_per_cycle_m" if "risk" in stages else "anisotropy"
     return check_choice("study.output", st.get("output", default), cols)
 
@@ -333,9 +356,12 @@ def _check_one_case(study: Study) -> None:
     from .cases import build_inputs
     values = {p.name: p.centre for p in study.parameters}
     if study.kind == "files":
+        if study.spec.get("elastic") is not None:
+            from .contact import elastic_for
+            elastic_for(study.spec["elastic"], values)
         return
     try:
-        build_inputs(study.spec, values, None)
+        build_inputs(study.spec, values, None, weigh=False)
     except InputError as exc:
         at = "the grid's first values" if study.kind == "grid" else "their medians"
         raise InputError(f"parameters at {at} ({_show(values)}): {exc}") from None

@@ -205,10 +205,11 @@ def _open(db: Path, folder: Path, study, restart: bool = False) -> Store:
                 err.changed = what
                 raise err
             _forget_summary(folder)
-        inputs = ["file"] if study.kind == "files" else study.parameter_names
+        inputs = (["file"] if study.kind == "files" else []) + study.parameter_names
         meta = {"schema": SCHEMA_VERSION, "fingerprint": fp, "input_digests": digests,
                 "study": study.to_dict(), "study_text": study.text, "inputs": inputs,
-                "outputs": output_columns(study.spec["stages"]),
+                "outputs": output_columns(study.spec["stages"],
+                                          study.spec.get("elastic") is not None),
                 "n_cases": study.n_cases, "spec": study.spec}
         _create(con, meta, replace=not new)
     except sqlite3.Error as exc:

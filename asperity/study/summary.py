@@ -97,6 +97,10 @@ def summarise(store) -> dict:
     _influence(store, meta, ok, out)
     if st["kind"] == "files":
         out["ranking"] = ranking(store, stages)
+    from .contact import load_dependence
+    rows = load_dependence(store)
+    if rows is not None:
+        out["load_dependence"] = rows
     return out
 
 
@@ -129,7 +133,7 @@ def ranking(store, stages, limit: int | None = None) -> list[dict]:
     """Scan-library table, most at risk first (verdict severity, |drift|), else by
     anisotropy; failed files last with their message."""
     cols = ["case_id", "file", "status", "message"]
-    extra = [c for c in ("verdict", "drift_per_cycle_m", "anisotropy", "asymmetry",
+    extra = [c for c in ("pressure_Pa", "verdict", "drift_per_cycle_m", "anisotropy", "asymmetry",
                          "principal_direction_deg", "mu_a_plus", "mu_a_minus", "mu_plus",
                          "mu_minus") if c in dict(store.outputs)]
     cur = store.con.execute(f"SELECT {', '.join(cols + extra)} FROM cases ORDER BY case_id")

@@ -74,6 +74,9 @@ def lines(s: dict) -> list[str]:
         if q:
             out.append(f"{label}: p05 {_g(q['p05'])}, p50 {_g(q['p50'])}, p95 {_g(q['p95'])}")
     out.extend(_influence_lines(s))
+    if s.get("load_dependence"):
+        from .contact import load_lines
+        out.extend(load_lines(s["load_dependence"]))
     if s.get("ranking"):
         out.append("ranked (most at risk first):")
         for r in s["ranking"][:20]:
@@ -184,7 +187,7 @@ def short_path(path: str) -> str:
 def _rank_line(r: dict) -> str:
     if r["status"] != "ok":
         return f"{r['rank']:>4}. {short_path(r['file'])}: {r['status']}: {r['message']}"
-    bits = []
+    bits = [] if r.get("pressure_Pa") is None else [f"p {r['pressure_Pa']:.3g} Pa"]
     if r.get("verdict") is not None:
         bits.append(f"{r['verdict']} {_um(r.get('drift_per_cycle_m'))}/cycle")
     if r.get("anisotropy") is not None:

@@ -137,31 +137,37 @@ def contact_heights(hm: HeightMap, periodic: bool, level_slope: bool) -> np.ndar
 
 
 def contact_solutions(hm: HeightMap, elastic: ElasticContact, boundary: str,
-                      level_slope: bool):
+                      level_slope: bool, observe=None):
     """Yield the ContactResult at each pressure of ``elastic``, in its order (the load
     curve of :func:`asperity.contact.iter_load_curve`: solved in increasing order, each
-    from the previous pressure field)."""
+    from the previous pressure field); ``observe(result)``, when given, sees each first
+    (the web page keeps a preview of the pressure field)."""
     from ..contact.curve import iter_load_curve
     z = contact_heights(hm, boundary == "periodic", level_slope)
-    yield from iter_load_curve(
-        z, (float(hm.dx), float(hm.dy)), elastic.E_star, elastic.pressures,
-        boundary=boundary, hardness=elastic.hardness, tol=elastic.tol,
-        max_iterations=elastic.max_iterations)
+    for res in iter_load_curve(
+            z, (float(hm.dx), float(hm.dy)), elastic.E_star, elastic.pressures,
+            boundary=boundary, hardness=elastic.hardness, tol=elastic.tol,
+            max_iterations=elastic.max_iterations):
+        if observe is not None:
+            observe(res)
+        yield res
 
 
 def elastic_facets(hm: HeightMap, elastic: ElasticContact, *, mu=None, friction_map=None,
-                   level_slope=True, info=None, max_slope=None, default_boundary="free"):
+                   level_slope=True, info=None, max_slope=None, default_boundary="free",
+                   observe=None):
     """Yield the facets of ``hm`` weighted by the contact force at each pressure of
     ``elastic`` (FacetSurfaces whose ``elastic`` holds the contact's figures: the keys of
     ``asperity contact --json``).  Options as :func:`.facets.heightmap_facets`;
-    ``default_boundary`` when ``elastic.boundary`` is None."""
+    ``default_boundary`` when ``elastic.boundary`` is None; ``observe`` as
+    :func:`contact_solutions`'s."""
     if not isinstance(hm, HeightMap):
         raise InputError("elastic contact needs a height map (the scan's grid); a mesh's "
                          "facets cannot be weighted by a contact solution yet")
     elastic = check_elastic(elastic)
     boundary = elastic.boundary_or(default_boundary)
     periodic = boundary == "periodic"
-    for res in contact_solutions(hm, elastic, boundary, level_slope):
+    for res in contact_solutions(hm, elastic, boundary, level_slope, observe):
         fs = heightmap_facets(hm, mu=mu, friction_map=friction_map, info=info,
                               level_slope=level_slope and not periodic, max_slope=max_slope,
                               pressure=res.pressure, periodic=periodic)
@@ -172,12 +178,17 @@ def elastic_facets(hm: HeightMap, elastic: ElasticContact, *, mu=None, friction_
 
 def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
                  height_scale=1.0, detrend="slope", mu=None, friction_map=None,
-                 despike=None, despike_window=None, max_slope=None) -> list[FacetSurface]:
+                 despike=None, despike_window=None, max_slope=None,
+                 observe=None) -> list[FacetSurface]:
     """:func:`.facets.load_surface` with the facets weighted by the contact force: one
     FacetSurface per pressure of ``elastic`` (boundary ``free`` unless it says otherwise).
-    A height-map file only (not a mesh), read whole (no tiles)."""
+    A height-map file only (not a mesh), read whole (no tiles); ``observe`` as
+    :func:`contact_solutions`'s."""
     from ..contact.elastic import BYTES_PER_PIXEL
     elastic = check_elastic(elastic)
+    if observe is not None and not callable(observe):
+        raise InputError(f"observe must be a callable or None, got "
+                         f"{type(observe).__name__}")
     despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
                                                despike_window=despike_window,
                                                max_slope=max_slope)
@@ -189,7 +200,7 @@ def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
     out = []
     for fs in elastic_facets(prep.surface, replace(elastic, boundary=boundary), mu=mu,
                              friction_map=prep.friction_map, level_slope=prep.level_slope,
-                             info=prep.info, max_slope=max_slope):
+                             info=prep.info, max_slope=max_slope, observe=observe):
         fs.quality.update(prep.quality)
         out.append(fs)
     return out

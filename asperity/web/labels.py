@@ -118,6 +118,9 @@ def _derive(p: dict) -> list[str]:
     src = p.get("source") or {}
     if src.get("kind") == "file":
         out += surface_options(src.get("options") or {})
+    if isinstance(p.get("elastic"), dict):
+        from .elastic import describe
+        out.append(describe(p["elastic"]))
     return out
 
 

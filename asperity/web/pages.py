@@ -28,6 +28,11 @@ def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
     wanted = request.query_params.get("source", "")
     default = wanted if any(s == wanted for s, _ in sources) else \
         (surfaces[0]["id"] if surfaces else "wedge")
+    from .elastic import pressure_choices
+    ctx.setdefault("pressures", pressure_choices(surfaces))
+    ctx.setdefault("pressure_options", [(v, t) for v, t, _ in ctx["pressures"]])
+    ctx.setdefault("default_pressure", next((v for v, _, j in ctx["pressures"]
+                                             if j == default), ""))
     return web.page(request, "law.html", status, page="law", sources=sources,
                     default_source=default, jobs=jobs, **ctx)
 
@@ -106,6 +111,14 @@ async def _surface_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         title = f"{'texture file' if meta['id'].endswith('.toml') else 'surface'} " \
                 f"{meta['name']}"
     params["source"] = src
+    from .elastic import elastic_params
+    texture = source == "wedge" or src["upload"].endswith(".toml")
+    elastic = elastic_params(form, texture, params["method"],
+                             () if source == "wedge" else
+                             (("rest_level", "rest level (m)"),
+                              ("bearing_fraction", "bearing fraction")))
+    if elastic is not None:
+        params["elastic"] = elastic
     return params, f"friction of {title}"
 
 
@@ -129,6 +142,10 @@ async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     if choice != "wedge":                # the surface's own settings (max slope, ...)
         params["source_settings"] = ", ".join(surface_options(
             rec["params"].get("source", {}).get("options") or {}))
+        if rec["params"].get("elastic"):   # one pressure of its elastic contact
+            from .elastic import chosen_pressure
+            params.update(chosen_pressure(form, rec))
+            what += f" at p = {params['elastic']['pressures'][0]:.4g} Pa"
     return params, f"{law} law of {what}"
 
 

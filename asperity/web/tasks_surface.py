@@ -179,4 +179,7 @@ def gauge_task(params: dict, ctx: dict, bar) -> dict:
     return out
 
 
+#: the law outputs, for the Law page's other jobs (:mod:`.tasks_contact`)
+law_outputs = _law_outputs
+
 TASKS = {"derive": derive_task, "fit": fit_task, "gauge": gauge_task}

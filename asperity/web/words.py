@@ -59,7 +59,11 @@ PHRASES = ((re.compile(r" ?\(on the command line --[\w-]+\)"), "", None),
             "the margin (the temperature range over twice the one the friction holds)", None))
 #: keys that are also plain words: taken for a key only as the subject of the message
 PLAIN = ("directions", "contact", "method", "mu", "unit", "g", "mass", "angle", "cycles",
-         "textured", "detrend", "tolerance")
+         "textured", "detrend", "tolerance", "pressure", "hardness", "boundary")
+#: the library's words of an elastic contact -> (form field, label) on the Surface page
+ELASTIC = {"pressure / E_star": ("pressure", "p/E*"), "E_star": ("E_star", "E* (Pa)"),
+           "pressure": ("pressure", "pressure (Pa)"), "hardness": ("hardness", "hardness (Pa)"),
+           "boundary": ("boundary", "boundary")}
 
 
 def _wedge(prefix: str = "") -> dict:
@@ -94,6 +98,8 @@ def words_of(kind: str, params: dict) -> dict:
             out.update(_wedge())
         elif src.get("kind") == "file":
             out.update(SURFACE)
+        if params.get("elastic"):
+            out.update(ELASTIC)
         return out
     if kind == "slide":
         return dict(SLIDE)

@@ -1,0 +1,223 @@
+"""Friction weighted by an elastic contact, estimated from windows of a scan too large
+for one solve (issue 19, item 4).
+
+The contact is long-range: the pressure at a point depends on the whole map, so tiles do
+not decouple as they do for area weighting (:mod:`.tiled`).  Instead :func:`derive_windows`
+solves K representative *windows* -- square patches of W x W pixels -- each on its own,
+as if it were the whole scan pressed at the nominal pressure (free boundary by default),
+and reports each window's contact figures and contact-weighted friction, their mean and
+their spread.  It is an estimate from K windows of W, never the whole scan's solution.
+
+* Placement (:func:`window_origins`): the range of window origins [0, nx - W] x [0, ny -
+  W] is cut into a grid of r x c strata (r c >= K, r / c close to the scan's shape) and
+  K of them are taken, spread evenly; ``grid`` puts the windows on the r x c regular grid
+  from edge to edge of the scan, ``random`` a uniform origin inside each stratum (NumPy's
+  PCG64 stream of ``seed``).  Windows overlap when K W^2
+  exceeds the scan's area (said in the result).
+* A window is read from the file alone (:func:`read_window`: a few lines of the file at a
+  time, cropped), so a task holds its window and its solve, never the scan; a window with
+  fewer than :data:`MIN_DEFINED_SHARE` of its pixels defined is skipped (and named).
+* Each window is prepared as a scan of its own (spikes, form and slope removed within it),
+  weighted by :func:`asperity.surface.contact_facets.elastic_facets` and derived
+  (:func:`asperity.friction.derive.derive`): its principal direction is its own.
+* The windows run in this process or as tasks on a Dask cluster (the runner of
+  :mod:`.tiled`, the clusters of :mod:`asperity.study.engine`); the results are the same.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError, check_choice, check_int
+from ..progress import report
+from .window_summary import MIN_DEFINED_SHARE, summarise
+
+#: smallest window side (pixels): a smaller patch cannot resolve a contact spot
+MIN_WINDOW = 16
+#: most windows of one estimate
+MAX_WINDOWS = 10_000
+PLACEMENTS = ("grid", "random")
+#: values read at a time when a window is cut from a file's lines
+_READ_VALUES = 1 << 22
+
+
+@dataclass(frozen=True)
+class WindowPlan:
+    """What every window task needs (picklable: a worker reads its window itself)."""
+
+    heights: object                 # a LineSource (asperity.surface.tiles.open_scan)
+    mu_map: object                  # None or a LineSource of the per-pixel friction
+    window: int
+    origins: tuple                  # ((i0, j0), ...) pixels
+    elastic: object                 # ElasticContact of one pressure, boundary set
+    options: dict                   # detrend, mu, despike, max_slope
+    contact: str
+    n_directions: int
+
+    @property
+    def n_tiles(self) -> int:       # the runner of .tiled counts its items so
+        return len(self.origins)
+
+
+def window_origins(shape, window: int, count: int, placement: str = "grid",
+                   seed: int = 0) -> list[tuple[int, int]]:
+    """Origins (i0, j0) of ``count`` windows of ``window`` pixels in a map of ``shape``."""
+    nx, ny = shape
+    sx, sy = nx - window + 1, ny - window + 1          # origins available along x, y
+    r = int(min(count, max(1, round(math.sqrt(count * sx / sy)))))
+    c = -(-count // r)
+    cells = np.round(np.linspace(0, r * c - 1, count)).astype(int)
+    rng = np.random.default_rng(seed)
+    out = []
+    for k in cells:
+        a, b = divmod(int(k), c)
+        x0, x1 = a * sx / r, (a + 1) * sx / r          # stratum of origins [x0, x1)
+        y0, y1 = b * sy / c, (b + 1) * sy / c
+        if placement == "grid":                        # spread from edge to edge
+            out.append((round((sx - 1) * (a / (r - 1) if r > 1 else 0.5)),
+                        round((sy - 1) * (b / (c - 1) if c > 1 else 0.5))))
+            continue
+        u, v = rng.random(2)
+        out.append((min(sx - 1, int(x0 + u * (x1 - x0))), min(sy - 1, int(y0 + v * (y1 - y0)))))
+    return out
+
+
+def read_window(src, i0: int, j0: int, w: int) -> np.ndarray:
+    """heights[i0:i0 + w, j0:j0 + w] of a LineSource, read a few of its lines at a time."""
+    out = np.empty((w, w))
+    if src.axis == 0:
+        a0, b0 = i0, j0
+    else:
+        a0, b0 = j0, i0
+    step = max(1, _READ_VALUES // max(1, src.shape[1 - src.axis]))
+    for s in range(0, w, step):
+        e = min(w, s + step)
+        part = src.lines(a0 + s, a0 + e)               # heights[a:b, :] or heights[:, a:b]
+        if src.axis == 0:
+            out[s:e] = part[:, b0:b0 + w]
+        else:
+            out[:, s:e] = part[b0:b0 + w, :]
+    return out
+
+
+def window_bytes(window: int, boundary: str) -> float:
+    """Memory of one window's work: its solve or its facets, whichever is larger."""
+    from ..contact.elastic import BYTES_PER_PIXEL
+    from ..surface.facets import facet_bytes
+    return float(window) ** 2 * (max(BYTES_PER_PIXEL[boundary], facet_bytes(False, True)) + 32)
+
+
+def solve_window(plan: WindowPlan, k: int, tick=None) -> dict:
+    """One window's contact and friction (a task); ``skipped`` when too few pixels are
+    defined."""
+    from ..surface.contact_facets import elastic_facets
+    from ..surface.prepare import DETREND
+    from ..surface.quality import remove_spikes
+    from ..surface.topography import HeightMap
+    from .derive import derive, to_json
+    src, w = plan.heights, plan.window
+    i0, j0 = plan.origins[k]
+    z = read_window(src, i0, j0, w)
+    out = {"index": k, "origin_px": [i0, j0], "origin_m": [i0 * src.dx, j0 * src.dy]}
+    ok = np.isfinite(z)
+    share = float(ok.mean())
+    out["defined_share"] = share
+    if share < MIN_DEFINED_SHARE:
+        out["skipped"] = (f"{100 * share:.1f} % of its pixels defined (at least "
+                          f"{100 * MIN_DEFINED_SHARE:.0f} % needed)")
+        return out
+    o = plan.options
+    spikes = 0 if o["despike"] is None else remove_spikes(z, o["despike"])
+    hm = HeightMap(z, src.dx, src.dy, source=f"{src.source} window {k}",
+                   n_undefined=int(np.count_nonzero(~np.isfinite(z))))
+    degree = DETREND[o["detrend"]]
+    if degree not in (None, "slope"):
+        from ..surface.detrend import detrend
+        hm = detrend(hm, degree)
+    fm = None if plan.mu_map is None else read_window(plan.mu_map, i0, j0, w)
+    fs = next(elastic_facets(hm, plan.elastic, mu=None if fm is not None else o["mu"],
+                             friction_map=fm, level_slope=o["detrend"] == "slope",
+                             info={"file": src.path, "detrend": o["detrend"]},
+                             max_slope=o["max_slope"]))
+    d = derive(fs, plan.contact, "closed-form", plan.n_directions)
+    j = to_json(d)
+    out.update({key: j[key] for key in ("mu_a_plus", "mu_a_minus", "mu_b_plus",
+                                        "mu_b_minus", "principal_direction_deg",
+                                        "anisotropy", "n_facets")})
+    out["self_locking"] = bool(d.self_locking)
+    out["spikes_removed"] = spikes
+    out["elastic_contact"] = fs.elastic
+    out["tangential"] = [x["tangential"] for x in j["directions"]]
+    if tick is not None:
+        tick(1.0)
+    return out
+
+
+def run_windows(kind, plan, windows, args=(), tick=None) -> list:
+    """The runner's task (:class:`asperity.friction.tiled._Runner`): windows ``windows``."""
+    return [solve_window(plan, k, tick) for k in windows]
+
+
+def check_window_request(shape, window, count, placement, seed) -> tuple[int, int]:
+    """(window, count) checked against the scan's ``shape``: one line naming the flag."""
+    w = check_int("window", window, MIN_WINDOW, None)
+    n = check_int("windows", count, 1, MAX_WINDOWS)
+    check_choice("window_placement", placement, PLACEMENTS)
+    check_int("window_seed", seed, 0, 2 ** 63 - 1)
+    if w > min(shape):
+        raise InputError(f"window {w} pixels is larger than the scan ({shape[0]} x "
+                         f"{shape[1]} pixels): at most {min(shape)}")
+    return w, n
+
+
+def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0,
+                   unit=None, pixel_size=None, height_scale=1.0, detrend="slope", mu=None,
+                   friction_map=None, despike=None, despike_window=None, max_slope=None,
+                   contact="all-faces", n_directions=72, client=None, source=None) -> dict:
+    """The contact-weighted friction of a height-map file estimated from ``windows``
+    windows of ``window`` x ``window`` pixels (see the module's docstring): the JSON object
+    of ``asperity derive --window`` (README).  ``elastic``: an ElasticContact of one
+    pressure (boundary None: free); ``client``: a dask.distributed Client whose workers
+    solve the windows (reading them from the file's path); ``source``: the file already
+    opened by :func:`asperity.surface.tiles.open_scan`."""
+    from dataclasses import replace
+
+    from ..surface.contact_facets import check_elastic
+    from ..surface.prepare import check_surface_options
+    from ..surface.tiles import open_friction_map, open_scan
+    from .reservoir import check_contact
+    from .tiled import _Runner
+    elastic = check_elastic(elastic)
+    if elastic.family:
+        raise InputError("pressure: windows take one pressure (a number), got several")
+    despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
+                                               despike_window=despike_window,
+                                               max_slope=max_slope)
+    if mu is not None and friction_map is not None:
+        raise InputError("give mu or a friction map, not both")
+    check_contact(contact)
+    n_dir = check_int("directions", n_directions, 8, 100_000)
+    check_int("window", window, MIN_WINDOW, None)
+    check_int("windows", windows, 1, MAX_WINDOWS)
+    src = source if source is not None else open_scan(
+        path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
+    w, n = check_window_request(src.shape, window, windows, placement, seed)
+    if client is not None and not src.streams:
+        raise InputError(f"{src.source}: this file is read whole (gzip, .npz, instrument "
+                         f"formats); windows on Dask workers need .npy, .x3p or a text matrix")
+    boundary = elastic.boundary_or("free")
+    from ..resources import check_memory
+    check_memory(window_bytes(w, boundary), f"a window of {w} x {w} pixels",
+                 "lower --window")
+    plan = WindowPlan(src, None if friction_map is None else open_friction_map(friction_map,
+                                                                                src),
+                      w, tuple(window_origins(src.shape, w, n, placement, seed)),
+                      replace(elastic, boundary=boundary),
+                      {"detrend": detrend, "mu": mu, "despike": despike,
+                       "max_slope": max_slope}, contact, n_dir)
+    report(0.0, "windows")
+    results = _Runner(plan, client, run_windows, "lower --window").map("window", plan,
+                                                                       label="windows")
+    return summarise(plan, results, placement, seed)

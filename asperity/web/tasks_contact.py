@@ -1,0 +1,154 @@
+"""Surface and Law jobs with load shares from an elastic contact (``params["elastic"]``,
+read by :mod:`.elastic`): what ``asperity derive ... --elastic E* --pressure P [P ...]``
+computes, with the contact figures and the contact map for the page.
+
+* :func:`elastic_textures_of` -- a job's source weighted by the contact force, one texture
+  a pressure (and the small pressure maps the page draws);
+* :func:`derive_elastic` -- the Surface job: one pressure gives derive's JSON with its
+  ``elastic_contact``, several a law family (``family_json``);
+* :func:`family_law` -- **the hook where fitting a whole family will plug in** (a gauge
+  file of version 2, with a pressure axis, built on another branch): today it returns
+  None and the Law page fits the law at the one pressure chosen, and says so.
+"""
+from __future__ import annotations
+
+import json
+
+from ..io import json_ready, write_text_atomic
+from . import tasks_surface
+from .elastic import contact_of
+from .figures_contact import MapKeeper, axes_figure, contact_map, family_polar
+from .labels import source_stem
+from .results import rename
+from .tasks_surface import describe, load_source, source_job, surface_kwargs, upload_file
+
+#: what the weighting assumes and where it stops being right (shown under the results)
+ASSUMES = ("The load shares come from a normal, frictionless elastic contact: the surface "
+           "is pressed onto an elastic half-space of modulus E* (Polonsky-Keer solution) and "
+           "each facet weighs the normal force it carries; the facet law is unchanged.",
+           "It stops being right where the pressure reaches the hardness (plastic flow: the "
+           "hardness only caps the pressure), where sliding redistributes the load "
+           "(tangential tractions, ploughing, the tilt of the contact), and where the "
+           "contact spots are not resolved (give each spot tens of pixels).")
+
+
+def not_converged(exc) -> str:
+    r = exc.result
+    return (f"the elastic contact did not converge at pressure {r.pressure_asked:g} Pa in "
+            f"{r.iterations} iterations (residual {r.residual:.3g}); nothing computed")
+
+
+def elastic_textures_of(src: dict, params: dict, ctx: dict, bar):
+    """(textures weighted at each pressure, the MapKeeper of their contact maps)."""
+    from ..contact.solver import ContactNotConverged
+    from ..errors import InputError
+    elastic = contact_of(params)
+    keep = MapKeeper(len(elastic.pressures), bar)
+    bar(0.02, f"solving the elastic contact at {len(elastic.pressures)} pressure(s)")
+    try:
+        if src.get("kind") == "file" and not str(src.get("upload", "")).endswith(".toml"):
+            from ..surface.contact_facets import load_elastic
+            path = upload_file(ctx, src.get("upload"), str(src.get("name")))
+            opts = {k: v for k, v in surface_kwargs(src, ctx).items()
+                    if k not in ("rest_level", "bearing_fraction")}
+            return load_elastic(path, elastic, **opts, observe=keep), keep
+        from ..friction.elastic import elastic_textures
+        texture, _, _ = load_source(src, ctx)
+        return elastic_textures(texture, elastic, observe=keep), keep
+    except ContactNotConverged as exc:
+        raise InputError(not_converged(exc)) from None
+
+
+def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
+    """The Surface job with an elastic contact (``src``: the source itself, not a job)."""
+    from ..friction.derive import derive, format_text, to_json
+    from ..friction.family import derive_family, family_json, family_text
+    from .figures import height_figure, reservoir_figures
+    textures, keep = elastic_textures_of(src, params, ctx, bar)
+    elastic = contact_of(params)
+    contact, n = params.get("contact", "all-faces"), params.get("directions", 360)
+    E = elastic.E_star
+    if elastic.family:
+        fam = derive_family(textures, elastic, contact, n, progress=bar)
+        obj = rename(family_json(fam), ctx["names"])
+        d, text = fam.members[-1], family_text(fam)
+        members = obj["members"]
+        figs = {"polar": family_polar(members, list(fam.pressures), E),
+                "axes": axes_figure(obj["summary"], E)}
+    else:
+        d = derive(textures[0], contact, "closed-form", n, progress=bar)
+        obj = rename(to_json(d), ctx["names"])
+        text, members = format_text(d), [obj]
+        figs = reservoir_figures(obj)
+    if "data_quality" in members[0]:
+        h = height_figure(d.texture, members[-1]["principal_direction_deg"])
+        if h is not None:
+            figs["heights"] = h
+    cmap = contact_map(keep.maps, E)
+    if cmap is not None:
+        figs["contact_map"] = cmap
+    write_text_atomic(ctx["job_dir"] / "derive.json", json.dumps(json_ready(obj), indent=1))
+    contacts = [m["elastic_contact"] for m in members]
+    return {("family" if elastic.family else "derive"): obj,
+            "derive": members[-1], "contacts": contacts,
+            "maps": [{"pressure": m["pressure"], "shape": m["shape"],
+                      "shown": list(m["map"].shape)} for m in keep.maps],
+            "assumes": list(ASSUMES), "text": rename(text, ctx["names"]),
+            "source": describe(src, d.texture), "figures": figs, "files": ["derive.json"],
+            "downloads": {"derive.json": f"{source_stem(src)}_friction.json"}}
+
+
+def family_law(members, elastic, law: str):
+    """THE HOOK for fitting a law family (one law per pressure, interpolated in p): the
+    gauge file of version 2 that holds it is built on another branch.  Given the
+    derivations at every pressure of ``elastic`` it will return that family's gauge law;
+    until then it returns None and :func:`fit_elastic` fits the law at one pressure."""
+    return None
+
+
+def fit_elastic(params: dict, ctx: dict, bar) -> dict:
+    """The Law job for a Surface result with an elastic contact: the law at the pressure
+    chosen (``params["elastic"]["pressures"]``: that one), or the family's when
+    :func:`family_law` gives one."""
+    from .. import derive, fit_derivation
+    src = source_job(ctx, params["source"]["job"])
+    textures, _ = elastic_textures_of(src, params, ctx, bar)
+    elastic = contact_of(params)
+    members = [derive(t, params.get("contact", "all-faces"), "closed-form",
+                      params.get("directions", 720), progress=bar) for t in textures]
+    bar(0.95, "fitting the law")
+    gl = family_law(members, elastic, params.get("law", "star"))
+    if gl is None:
+        gl = fit_derivation(members[0], params.get("law", "star"))
+    out = tasks_surface.law_outputs(gl, ctx, source_stem(src))
+    out["source"] = describe(src, members[0].texture)
+    out["elastic_contact"] = members[0].texture.elastic
+    fam = params.get("family") or {}
+    p = elastic.pressures[0]
+    out["note"] = (f"fitted at the pressure p = {p:.4g} Pa (p/E* = {p / elastic.E_star:.3g})"
+                   + (f", one of the {fam['count']} pressures of result {params['source']['job']}"
+                      if fam.get("count", 1) > 1 else "")
+                   + ": the law of that pressure only (a law for the whole family, "
+                     "interpolated in p, needs the gauge file of version 2, not here yet)")
+    return out
+
+
+def derive_task(params: dict, ctx: dict, bar) -> dict:
+    """The Surface job: with an elastic contact here, else :mod:`.tasks_surface`'s."""
+    if not params.get("elastic"):
+        return tasks_surface.derive_task(params, ctx, bar)
+    src = params["source"]
+    return derive_elastic(source_job(ctx, src["job"]) if src.get("kind") == "job" else src,
+                          params, ctx, bar)
+
+
+def fit_task(params: dict, ctx: dict, bar) -> dict:
+    """The Law job: a Surface result with an elastic contact here, else
+    :mod:`.tasks_surface`'s."""
+    if not params.get("elastic"):
+        return tasks_surface.fit_task(params, ctx, bar)
+    return fit_elastic(params, ctx, bar)
+
+
+#: the jobs of this module (they replace tasks_surface's of the same kinds)
+TASKS = {"derive": derive_task, "fit": fit_task}
