@@ -141,8 +141,6 @@ def _pixel_size(pixel_size) -> tuple[float, float]:
         d = pixel_length("pixel_size", pixel_size)
         return d, d
     a = check_array("pixel_size", pixel_size, shape=(2,))
-    if a.dtype == object:
-        raise InputError("pixel_size must be one number or two (dx dy), in m")
     return pixel_length("pixel_size dx", float(a[0])), pixel_length("pixel_size dy",
                                                                      float(a[1]))
 
