@@ -62,6 +62,7 @@ _LAZY = {
     "risk_map": "asperity.study.maps",
     "solve_contact": "asperity.contact.solver",
     "effective_modulus": "asperity.contact.solver",
+    "solve_load_curve": "asperity.contact.curve",
     "ElasticContact": "asperity.surface.contact_facets",
     "load_elastic": "asperity.surface.contact_facets",
     "derive_family": "asperity.friction.family",

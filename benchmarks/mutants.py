@@ -68,6 +68,8 @@ CONFINE = ("test_study_inputs.py", "test_web_security.py")
 FINGERPRINT = ("test_study_fingerprint.py",)
 WEB_SECURITY = ("test_web_security.py", "test_web_http.py")
 CONTACT_FRICTION = ("test_contact_friction.py", "test_contact_friction_cli.py")
+CONTACT_SOLVER = ("test_contact_solver.py",)
+CONTACT_CLI = ("test_contact_cli.py",)
 FAMILY = ("test_law_family.py", "test_law_family_cli.py")
 WINDOWS = ("test_contact_windows.py",)
 STUDY_CONTACT = ("test_study_contact.py",)
@@ -571,6 +573,44 @@ MUTANTS = [
     Mutant("contact-block-missing", "friction/derive.py",
            'out["elastic_contact"] = dict(d.texture.elastic)', "pass", CONTACT_FRICTION,
            "derive's JSON loses its elastic_contact block"),
+    # ---- issue 19: the contact solver against closed forms, load curves, asperity contact
+    Mutant("love-coefficient-sign", "contact/elastic.py",
+           "s = (love_primitive(x + a, y + b) - love_primitive(x + a, y - b)",
+           "s = (love_primitive(x + a, y + b) + love_primitive(x + a, y - b)", CONTACT_SOLVER,
+           "a corner of Love's rectangle added instead of subtracted (free boundary)"),
+    Mutant("free-padding-half", "contact/elastic.py",
+           "ix = np.where(ix <= nx, ix, ix - 2 * nx) * self.dx",
+           "ix = np.where(ix <= nx // 2, ix, ix - 2 * nx) * self.dx", CONTACT_SOLVER,
+           "the padded free kernel's offsets wrap at half the map: far pixels interact as "
+           "near ones on the other side"),
+    Mutant("periodic-kernel-half", "contact/elastic.py",
+           "k[i] = 2.0 / (self.E_star * q)", "k[i] = 1.0 / (self.E_star * q)", CONTACT_SOLVER,
+           "the periodic half-space twice as stiff (u_q = p_q / (E* |q|))"),
+    Mutant("contact-load-over-defined-pixels", "contact/solver.py",
+           "load = pbar * nx * ny ", "load = pbar * n_def ", CONTACT_SOLVER,
+           "the nominal pressure taken over the defined pixels, not the map's area"),
+    Mutant("plastic-clip-dropped", "contact/_pk_kernels.py", "        elif q > H:\n",
+           "        elif q > 2.0 * H:\n", CONTACT_SOLVER,
+           "the pressure step clips at 2 H, not at the hardness"),
+    Mutant("plastic-displacement-left-out", "contact/plastic.py", "        h2 = z - u\n",
+           "        h2 = z.copy()\n", CONTACT_SOLVER,
+           "the outer plastic loop's elastic solve ignores the plastic pixels' displacement"),
+    Mutant("plastic-set-grows-at-2h", "contact/plastic.py", "        over = pe > H\n",
+           "        over = pe > 2.0 * H\n", CONTACT_SOLVER,
+           "the outer plastic loop lets elastic pressures up to 2 H stand"),
+    Mutant("load-curve-cold", "contact/curve.py", "previous = res.pressure",
+           "previous = None", CONTACT_SOLVER,
+           "each pressure of a load curve solved from the uniform start"),
+    Mutant("load-curve-order", "contact/curve.py", "waiting[int(k)] = res",
+           "waiting[len(waiting) + nxt] = res", CONTACT_SOLVER,
+           "a load curve's results in increasing pressure, not in the order given"),
+    Mutant("saved-pressure-undefined-zero", "cli/contact.py",
+           'np.save(f, np.asarray(pic["save"], dtype=np.float64))',
+           'np.save(f, np.nan_to_num(pic["save"]))', CONTACT_CLI,
+           "--save-pressure writes 0, not NaN, on undefined pixels"),
+    Mutant("contact-default-boundary-periodic", "cli/contact.py",
+           'boundary = ec.boundary_or("free")', 'boundary = ec.boundary_or("periodic")',
+           CONTACT_CLI, "a measured file taken as one period by default"),
     # ---- issue 19: law families over the pressure (gauge files version 2)
     Mutant("family-weight-linear-in-p", "laws/family.py",
            "return k, math.log(p / ps[k]) / math.log(ps[k + 1] / ps[k])",

@@ -27,6 +27,7 @@ COMMANDS = {
     "risk": "risk",
     "study": "study",
     "serve": "serve",
+    "contact": "contact",
 }
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130

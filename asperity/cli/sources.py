@@ -26,6 +26,7 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "despike": "--despike", "tile_lines": "--tile-rows",
                 "pressure / E_star": "--pressure / --elastic", "E_star": "--elastic",
                 "pressure": "--pressure", "hardness": "--hardness",
+                "max_iterations": "--max-iterations", "tol ": "--tol ",
                 "window_placement": "--window-placement", "window_seed": "--window-seed",
                 "windows": "--windows", "window ": "--window "}
 #: the elastic-contact flags (dest -> flag)
@@ -141,8 +142,10 @@ def elastic_from_args(args, several: bool):
     return elastic
 
 
-def add_source_arguments(p) -> None:
-    """The texture/surface arguments and --contact, shared by every command that reads one."""
+def add_source_arguments(p, friction: bool = True) -> None:
+    """The texture/surface arguments and --contact, shared by every command that reads one
+    (``friction`` False: without the friction and load-model flags, which then read as
+    not given: --mu, --friction-map, --rest-level, --bearing-fraction, --contact)."""
     p.add_argument("texture", nargs="?", metavar="TEXTURE_OR_SURFACE",
                    help="texture file (.toml) or surface file (mesh, height map, instrument file)")
     g = p.add_argument_group("wedge texture given by flags (instead of a file)")
@@ -152,11 +155,15 @@ def add_source_arguments(p) -> None:
     g.add_argument("--mu-beta", type=float, metavar="Y", help="local friction on the beta face, >= 0")
     g.add_argument("--height", type=float, metavar="M", help="wedge height in m (the friction does not depend on it)")
     f = p.add_argument_group("surface files (meshes, height maps, instrument files)")
-    f.add_argument("--mu", type=float, metavar="X",
-                   help="uniform local friction coefficient of the surface, >= 0 (default 0.1)")
-    f.add_argument("--friction-map", metavar="FILE",
-                   help="local friction per pixel (height maps: same grid) or per triangle "
-                        "(meshes), .npy or text; instead of --mu")
+    if not friction:
+        p.set_defaults(mu=None, friction_map=None, rest_level=None, bearing_fraction=None,
+                       contact="all-faces")
+    else:
+        f.add_argument("--mu", type=float, metavar="X",
+                       help="uniform local friction coefficient of the surface, >= 0 (default 0.1)")
+        f.add_argument("--friction-map", metavar="FILE",
+                       help="local friction per pixel (height maps: same grid) or per triangle "
+                            "(meshes), .npy or text; instead of --mu")
     f.add_argument("--unit", metavar="UNIT",
                    help="length unit of a file that carries none (meshes, .npy, bare text "
                         "matrices): m, mm, um or nm; overrides nothing a file states")
@@ -180,6 +187,8 @@ def add_source_arguments(p) -> None:
     f.add_argument("--despike-window", type=int, metavar="W",
                    help="neighbourhood of --despike: W x W pixels, W odd in [3, 15] "
                         "(default 5)")
+    if not friction:
+        return
     load = f.add_mutually_exclusive_group()
     load.add_argument("--rest-level", type=float, metavar="M",
                       help="spring rest level in m above the detrended mean plane: only points "

@@ -26,7 +26,14 @@ Polonsky & Keer (Wear 231, 206, 1999), one iteration:
 5. load control: p scaled by the factor s that gives sum min(s p, H) = the load (plain
    scaling without a cap, as in the paper; with one, Newton steps on that concave,
    piecewise linear function, exact in a few passes);
-6. the change eps = sum |p_new - p_old| / sum p (the residual reported): done below tol.
+6. the change eps = sum |p_new - p_old| / sum p (the residual reported): done below tol,
+   when the result also satisfies the complementarity (no pixel out of contact below the
+   half-space, none in contact off it, within :data:`GAP_TOL` of the height range; else the
+   residual reported is that violation and the solve did not converge).
+
+A capped solve that does not converge in :data:`PLASTIC_FIRST_TRY` iterations (a cap close
+to the mean pressure: the clipped steps and the load control undo each other) turns to an
+outer loop over the plastic set (:mod:`.plastic`).
 
 u is updated without a transform (u - tau r, scaled) when no pixel was clipped or moved
 by the gap; else, and every :data:`REFRESH` iterations, recomputed as K p.
@@ -49,6 +56,13 @@ REFRESH = 25
 #: set changed, the old direction may have lost its conjugacy (on an unchanged set, with
 #: the exact step of the iteration, sum g t = G)
 THETA = 0.9
+#: largest gap violation of a converged solution over the map's height range (a pixel
+#: out of contact below the half-space, one in contact off it); converged solves stay
+#: near 1e-9 (measured), a solve stuck in a wrong contact set near 0.1
+GAP_TOL = 1e-6
+#: iterations a capped solve tries before the outer loop over the plastic set (:mod:`.plastic`;
+#: converged capped solves take 15 to 60, one whose set stalls never converges)
+PLASTIC_FIRST_TRY = 300
 #: default iteration limit
 MAX_ITERATIONS = 10_000
 #: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
@@ -176,9 +190,20 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
     progress       : callable(fraction, text), else the active progress bar
     workers        : threads of the transforms (default: the cores this process may use)
     """
-    from ..resources import check_memory, cpu_cores
     z, (dx, dy), E, pbar, boundary, H, n_def = check_inputs(heights, pixel_size, E_star,
                                                             pressure, boundary, hardness)
+    tol, maxit, workers = check_options(tol, max_iterations, progress, workers)
+    check_solver_memory(z.shape, boundary)
+    p0 = None if initial is None else check_array("initial", initial, shape=z.shape,
+                                                  finite=False)
+    space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
+    return solve_on(space, z, pbar, H, n_def, tol, maxit, p0, progress)
+
+
+def check_options(tol, max_iterations, progress, workers):
+    """(tol, iteration limit, transform threads) checked (``progress`` a callable or
+    None)."""
+    from ..resources import cpu_cores
     tol = check_range("tol", tol, 1e-15, 0.1)
     maxit = MAX_ITERATIONS if max_iterations is None else \
         check_int("max_iterations", max_iterations, 1, 10 ** 7)
@@ -186,17 +211,33 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
         raise InputError(f"progress must be a callable(fraction, text), got "
                          f"{type(progress).__name__}")
     workers = cpu_cores() if workers is None else check_int("workers", workers, 1, 4096)
-    nx, ny = z.shape
-    check_memory(elastic.solver_bytes(z.shape, boundary),
-                 f"the {boundary} contact solve of {nx} x {ny} pixels",
+    return tol, maxit, workers
+
+
+def check_solver_memory(shape, boundary: str) -> None:
+    """Refuse a solve whose arrays do not fit in the free memory, in one line."""
+    from ..resources import check_memory
+    check_memory(elastic.solver_bytes(shape, boundary),
+                 f"the {boundary} contact solve of {shape[0]} x {shape[1]} pixels",
                  "crop or resample the map to fewer pixels")
-    p0 = None if initial is None else check_array("initial", initial, shape=(nx, ny),
-                                                  finite=False)
-    space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
-    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, maxit, p0,
+
+
+def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
+             progress) -> ContactResult:
+    """The solve of checked arguments (:func:`check_inputs`) on the half-space ``space``
+    (an :class:`.elastic.HalfSpace` of z's shape, reused along a load curve)."""
+    first = maxit if H is None else min(maxit, PLASTIC_FIRST_TRY)
+    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, first, p0,
                    progress)
-    res = ContactResult(**out, E_star=E, boundary=boundary, hardness=H,
-                        pixel_size=(dx, dy), pressure_asked=pbar)
+    if not out["converged"] and H is not None and maxit > out["iterations"]:
+        from .plastic import solve_plastic    # the plastic set by an outer loop
+        used = out["iterations"]
+        del out
+        out = solve_plastic(_iterate, GAP_TOL, space, z, pbar, H, n_def, tol, maxit - used,
+                            progress)
+        out["iterations"] += used
+    res = ContactResult(**out, E_star=space.E_star, boundary=space.boundary, hardness=H,
+                        pixel_size=(space.dx, space.dy), pressure_asked=pbar)
     if not res.converged:
         raise ContactNotConverged(
             f"the contact solve did not converge in {res.iterations} iterations (residual "
@@ -284,7 +325,7 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     while it < maxit:
         it += 1
         s1, s2, n, _, _ = K.gap_sums(uf, hf, pf, H, c)
-        if n > 0:
+        if n > 1:                              # one free pixel: its gap is the mean, no step
             gbar = c + s1 / n
             G = max(s2 - n * (gbar - c) ** 2, 0.0)
             c = gbar
@@ -297,9 +338,9 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
             tau = sgt / denom if denom > 0.0 else 0.0
-        else:                                  # every contact pixel plastic: no CG step
+        else:                                  # one free pixel or none (all plastic)
             G = 0.0
-            gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
+            gbar = c + s1 if n == 1 else float(np.max(np.where(p >= H, u - h, -np.inf)))
             t[...] = 0.0
             r[...] = 0.0
             tau = 1.0 / space.self_compliance
@@ -342,10 +383,17 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     del r, rf
     plastic = int(np.count_nonzero(p >= H)) if math.isfinite(H) else 0
     gap = t
-    gap_sum, _, nc = K.final_fields(uf, hf, pf, tf, -gbar)
+    free_off, plastic_off = K.gap_violation(uf, hf, pf, H, gbar)
+    gap_sum, pen, nc = K.final_fields(uf, hf, pf, tf, -gbar)
     d = float(np.nanmax(z)) - gbar             # approach for the heights as given
+    # complementarity: no pixel out of contact below the half-space, none in contact off
+    # it (the free set on it, the plastic pixels on or into it)
+    span = float(np.nanmax(z) - np.nanmin(z)) or 1.0
+    off = max(pen, free_off, plastic_off) / span
+    ok = eps < tol and off <= max(GAP_TOL, 100.0 * tol)
     return dict(pressure=p, gap=gap, displacement=u, contact=p > 0.0,
                 area_fraction=nc / n_def, mean_pressure=float(np.nansum(p)) / (nx * ny),
                 max_pressure=float(np.nanmax(p)), mean_gap=gap_sum / n_def,
-                iterations=it, residual=float(eps), converged=bool(eps < tol),
+                iterations=it, residual=float(eps if ok else max(eps, off)),
+                converged=bool(ok),
                 plastic_fraction=plastic / n_def, approach=d)

@@ -97,17 +97,24 @@ def segment_forces(p: np.ndarray, dx: float, x0: np.ndarray, x1: np.ndarray) -> 
     return F(np.asarray(x1, dtype=float)) - F(np.asarray(x0, dtype=float))
 
 
+def wedge_heightmap(texture, p_over_E: float):
+    """(HeightMap, profile, node spacing): ``texture``'s profile over one period on
+    :func:`wedge_nodes` nodes (axis 0, across the ridges), uniform along the ridges (two
+    columns: a periodic solve of it is the plane-strain solve of the profile)."""
+    from ..surface.topography import HeightMap
+    prof = texture.profile()
+    n = wedge_nodes(texture, prof, p_over_E)
+    dx = prof.period / n
+    z = prof.height(np.arange(n) * dx)
+    hm = HeightMap(np.repeat(z[:, None], 2, axis=1), dx, dx, source=f"{texture.kind} profile")
+    return hm, prof, dx
+
+
 def wedge_contact(texture, elastic, observe=None) -> list[ElasticWedge]:
     """``texture`` weighted by the contact force at each pressure of ``elastic``
     (``observe``: see :func:`asperity.surface.contact_facets.contact_solutions`)."""
     from ..surface.contact_facets import contact_solutions
-    from ..surface.topography import HeightMap
-    prof = texture.profile()
-    n = wedge_nodes(texture, prof, min(elastic.pressures) / elastic.E_star)
-    period = prof.period
-    dx = period / n
-    z = prof.height(np.arange(n) * dx)
-    hm = HeightMap(np.repeat(z[:, None], 2, axis=1), dx, dx, source=f"{texture.kind} profile")
+    hm, prof, dx = wedge_heightmap(texture, min(elastic.pressures) / elastic.E_star)
     boundary = elastic.boundary_or("periodic")
     if boundary != "periodic":
         raise InputError("boundary of a wedge texture must be periodic (the texture repeats "

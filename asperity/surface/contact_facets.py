@@ -138,17 +138,16 @@ def contact_heights(hm: HeightMap, periodic: bool, level_slope: bool) -> np.ndar
 
 def contact_solutions(hm: HeightMap, elastic: ElasticContact, boundary: str,
                       level_slope: bool, observe=None):
-    """Yield the ContactResult at each pressure of ``elastic`` (each solve starting from
-    the previous pressure field); ``observe(result)``, when given, sees each first (the
-    web page keeps a preview of the pressure field)."""
-    from ..contact.solver import solve_contact
+    """Yield the ContactResult at each pressure of ``elastic``, in its order (the load
+    curve of :func:`asperity.contact.iter_load_curve`: solved in increasing order, each
+    from the previous pressure field); ``observe(result)``, when given, sees each first
+    (the web page keeps a preview of the pressure field)."""
+    from ..contact.curve import iter_load_curve
     z = contact_heights(hm, boundary == "periodic", level_slope)
-    previous = None
-    for p in elastic.pressures:
-        res = solve_contact(z, (float(hm.dx), float(hm.dy)), elastic.E_star, p,
-                            boundary=boundary, hardness=elastic.hardness, tol=elastic.tol,
-                            max_iterations=elastic.max_iterations, initial=previous)
-        previous = res.pressure
+    for res in iter_load_curve(
+            z, (float(hm.dx), float(hm.dy)), elastic.E_star, elastic.pressures,
+            boundary=boundary, hardness=elastic.hardness, tol=elastic.tol,
+            max_iterations=elastic.max_iterations):
         if observe is not None:
             observe(res)
         yield res

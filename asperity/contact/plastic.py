@@ -1,0 +1,87 @@
+"""A plastic solve by an outer loop over the plastic set: the fallback of
+:func:`asperity.contact.solver.solve_on` when the single Polonsky-Keer iteration with the
+cap stalls (a cap close to the mean pressure: most of the contact at H, where the clipped
+conjugate-gradient steps and the load control undo each other).
+
+Outer iteration k, with P the plastic set (pressure H, fixed):
+
+1. the elastic problem of the other pixels: heights h - K (H on P) (the displacement the
+   plastic pixels cause), P undefined, load L - H |P|, no cap -- the plain elastic
+   Polonsky-Keer solve (:func:`asperity.contact.solver._iterate`), started from the last
+   outer iteration's pressures;
+2. the pixels whose elastic pressure exceeds H join P; the pixels of P whose gap
+   g = u - h + d (u of every pressure, d the elastic solve's approach) is positive leave
+   it (they do not touch);
+3. done when nothing moves and the elastic solve converged.
+
+The plastic set grows from the highest loads outwards, so the loop ends after about as
+many outer iterations as the plastic zones are pixels wide (measured: 10 to 60 for 10 %
+to 99.9 % of the map at H).  Complementarity of the result: pixels out of contact clear
+of the half-space and the free ones on it (the elastic solve's), the plastic ones on or
+into it (step 2), each to the solver's gap tolerance.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: most outer iterations
+MAX_OUTER = 10_000
+
+
+def solve_plastic(iterate, gap_tol: float, space, z, pbar: float, H: float, n_def: int,
+                  tol: float, maxit: int, progress) -> dict:
+    """The fields and figures of ``iterate`` (:func:`asperity.contact.solver._iterate`, the
+    elastic solve) for the capped problem, by the outer loop of the module's docstring
+    (``maxit``: iterations of the elastic solves in all; ``gap_tol``: the gap, over the
+    height range, beyond which a plastic pixel leaves the plastic set)."""
+    nx, ny = z.shape
+    load = pbar * nx * ny
+    undefined = np.isnan(z)
+    span = float(np.nanmax(z) - np.nanmin(z)) or 1.0
+    plastic = np.zeros(z.shape, dtype=bool)
+    p = np.zeros(z.shape)
+    u = np.empty(z.shape)
+    p0, used, out = None, 0, None
+    for _ in range(MAX_OUTER):
+        p[...] = 0.0
+        p[plastic] = H
+        space.apply(p, u)                      # the plastic pixels' displacement
+        h2 = z - u
+        h2[plastic] = np.nan
+        n_pl = int(np.count_nonzero(plastic))
+        out = iterate(space, h2, (load - H * n_pl) / (nx * ny), math.inf, n_def - n_pl,
+                       tol, maxit - used, p0, progress)
+        used += out["iterations"]
+        del h2
+        pe = out.pop("pressure")
+        np.nan_to_num(pe, copy=False)
+        over = pe > H
+        p += pe
+        space.apply(p, u)
+        d = out["approach"]
+        release = plastic & (u - z + d > gap_tol * span)
+        if not out["converged"] or used >= maxit:
+            break
+        if not over.any() and not release.any():
+            break
+        plastic |= over
+        plastic &= ~release
+        pe[plastic | undefined] = 0.0
+        p0 = pe
+    converged = bool(out["converged"]) and not over.any() and not release.any()
+    gap = u - z + d
+    contact = p > 0.0
+    gap[contact] = 0.0
+    np.maximum(gap, 0.0, out=gap)
+    p[undefined] = np.nan
+    gap[undefined] = np.nan
+    n_c = int(np.count_nonzero(contact))
+    return dict(pressure=p, gap=gap, displacement=u, contact=contact, area_fraction=n_c / n_def,
+                mean_pressure=float(np.nansum(p)) / (nx * ny), max_pressure=float(np.nanmax(p)),
+                mean_gap=float(np.nansum(gap)) / n_def, iterations=used,
+                residual=float(out["residual"]) if converged else max(float(out["residual"]),
+                                                                      tol),
+                converged=converged, plastic_fraction=int(np.count_nonzero(p >= H)) / n_def,
+                approach=d)
