@@ -17,9 +17,8 @@ import pytest
 
 pytest.importorskip("fastapi")
 httpx = pytest.importorskip("httpx")
-from test_web_contact import E_STAR, SETTINGS, bumps, figure, job  # noqa: E402
+from test_web_contact import E_STAR, SETTINGS, figure, job, site  # noqa: E402,F401
 from web_forms import Page  # noqa: E402
-from web_server import Server, wait_for  # noqa: E402
 
 #: the pressures, typed out of order on the Surface page (the family sorts them)
 TYPED = (8e8, 5e7, 2e8)
@@ -28,23 +27,10 @@ FIELD = "law_pressure"
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("web-family")
-    path = folder / "bumps.txt"
-    np.savetxt(path, bumps(), fmt="%.6f")
-    s = Server(folder / "data", "--workers", "1")
-    try:
-        wait_for(lambda: any("data folder" in line for line in s.err), 30)
-        with httpx.Client(base_url=s.base, timeout=120, follow_redirects=False) as c:
-            yield c, path, folder
-    finally:
-        s.stop()
-
-
-@pytest.fixture(scope="module")
-def fitted(site, tmp_path_factory):
+def fitted(site):
     """(Surface job, Law job of its family, the command line's family file and JSON)."""
-    c, path, folder = site
+    c, path = site
+    folder = path.parent
     data = {"source": "file", **SETTINGS, "load": "elastic", "E_star": f"{E_STAR:g}",
             "pressure": " ".join(f"{p:g}" for p in TYPED)}
     surf = job(c, c.post("/surface", data=data,
@@ -76,7 +62,8 @@ def test_the_family_fitted_on_the_page_is_the_command_lines(site, fitted):
     from asperity import read_gauge
     from asperity.laws.family import GaugeFamily
     from asperity.laws.family_report import member_axes
-    c, _, folder = site
+    c, path = site
+    folder = path.parent
     surf, fit, out, want = fitted
     raw = c.get(f"/jobs/{fit}/files/gauge.json")
     assert raw.status_code == 200
@@ -114,7 +101,7 @@ def test_the_family_fitted_on_the_page_is_the_command_lines(site, fitted):
 
 
 def test_the_family_downloads_the_table_and_one_abaqus_block_a_member(site, fitted):
-    c, _, _ = site
+    c, _ = site
     _, fit, out, want = fitted
     table = c.get(f"/jobs/{fit}/files/law.csv")
     assert "family" in table.headers["content-disposition"]
@@ -136,7 +123,7 @@ def test_the_family_downloads_the_table_and_one_abaqus_block_a_member(site, fitt
 
 
 def test_one_pressure_chosen_is_that_members_law_alone(site, fitted):
-    c, _, _ = site
+    c, _ = site
     surf, _, out, _ = fitted
     from asperity import read_gauge
     from asperity.laws.fitting import GaugeLaw
@@ -157,7 +144,7 @@ def test_one_pressure_chosen_is_that_members_law_alone(site, fitted):
 
 
 def test_a_version_2_file_opens_on_the_law_page(site, fitted):
-    c, _, _ = site
+    c, _ = site
     _, _, out, want = fitted
     r = c.post("/law/open", files=[("gauge", ("cli_family.json", out.read_bytes()))])
     jid = job(c, r)
@@ -192,7 +179,7 @@ def slide_error(c, data, files=None) -> tuple[str, str]:
 
 
 def test_slide_on_the_family_at_the_pressure_given(site, fitted):
-    c, _, _ = site
+    c, _ = site
     _, fit, out, _ = fitted
     for v in ("", "abc", "nan", "inf", "-1", "0", "1e999", "4.9e7", "8.01e8"):
         where, msg = slide_error(c, {"law": f"job:{fit}", **SLIDE, FIELD: v})
@@ -216,7 +203,7 @@ def test_slide_on_the_family_at_the_pressure_given(site, fitted):
 
 
 def test_slide_on_an_uploaded_family_and_a_single_law_needs_no_pressure(site, fitted):
-    c, _, _ = site
+    c, _ = site
     surf, _, out, _ = fitted
     files = [("gauge", ("cli_family.json", out.read_bytes()))]
     where, msg = slide_error(c, {"law": "upload", **SLIDE}, files)
