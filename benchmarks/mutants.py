@@ -76,6 +76,7 @@ STUDY_CONTACT = ("test_study_contact.py",)
 WEB_CONTACT = ("test_web_contact.py",)
 REPORT = ("test_report.py",)
 FAMILY_AXES = ("test_family_axes.py",)
+WEB_FAMILY = ("test_web_law_family.py",)
 
 
 @dataclass(frozen=True)
@@ -755,6 +756,38 @@ MUTANTS = [
            '"mu_b_plus": r["mu_b_minus"], "mu_b_minus": r["mu_b_plus"]}',
            '"mu_b_plus": r["mu_b_plus"], "mu_b_minus": r["mu_b_minus"]}', FAMILY_AXES,
            "a turned member's mu_a+/- exchanged but not its mu_b+/-"),
+    # ---- issue 19: the Law page fits the law family; the Motion page slides on one
+    Mutant("web-family-members-unsorted", "web/law_family.py",
+           "    for k in order:", "    for k in range(len(pressures)):", WEB_FAMILY,
+           "the members fitted in the order typed while the pressures are sorted"),
+    Mutant("web-family-collapsed", "web/tasks_contact.py",
+           "if len(elastic.pressures) < 2:", "if len(elastic.pressures) < 200:", WEB_FAMILY,
+           "the Law page's family fitted as the law of its first pressure alone"),
+    Mutant("web-family-choice-collapsed", "web/elastic.py",
+           'return {"elastic": e, "family"', 'return {"elastic": {**e, "pressures": ps[:1]}, '
+           '"family"', WEB_FAMILY, "the family chosen on the Law page fitted at one pressure"),
+    Mutant("web-family-motion-pressure-ignored", "web/tasks_motion.py",
+           'law_at(read_gauge(path), spec.get("pressure"),',
+           'law_at(read_gauge(path), spec.get("pressure") and read_gauge(path).pressures[0],',
+           WEB_FAMILY, "the Motion page slides on a family's first member whatever pressure "
+           "was given"),
+    Mutant("web-family-motion-range-unchecked", "web/pages_motion.py",
+           "if p is None or not lo <= p <= hi:", "if p is None:", WEB_FAMILY,
+           "a pressure outside the family refused by the job, not next to its field"),
+    Mutant("web-family-opened-as-one-law", "web/law_family.py",
+           "if not isinstance(gauge, GaugeFamily):\n        return None",
+           "if True:\n        return None", WEB_FAMILY,
+           "a version-2 gauge file opened on the Law page as one law (a failed job)"),
+    Mutant("web-family-csv-one-member", "web/law_family.py",
+           'family_table(fam, n_csv)', 'family_table(GaugeFamily(fam.pressures[:1], '
+           'fam.members[:1]), n_csv)', WEB_FAMILY, "the family's CSV table holds its first "
+           "member only"),
+    Mutant("web-family-download-unnamed", "web/law_family.py",
+           'law_downloads(f"{source}_family", fam.kind)', 'law_downloads(source, fam.kind)',
+           WEB_FAMILY, "a family's downloads named as a single law's"),
+    Mutant("web-family-one-colour", "web/law_family.py",
+           '"color": colour(k, n)', '"color": colour(0, n)', WEB_FAMILY,
+           "every member's reservoir drawn in the same colour"),
 ]
 
 

@@ -147,7 +147,7 @@ def test_three_pressures_give_three_curves_and_the_contact_figures(site, capsys)
     # the Law page offers the three pressures and fits the one chosen, saying so
     law = c.get(f"/law?source={jid}").text
     assert all(f'value="{jid}:{k}"' in law for k in range(3))
-    assert f'<option value="{jid}:0" selected>' in law          # the result's first pressure
+    assert f'<option value="{jid}:family" selected>' in law     # the whole family first
     fit = job(c, c.post("/law", data={"source": jid, "law": "star", "directions": "72",
                                       "pressure": f"{jid}:1"}))
     text = c.get(f"/jobs/{fit}").text

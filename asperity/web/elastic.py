@@ -161,6 +161,10 @@ def describe(e: dict) -> str:
     return out
 
 
+#: the value of the Law page's choice "the law family" (``JOB:family``)
+FAMILY = "family"
+
+
 def pressure_choices(jobs: list[dict]) -> list[tuple[str, str, str]]:
     """The Law page's choice of pressure: (value ``JOB:k``, words, job) for every pressure
     of the finished Surface results with an elastic contact."""
@@ -169,6 +173,9 @@ def pressure_choices(jobs: list[dict]) -> list[tuple[str, str, str]]:
         e = (j.get("params") or {}).get("elastic")
         if not isinstance(e, dict) or not isinstance(e.get("pressures"), list):
             continue
+        if len(e["pressures"]) > 1:
+            out.append((f"{j['id']}:{FAMILY}", f"result {j['id']}: the law family, one law at "
+                        f"each of its {len(e['pressures'])} pressures", j["id"]))
         for k, p in enumerate(e["pressures"]):
             try:
                 out.append((f"{j['id']}:{k}", f"result {j['id']}: p = {float(p):.4g} Pa", j["id"]))
@@ -178,11 +185,14 @@ def pressure_choices(jobs: list[dict]) -> list[tuple[str, str, str]]:
 
 
 def chosen_pressure(form: Form, rec: dict) -> dict:
-    """The Law job's ``elastic`` (the one pressure chosen of result ``rec``) and
-    ``family`` (how many pressures the result has)."""
+    """The Law job's ``elastic`` (the one pressure chosen of result ``rec``, or all of
+    them for its law family) and ``family`` (how many pressures the result has, the index
+    chosen: None for the family)."""
     e = rec["params"]["elastic"]
     ps = e["pressures"]
     t = form.text("pressure")
+    if len(ps) > 1 and t == f"{rec['id']}:{FAMILY}":
+        return {"elastic": e, "family": {"count": len(ps), "index": None}}
     if len(ps) == 1 and t in ("", f"{rec['id']}:0"):
         k = 0
     else:

@@ -145,7 +145,9 @@ async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         if rec["params"].get("elastic"):   # one pressure of its elastic contact
             from .elastic import chosen_pressure
             params.update(chosen_pressure(form, rec))
-            what += f" at p = {params['elastic']['pressures'][0]:.4g} Pa"
+            ps = params["elastic"]["pressures"]
+            what += f" at p = {ps[0]:.4g} Pa" if len(ps) == 1 else \
+                f", family over {len(ps)} pressures"
     return params, f"{law} law of {what}"
 
 

@@ -17,6 +17,50 @@ BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a
            ("star", "built in: star (windward wedge reservoir, mu1 / mu2)"),
            ("upload", "a gauge file (upload below)"))
 MAX_TOML = 1 << 20
+#: the Motion page's pressure field, for a law family (a gauge file of version 2)
+PRESSURE = "nominal pressure, Pa"
+
+
+def family_jobs(web, laws_done: list[dict]) -> list[str]:
+    """The select values (``job:ID``) of the finished laws that are law families."""
+    out = []
+    for j in laws_done:
+        if j["kind"] == "fit":
+            fam = (j.get("params") or {}).get("family")
+            if isinstance(fam, dict) and "index" in fam and fam["index"] is None:
+                out.append(f"job:{j['id']}")
+        elif "family" in (web.store.result(j["id"]) or {}):
+            out.append(f"job:{j['id']}")
+    return out
+
+
+def family_pressure(form: Form, path, field: str, shown: str) -> dict:
+    """``{"pressure": P}`` (the field ``law_pressure``) when the gauge file at ``path`` (shown
+    as ``shown``) holds a law family, required there and within the family's pressures;
+    else ``{}`` (the field blank: it applies to a family only)."""
+    from .. import read_gauge
+    from ..errors import InputError
+    from ..laws.family import GaugeFamily
+    p = form.optional("law_pressure", label=PRESSURE)
+    try:
+        gauge = read_gauge(path)
+    except InputError as exc:
+        raise FormError(str(exc).replace(str(path), shown), field) from None
+    if not isinstance(gauge, GaugeFamily):
+        if p is not None:
+            raise FormError(f"{PRESSURE}: {shown} is one law, not a law family over pressures; "
+                            "leave the pressure blank", "law_pressure")
+        return {}
+    lo, hi = gauge.pressures[0], gauge.pressures[-1]
+    if p is None or not lo <= p <= hi:
+        raise FormError(f"{PRESSURE}: the law is a family over the pressures {lo:g} to "
+                        f"{hi:g} Pa; give the nominal contact pressure within them"
+                        + ("" if p is None else f" (got {p:g})"), "law_pressure")
+    try:
+        gauge.at(p, PRESSURE)
+    except InputError as exc:
+        raise FormError(str(exc), "law_pressure") from None
+    return {"pressure": p}
 
 
 def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
@@ -39,7 +83,7 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
     elif q.get("law") and any(j["id"] == q["law"] for j in laws_done):
         default_friction = f"law:{q['law']}"
     return web.page(request, "motion.html", status, page="motion", laws=laws,
-                    default_law=default_law, frictions=frictions,
+                    default_law=default_law, family_laws=family_jobs(web, laws_done), frictions=frictions,
                     default_friction=default_friction, jobs=jobs, **ctx)
 
 
@@ -54,11 +98,15 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         jid = choice[4:]
         rec = done_job(web, jid, ("fit", "gauge"), "law", "law")
         spec, what = {"kind": "job", "job": jid}, f"the {rec['title']} (law {jid})"
+        spec.update(family_pressure(form, web.store.job_dir(jid) / "gauge.json", "law",
+                                    f"the law of result {jid}"))
     elif choice == "upload":
         meta = kept.get("gauge")
         if meta is None:
             raise FormError("choose a gauge file (.json) to upload, or another law", "gauge")
         spec, what = {"kind": "upload", "upload": meta["id"], "name": meta["name"]}, meta["name"]
+        spec.update(family_pressure(form, web.store.upload_path(meta["id"]), "gauge",
+                                    meta["name"]))
     elif choice in ("coulomb", "ellipse", "collinear", "star"):
         mu1 = form.number("mu1", label="mu1")
         mu2 = form.optional("mu2", label="mu2") if choice == "coulomb" else \
@@ -67,6 +115,8 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         what = f"a {choice} law, mu1 = {mu1:g}" + ("" if mu2 is None else f", mu2 = {mu2:g}")
     else:
         raise FormError(f"unknown friction law {choice[:40]!r}; pick one from the list", "law")
+    if spec.get("pressure") is not None:
+        what += f" at p = {spec['pressure']:g} Pa"
     params = {"law": spec, "u0": form.number("u0", label="u0 (m/s)"),
               "angle_deg": form.number("angle_deg", label="direction (deg)"),
               "mass": form.number("mass", 1.0, label="mass (kg)"),

@@ -6,9 +6,9 @@ computes, with the contact figures and the contact map for the page.
   a pressure (and the small pressure maps the page draws);
 * :func:`derive_elastic` -- the Surface job: one pressure gives derive's JSON with its
   ``elastic_contact``, several a law family (``family_json``);
-* :func:`family_law` -- **the hook where fitting a whole family will plug in** (a gauge
-  file of version 2, with a pressure axis, built on another branch): today it returns
-  None and the Law page fits the law at the one pressure chosen, and says so.
+* :func:`family_law` -- the law family of a result with several pressures (a gauge file
+  of version 2, :mod:`.law_family`); the Law page fits it, or the law at one pressure
+  chosen.
 """
 from __future__ import annotations
 
@@ -99,37 +99,47 @@ def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
 
 
 def family_law(members, elastic, law: str):
-    """THE HOOK for fitting a law family (one law per pressure, interpolated in p): the
-    gauge file of version 2 that holds it is built on another branch.  Given the
-    derivations at every pressure of ``elastic`` it will return that family's gauge law;
-    until then it returns None and :func:`fit_elastic` fits the law at one pressure."""
-    return None
+    """The GaugeFamily of the derivations ``members`` at the pressures of ``elastic`` (one
+    law of kind ``law`` a pressure, sorted by pressure, as ``asperity fit --pressure P1 P2
+    ...``), or None for one pressure."""
+    if len(elastic.pressures) < 2:
+        return None
+    from .law_family import fit_family
+    return fit_family(members, list(elastic.pressures), law)
 
 
 def fit_elastic(params: dict, ctx: dict, bar) -> dict:
-    """The Law job for a Surface result with an elastic contact: the law at the pressure
-    chosen (``params["elastic"]["pressures"]``: that one), or the family's when
-    :func:`family_law` gives one."""
+    """The Law job for a Surface result with an elastic contact: the law family over all
+    its pressures (``params["family"]["index"]`` None), or the law at the one pressure
+    chosen (``params["elastic"]["pressures"]``: that one)."""
     from .. import derive, fit_derivation
+    from .law_family import family_outputs
     src = source_job(ctx, params["source"]["job"])
     textures, _ = elastic_textures_of(src, params, ctx, bar)
     elastic = contact_of(params)
     members = [derive(t, params.get("contact", "all-faces"), "closed-form",
                       params.get("directions", 720), progress=bar) for t in textures]
-    bar(0.95, "fitting the law")
-    gl = family_law(members, elastic, params.get("law", "star"))
-    if gl is None:
-        gl = fit_derivation(members[0], params.get("law", "star"))
+    bar(0.95, "fitting the law" + ("s" if len(members) > 1 else ""))
+    fam = family_law(members, elastic, params.get("law", "star"))
+    jid = params["source"]["job"]
+    if fam is not None:
+        out = family_outputs(fam, ctx, source_stem(src))
+        out["source"] = describe(src, members[0].texture)
+        out["note"] = (f"a law family: one {fam.kind} law at each of the {len(fam.members)} "
+                       f"pressures of result {jid}, {fam.pressures[0]:.4g} to "
+                       f"{fam.pressures[-1]:.4g} Pa (E* = {elastic.E_star:.4g} Pa); between "
+                       "them the law is interpolated linearly in ln p")
+        return out
+    gl = fit_derivation(members[0], params.get("law", "star"))
     out = tasks_surface.law_outputs(gl, ctx, source_stem(src))
     out["source"] = describe(src, members[0].texture)
     out["elastic_contact"] = members[0].texture.elastic
     fam = params.get("family") or {}
     p = elastic.pressures[0]
     out["note"] = (f"fitted at the pressure p = {p:.4g} Pa (p/E* = {p / elastic.E_star:.3g})"
-                   + (f", one of the {fam['count']} pressures of result {params['source']['job']}"
-                      if fam.get("count", 1) > 1 else "")
-                   + ": the law of that pressure only (a law for the whole family, "
-                     "interpolated in p, needs the gauge file of version 2, not here yet)")
+                   + (f", one of the {fam['count']} pressures of result {jid}: the law of "
+                      "that pressure alone (choose the law family at the pressure to fit "
+                      "one law a pressure)" if fam.get("count", 1) > 1 else ""))
     return out
 
 

@@ -20,6 +20,8 @@ from .results import rename
 from .store import JOB_ID
 from .tasks_surface import load_source, upload_file
 
+#: the Motion page's pressure field of a law family (as pages_motion's)
+PRESSURE = "nominal pressure, Pa"
 #: points of a path kept for the page and the CSV table at most
 MAX_POINTS = 4000
 
@@ -37,12 +39,13 @@ def _gauge_of_job(ctx: dict, jid) -> "object":
 def build_law(spec: dict, ctx: dict):
     """The PlanarLaw of a law description (see the module docstring)."""
     from .. import coulomb_law, collinear_law, ellipse_law, law_from_gauge, read_gauge, star_law
+    from ..laws.family import law_at
     kind = spec.get("kind")
-    if kind == "job":
-        return law_from_gauge(read_gauge(_gauge_of_job(ctx, spec.get("job"))))
-    if kind == "upload":
-        return law_from_gauge(read_gauge(upload_file(ctx, spec.get("upload"),
-                                                     str(spec.get("name")))))
+    if kind in ("job", "upload"):
+        path = _gauge_of_job(ctx, spec.get("job")) if kind == "job" else \
+            upload_file(ctx, spec.get("upload"), str(spec.get("name")))
+        gl, _ = law_at(read_gauge(path), spec.get("pressure"), PRESSURE, "the law")
+        return law_from_gauge(gl)
     name, mu1, mu2 = spec.get("law"), spec.get("mu1"), spec.get("mu2")
     if name == "coulomb":
         return coulomb_law(mu1)

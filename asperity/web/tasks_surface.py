@@ -173,8 +173,10 @@ def fit_task(params: dict, ctx: dict, bar) -> dict:
 
 def gauge_task(params: dict, ctx: dict, bar) -> dict:
     from .. import read_gauge
+    from .law_family import gauge_outputs
     gl = read_gauge(upload_file(ctx, params["upload"], str(params.get("name"))))
-    out = _law_outputs(gl, ctx, stem(params.get("name")))
+    out = gauge_outputs(gl, ctx, stem(params.get("name"))) or \
+        _law_outputs(gl, ctx, stem(params.get("name")))
     out["source"] = {"kind": "gauge file", "text": f"gauge file {params.get('name')}"}
     return out
 
