@@ -287,3 +287,51 @@ def test_a_large_contact_map_is_shown_as_block_means_with_its_holes():
         np.testing.assert_allclose(got[i, j], want, rtol=1e-12)
     assert np.isnan(got[10:12, 20]).all() and np.isfinite(got[30, 30])
     assert np.isfinite(got).sum() == 200 * 100 - 2
+
+
+STRIP = {"model": "strip", "strip_h": "2.5e-3", "strip_E": "1.1e11", "strip_p": "5e7",
+         "strip_l": "0.04", "strip_k_t": "1e13", "strip_alpha_T": "6e-6", "strip_n": "21",
+         "dT_min": "0", "dT_max": "120"}
+STRIP_TOML = """name = "strip"
+[assembly]
+model = "strip"
+h = 2.5e-3
+E = 1.1e11
+p = 5.0e7
+l = 0.04
+k_t = 1.0e13
+alpha_T = 6.0e-6
+n = 21
+[loading]
+dT_min = 0.0
+dT_max = 120.0
+force = 0.0
+cycles = 1e6
+tolerance = 1e-4
+"""
+
+
+def test_risk_of_an_elastic_surface_result_solves_the_contact_at_the_assembly_pressure(
+        site, capsys, tmp_path):
+    """A Surface result weighted by an elastic contact at 2e8 Pa, chosen as the friction of
+    a strip at p = 5e7 Pa, gives the verdict of ``asperity risk --elastic E`` (the contact
+    solved again at the strip's p), not the area-weighted surface's nor the 2e8 Pa one's."""
+    c, path = site
+    jid = job(c, surface(c, path, pressure="2e8"))
+    rid = job(c, c.post("/motion/risk", data={**STRIP, "friction": f"job:{jid}"}))
+    got = json.loads(c.get(f"/jobs/{rid}/files/risk.json").content)
+    asm = tmp_path / "strip.toml"
+    asm.write_text(STRIP_TOML)
+    flags = ["--unit", "um", "--pixel-size", "0.5", "--mu", "0.15"]
+    want = run_json(capsys, "risk", path, asm, *flags, "--elastic", f"{E_STAR:g}")
+    at_2e8 = run_json(capsys, "risk", path, asm, *flags, "--elastic", f"{E_STAR:g}",
+                      "--pressure", "2e8")
+    area = run_json(capsys, "risk", path, asm, *flags)
+    assert got["friction"]["contact_pressure"] == {"pressure_Pa": 5e7, "from": "assembly.p",
+                                                   "solved": True}
+    assert got["friction"]["elastic_contact"]["pressure_Pa"] == pytest.approx(5e7, rel=1e-9)
+    for k in ("mu_plus", "mu_minus", "drift_per_cycle_m"):
+        assert got[k] == pytest.approx(want[k], rel=1e-9, abs=1e-15), k
+    for other in (at_2e8, area):            # the pressure matters on this map
+        assert abs(other["mu_plus"] - want["mu_plus"]) > 1e-3
+    assert got["verdict"] == want["verdict"]

@@ -150,6 +150,37 @@ def _friction_stem(spec: dict, ctx: dict) -> str:
     return ""
 
 
+def _elastic_at_assembly(spec: dict, asm, ctx: dict, bar, texture):
+    """(texture, the ``contact_pressure`` block or None): a Surface result derived with an
+    elastic contact gives its surface weighted by the contact solved again at the
+    assembly's contact pressure (as ``asperity risk --elastic E`` without --pressure), not
+    the area-weighted surface of its source."""
+    import json
+
+    from .tasks_contact import elastic_textures_of
+    from .tasks_surface import source_job
+    jid = spec.get("job")
+    if not isinstance(jid, str) or not JOB_ID.match(jid):
+        return texture, None
+    try:
+        rec = json.loads((ctx["jobs"] / jid / "job.json").read_text(encoding="utf-8"))
+        e = rec["params"].get("elastic")
+    except (OSError, ValueError, KeyError, AttributeError):
+        return texture, None
+    if not e:
+        return texture, None
+    p, where = asm.contact_pressure()
+    if p is None:
+        raise InputError("the surface of this result was weighted by an elastic contact, "
+                         "which is solved again at the assembly's contact pressure, and a "
+                         "two-node assembly entered on this page gives none: use the strip "
+                         "model (its p), or upload an assembly file with "
+                         "assembly.contact_area")
+    textures, _ = elastic_textures_of(source_job(ctx, jid), {"elastic": {**e, "pressures": [p]}},
+                                      ctx, bar)
+    return textures[0], {"pressure_Pa": p, "from": where, "solved": True}
+
+
 def risk_task(params: dict, ctx: dict, bar) -> dict:
     from .. import assembly_friction, assess_assembly
     from ..microslip.assembly import assembly_from_dict
@@ -175,8 +206,13 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     ctx["names"][str(ctx["job_dir"] / "assembly.toml")] = params.get("assembly_name") or \
         "the assembly"
     asm = assembly_from_dict(data, ctx["job_dir"] / "assembly.toml")
+    contact = None
+    if spec.get("kind") == "job":
+        texture, contact = _elastic_at_assembly(spec, asm, ctx, bar, texture)
     bar(0.1, "friction along the slip axis")
     friction = assembly_friction(asm, texture, texture_name=name, **opts)
+    if contact is not None:
+        friction.detail["contact_pressure"] = contact
     bar(0.3, "load cycles")
     out = assess_assembly(asm, friction, cycles=params.get("cycles"),
                           tolerance=params.get("tolerance"))
