@@ -142,6 +142,12 @@ def test_three_pressures_give_three_curves_and_the_contact_figures(site, capsys)
     rows = [float(x) for x in re.findall(r'class="area-fraction">([0-9.]+)', page)]
     assert rows == pytest.approx(fr, abs=5e-5)
     assert len(re.findall(r'class="family-row"', page)) == 3
+    # one common axis for mu_a+-, named under the table and in the figure's title
+    ref = f"{want['reference_direction_deg']:.2f} deg"
+    assert ref in re.search(r'id="family-reference">([^<]+)<', page).group(1)
+    assert ref in axes["layout"]["title"]["text"]
+    turned = [r["axes_reversed"] for r in want["summary"]]
+    assert page.count("(turned)</td>") == sum(turned)
     cmap = figure(page, "contact_map")
     assert len(cmap["data"]) == 6 and len(cmap["layout"]["updatemenus"][0]["buttons"]) == 3
     # the Law page offers the three pressures and fits the one chosen, saying so

@@ -51,7 +51,7 @@ def family_polar(members: list[dict], pressures: list[float], E_star: float) -> 
         legend={"orientation": "v", "x": 1.02, "y": 1.0})}
 
 
-def axes_figure(rows: list[dict], E_star: float) -> dict:
+def axes_figure(rows: list[dict], E_star: float, reference_deg: float | None = None) -> dict:
     """mu_a+ and mu_a- (left) and the contact area fraction (right, dotted) against the
     pressure (log axis; ``rows``: the family's summary rows)."""
     unit = choose([r["pressure_Pa"] for r in rows], "Pa")
@@ -69,7 +69,9 @@ def axes_figure(rows: list[dict], E_star: float) -> dict:
                    "line": {"dash": "dot", "color": "#555"},
                    "hovertemplate": f"p = %{{x:.4g}} {unit.name} (%{{text}})<br>contact "
                                     "%{y:.4f}<extra></extra>"})
-    lay = _layout("mu_a+ and mu_a- against the pressure (t_a found at each)",
+    axis = "t_a found at each" if reference_deg is None else \
+        f"along the common axis t_a = {reference_deg:.2f} deg"
+    lay = _layout(f"mu_a+ and mu_a- against the pressure ({axis})",
                   f"nominal pressure p ({unit.name})", "friction coefficient")
     lay["xaxis"]["type"] = "log"
     lay["yaxis2"] = {"title": {"text": "contact area fraction"}, "overlaying": "y",

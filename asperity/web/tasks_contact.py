@@ -74,7 +74,7 @@ def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
         d, text = fam.members[-1], family_text(fam)
         members = obj["members"]
         figs = {"polar": family_polar(members, list(fam.pressures), E),
-                "axes": axes_figure(obj["summary"], E)}
+                "axes": axes_figure(obj["summary"], E, obj.get("reference_direction_deg"))}
     else:
         d = derive(textures[0], contact, "closed-form", n, progress=bar)
         obj = rename(to_json(d), ctx["names"])
