@@ -341,3 +341,18 @@ def test_risk_of_an_elastic_surface_result_solves_the_contact_at_the_assembly_pr
     for other in (at_2e8, area):            # the pressure matters on this map
         assert abs(other["mu_plus"] - want["mu_plus"]) > 1e-3
     assert got["verdict"] == want["verdict"]
+    # a two-node assembly from the form has no contact pressure: one line says what to give
+    two = {"model": "two-node", "two_k": "1e6", "two_l0": "0.1", "two_alpha_T": "1.2e-5",
+           "two_k_t": "5e5", "two_N": "100", "dT_min": "0", "dT_max": "125"}
+    page = c.post("/motion/risk", data={**two, "friction": f"job:{jid}"})
+    if page.status_code == 303:                 # the form did not wait long enough
+        fid = page.headers["location"].rsplit("/", 1)[-1]
+        t0 = time.monotonic()
+        while c.get(f"/api/jobs/{fid}").json()["status"] in ("queued", "running"):
+            assert time.monotonic() - t0 < 120
+            time.sleep(0.2)
+        page = c.get(f"/jobs/{fid}")
+    assert page.status_code == 422 and "Traceback" not in page.text
+    msg = re.search(r'<p class="error" id="error" role="alert">(.*?)</p>', page.text,
+                    re.S).group(1)
+    assert "\n" not in msg and "contact_area" in msg and "strip" in msg, msg
