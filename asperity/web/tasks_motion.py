@@ -155,18 +155,10 @@ def _elastic_at_assembly(spec: dict, asm, ctx: dict, bar, texture):
     elastic contact gives its surface weighted by the contact solved again at the
     assembly's contact pressure (as ``asperity risk --elastic E`` without --pressure), not
     the area-weighted surface of its source."""
-    import json
-
     from .tasks_contact import elastic_textures_of
-    from .tasks_surface import source_job
-    jid = spec.get("job")
-    if not isinstance(jid, str) or not JOB_ID.match(jid):
-        return texture, None
-    try:
-        rec = json.loads((ctx["jobs"] / jid / "job.json").read_text(encoding="utf-8"))
-        e = rec["params"].get("elastic")
-    except (OSError, ValueError, KeyError, AttributeError):
-        return texture, None
+    from .tasks_surface import job_params
+    params = job_params(ctx, spec.get("job"))
+    e = params.get("elastic")
     if not e:
         return texture, None
     p, where = asm.contact_pressure()
@@ -176,7 +168,7 @@ def _elastic_at_assembly(spec: dict, asm, ctx: dict, bar, texture):
                          "two-node assembly entered on this page gives none: use the strip "
                          "model (its p), or upload an assembly file with "
                          "assembly.contact_area")
-    textures, _ = elastic_textures_of(source_job(ctx, jid), {"elastic": {**e, "pressures": [p]}},
+    textures, _ = elastic_textures_of(params["source"], {"elastic": {**e, "pressures": [p]}},
                                       ctx, bar)
     return textures[0], {"pressure_Pa": p, "from": where, "solved": True}
 

@@ -38,8 +38,8 @@ def upload_file(ctx: dict, uid: str, shown: str) -> Path:
     return p
 
 
-def source_job(ctx: dict, jid: str) -> dict:
-    """The source of an earlier Surface job (its parameters' ``source``)."""
+def job_params(ctx: dict, jid: str) -> dict:
+    """The parameters of an earlier Surface job (with its ``source``)."""
     import json
 
     from .store import JOB_ID
@@ -47,9 +47,15 @@ def source_job(ctx: dict, jid: str) -> dict:
         raise InputError("no such result; pick one from the list")
     try:
         rec = json.loads((ctx["jobs"] / jid / "job.json").read_text(encoding="utf-8"))
-        return rec["params"]["source"]
-    except (OSError, ValueError, KeyError):
+        rec["params"]["source"]
+        return rec["params"]
+    except (OSError, ValueError, KeyError, TypeError):
         raise InputError(f"result {jid} has no texture or surface to reuse") from None
+
+
+def source_job(ctx: dict, jid: str) -> dict:
+    """The source of an earlier Surface job (its parameters' ``source``)."""
+    return job_params(ctx, jid)["source"]
 
 
 def load_source(src: dict, ctx: dict, *, options: bool = True):
