@@ -789,8 +789,8 @@ MUTANTS = [
            '"color": colour(k, n)', '"color": colour(0, n)', WEB_FAMILY,
            "every member's reservoir drawn in the same colour"),
     Mutant("web-risk-elastic-source-area-weighted", "web/tasks_motion.py",
-           "texture, contact = _elastic_at_assembly(spec, asm, ctx, bar, texture)",
-           "contact = None", WEB_CONTACT,
+           "texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)",
+           "texture = load_source(source, ctx)[0]", WEB_CONTACT,
            "the web risk of an elastic Surface result uses its area-weighted surface"),
 ]
 

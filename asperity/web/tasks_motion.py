@@ -18,7 +18,7 @@ from ..errors import InputError
 from ..io import json_ready
 from .results import rename
 from .store import JOB_ID
-from .tasks_surface import load_source, upload_file
+from .tasks_surface import job_params, load_source, upload_file
 
 #: the Motion page's pressure field of a law family (as pages_motion's)
 PRESSURE = "nominal pressure, Pa"
@@ -150,17 +150,12 @@ def _friction_stem(spec: dict, ctx: dict) -> str:
     return ""
 
 
-def _elastic_at_assembly(spec: dict, asm, ctx: dict, bar, texture):
-    """(texture, the ``contact_pressure`` block or None): a Surface result derived with an
-    elastic contact gives its surface weighted by the contact solved again at the
-    assembly's contact pressure (as ``asperity risk --elastic E`` without --pressure), not
-    the area-weighted surface of its source."""
+def _elastic_at_assembly(source: dict, elastic: dict, asm, ctx: dict, bar):
+    """(texture, the ``contact_pressure`` block): the ``source`` of a Surface result derived
+    with an ``elastic`` contact, weighted by the contact solved again at the assembly's
+    contact pressure (as ``asperity risk --elastic E`` without --pressure), not the
+    area-weighted surface of its source."""
     from .tasks_contact import elastic_textures_of
-    from .tasks_surface import job_params
-    params = job_params(ctx, spec.get("job"))
-    e = params.get("elastic")
-    if not e:
-        return texture, None
     p, where = asm.contact_pressure()
     if p is None:
         raise InputError("the surface of this result was weighted by an elastic contact, "
@@ -168,7 +163,7 @@ def _elastic_at_assembly(spec: dict, asm, ctx: dict, bar, texture):
                          "two-node assembly entered on this page gives none: use the strip "
                          "model (its p), or upload an assembly file with "
                          "assembly.contact_area")
-    textures, _ = elastic_textures_of(params["source"], {"elastic": {**e, "pressures": [p]}},
+    textures, _ = elastic_textures_of(source, {"elastic": {**elastic, "pressures": [p]}},
                                       ctx, bar)
     return textures[0], {"pressure_Pa": p, "from": where, "solved": True}
 
@@ -183,9 +178,14 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     data = dict(params["assembly"])
     spec = params["friction"]
     opts = {k: params[k] for k in ("slip_axis_deg", "textured") if params.get(k) is not None}
-    texture, name = None, ""
+    texture, name, elastic = None, "", None
+    if spec.get("kind") == "job":                    # an elastic result is solved below
+        source = job_params(ctx, spec.get("job"))
+        elastic = source.get("elastic") or None
+        source = source["source"]
     if spec.get("kind") in ("wedge", "job", "file"):
-        texture, _, _ = load_source(spec, ctx)       # replaces the file's friction source
+        texture = True if elastic else load_source(source if spec["kind"] == "job" else spec,
+                                                   ctx)[0]   # replaces the file's source
         name = {"wedge": "wedge {alpha_deg:g}/{beta_deg:g} deg, mu {mu_alpha:g}/{mu_beta:g}",
                 "job": "the surface of result {job}", "file": "{name}"}[spec["kind"]]
         name = name.format(**spec)
@@ -199,8 +199,8 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
         "the assembly"
     asm = assembly_from_dict(data, ctx["job_dir"] / "assembly.toml")
     contact = None
-    if spec.get("kind") == "job":
-        texture, contact = _elastic_at_assembly(spec, asm, ctx, bar, texture)
+    if elastic:
+        texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)
     bar(0.1, "friction along the slip axis")
     friction = assembly_friction(asm, texture, texture_name=name, **opts)
     if contact is not None:
