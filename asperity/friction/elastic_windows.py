@@ -199,8 +199,6 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
         raise InputError("give mu or a friction map, not both")
     check_contact(contact)
     n_dir = check_int("directions", n_directions, 8, 100_000)
-    check_int("window", window, MIN_WINDOW, None)
-    check_int("windows", windows, 1, MAX_WINDOWS)
     src = source if source is not None else open_scan(
         path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
     w, n = check_window_request(src.shape, window, windows, placement, seed)

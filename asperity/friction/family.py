@@ -93,7 +93,7 @@ def family_json(fam: LawFamily) -> dict:
 
 def family_text(fam: LawFamily) -> str:
     """The summary of a family: the contact's assumptions once, a row a pressure."""
-    from ..surface.contact_facets import contact_lines
+    from ..surface.contact_facets import ASSUMPTIONS
     first = fam.members[0]
     tex = first.texture
     head = tex.describe() if hasattr(tex, "describe") else \
@@ -105,7 +105,7 @@ def family_text(fam: LawFamily) -> str:
              f"law family over {len(fam.pressures)} pressures: E* = {e.E_star:.4g} Pa, "
              f"boundary {c['boundary']}, hardness "
              + ("none" if e.hardness is None else f"{e.hardness:.4g} Pa")]
-    lines += contact_lines(c)[-2:]
+    lines += ["  " + a for a in ASSUMPTIONS]
     lines += ["", "  p (Pa)      p/E*       contact    mu_a+      mu_a-      mu_b+      mu_b-"
                   "      t_a (deg)"]
     rows, ref = summary_rows(fam)
