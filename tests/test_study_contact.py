@@ -202,3 +202,23 @@ pressure = 1e6
     code, _, err = run(capsys, "study", str(study), "-o", str(tmp_path / "out"),
                        "--workers", "0")
     assert code == 1 and "[contact] weighs the faces of a texture or scan" in err
+
+
+def test_the_study_benchmark_gives_each_case_its_own_file(scans, monkeypatch):
+    """A library with a contact grid has several cases per file: the benchmark's serial
+    loop must hand case n the file of case n (study.case_files), not study.files[n]."""
+    from asperity.study import bench, cases
+    study = load_study(write(scans, LIBRARY.format(more="", pressures="1e6, 2e6, 4e6"),
+                             "bench.toml"))
+    assert study.n_cases == 6 and len(study.files) == 2
+    seen = []
+
+    def fake(spec, values, file):
+        seen.append((file, values["contact.pressure"]))
+        return "ok", "", None, None
+    monkeypatch.setattr(cases, "run_case", fake)
+    rate, n = bench._loop(study, 60.0)
+    assert n == 6
+    assert [f for f, _ in seen[1:]] == list(study.case_files)
+    assert [p for _, p in seen[1:]] == [float(v) for v in study.matrix()[:, 0]]
+    assert len(set(f for f, _ in seen[1:])) == 2

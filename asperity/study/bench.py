@@ -80,12 +80,12 @@ def _loop(study, limit_seconds: float) -> tuple[float, int]:
     X = study.matrix()
     names = study.parameter_names
     run_case(study.spec, dict(zip(names, map(float, X[0]))) if names else {},
-             study.files[0] if study.kind == "files" else None)          # warm the caches
+             study.case_files[0] if study.kind == "files" else None)     # warm the caches
     n, t0 = 0, time.perf_counter()
     while n < study.n_cases and time.perf_counter() - t0 < limit_seconds:
         values = dict(zip(names, map(float, X[n]))) if names else {}
         status, msg, _, _ = run_case(study.spec, values,
-                                     study.files[n] if study.kind == "files" else None)
+                                     study.case_files[n] if study.kind == "files" else None)
         if status != "ok":
             raise RuntimeError(f"benchmark case {n} failed: {msg}")
         n += 1
