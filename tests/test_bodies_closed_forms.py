@@ -130,13 +130,12 @@ def test_fixed_points():
     e0 = cf.terminal_ratio("disc")
     assert e0 == pytest.approx(0.653002, abs=5e-7)
     assert cf.terminal_ratio("ring") == pytest.approx(1.0, abs=1e-12)
-    for kind, e0 in (("disc", e0), ("ring", 1.0)):
+    for kind, fixed in (("disc", e0), ("ring", 1.0)):
         k = cf.INERTIA_FACTOR[kind]
-        f, m = cf.footprint_f_m(kind, np.array([0.5 * e0, 2 * e0]))
-        drift = np.array([0.5 * e0, 2 * e0]) - k * f / m
-        assert drift[0] < 0 < drift[1] or drift[0] > 0 > drift[1]
-        # below eps0 eps grows as lambda grows... towards eps0 from both sides:
-        assert drift[0] * (0.5 * e0 - e0) < 0 or drift[0] > 0
+        e = np.array([0.5 * fixed, 2 * fixed])
+        f, m = cf.footprint_f_m(kind, e)
+        d_eps = e - k * f / m                      # d eps / d lambda, lambda = ln(omega0/omega)
+        assert d_eps[0] > 0 > d_eps[1], (kind, d_eps)   # towards the fixed point from both sides
 
 
 def direct_stop(v0, omega0, mu, g, R, kind):

@@ -176,3 +176,251 @@ def test_bad_input_is_one_line_naming_the_field(call, field):
         call()
     msg = str(e.value)
     assert field in msg and "\n" not in msg
+
+
+# ----------------------------------------------------------------------------- pressure profiles
+
+def test_hertz_disc_moments():
+    """p = (3/2) sqrt(1 - r^2/R^2) (per unit load and area pi R^2): int p r = 3 pi R/16,
+    int p r^2 = 2 R^2/5, and the Coulomb pure-spin torque is the first of them."""
+    R = 0.01
+    fp = fpm.disc(R, contact_points=600, profile="hertz")
+    r = np.hypot(*fp.points.T)
+    assert fp.profile == "hertz" and np.all(fp.weights > 0)
+    assert fp.weights @ r == pytest.approx(3 * math.pi * R / 16, rel=1e-6)
+    assert fp.weights @ r**2 == pytest.approx(2 * R * R / 5, rel=1e-6)
+    _, T = fpm.coulomb_wrench(fp, 0.0)
+    assert -T * R == pytest.approx(3 * math.pi * R / 16, rel=1e-6)
+    assert fp.inertia_per_mass == pytest.approx(R * R / 2)           # the lamina's, not p's
+    # more load near the centre than the uniform disc
+    u = fpm.disc(R, contact_points=600)
+    assert fp.weights @ r < u.weights @ r
+
+
+@pytest.mark.parametrize("make,cop", [
+    (lambda c: fpm.disc(0.04, contact_points=400, profile="linear", centre_of_pressure=c),
+     (0.006, -0.004)),
+    (lambda c: fpm.rectangle(0.06, 0.03, contact_points=400, profile="linear",
+                             centre_of_pressure=c), (0.004, 0.002)),
+    (lambda c: fpm.polygon(L_SHAPE, contact_points=800, profile="linear",
+                           centre_of_pressure=c), (0.001, 0.0005)),
+])
+def test_linear_profile_puts_the_centre_of_pressure_where_asked(make, cop):
+    fp = make(cop)
+    assert fp.profile == "linear" and np.all(fp.weights > 0)
+    tol = 1e-14 if fp.kind == "disc" else 0.03 * np.hypot(*cop)     # the disc rule is exact
+    assert np.allclose(fp.centre_of_pressure, cop, atol=tol, rtol=0)
+    # the pressure is linear: the weights per cell area are an affine function of x, y
+    if fp.kind == "rectangle":
+        X = np.column_stack([np.ones(fp.n), fp.points])
+        coef, *_ = np.linalg.lstsq(X, fp.weights, rcond=None)
+        assert np.abs(X @ coef - fp.weights).max() < 1e-12 * fp.weights.max()
+
+
+@pytest.mark.parametrize("make,where", [
+    (lambda: fpm.disc(0.04, profile="linear", centre_of_pressure=(0.0101, 0.0)), "R/4"),
+    (lambda: fpm.disc(0.04, profile="linear", centre_of_pressure=(0.0, -0.02)), "R/4"),
+    (lambda: fpm.rectangle(0.06, 0.03, profile="linear", centre_of_pressure=(0.0101, 0.0)),
+     "core"),
+    (lambda: fpm.rectangle(0.06, 0.03, profile="linear",
+                           centre_of_pressure=(0.006, 0.0026)), "core"),
+    (lambda: fpm.polygon(L_SHAPE, profile="linear", centre_of_pressure=(0.02, 0.0)), "core"),
+])
+def test_linear_profile_that_does_not_carry_the_load_is_refused(make, where):
+    with pytest.raises(InputError, match="centre_of_pressure") as e:
+        make()
+    msg = str(e.value)
+    assert fpm.NOT_CARRIED in msg and where in msg and "\n" not in msg
+
+
+def test_linear_profile_on_the_edge_of_the_core_is_accepted():
+    """The disc's core is |c| <= R/4 (p = 0 at one point of the rim), the rectangle's the
+    rhombus |x|/(a/6) + |y|/(b/6) <= 1."""
+    fpm.disc(0.04, profile="linear", centre_of_pressure=(0.0, 0.01))
+    fpm.rectangle(0.06, 0.03, profile="linear", centre_of_pressure=(0.005, 0.0025))
+
+
+def test_centre_of_pressure_needs_the_linear_profile():
+    with pytest.raises(InputError, match="centre_of_pressure applies to pressure_profile"):
+        fpm.disc(0.04, centre_of_pressure=(0.001, 0.0))
+
+
+# ----------------------------------------------------------------------------- pressure files
+
+def test_pressure_file_csv_and_npy(tmp_path):
+    pts = np.array([[0.0, 0.0], [0.002, 0.0], [0.0, 0.002], [0.002, 0.002], [0.001, 0.001]])
+    p = np.array([1e5, 3e5, 1e5, 3e5, 0.0])
+    csv = tmp_path / "p.csv"
+    csv.write_text("x_m,y_m,p_Pa\n" + "".join(f"{x},{y},{q}\n" for (x, y), q in zip(pts, p)))
+    np.save(tmp_path / "p.npy", np.column_stack([pts, p]))
+    for f in (csv, tmp_path / "p.npy"):
+        xy, q = fpm.read_pressure(f)
+        assert np.array_equal(xy, pts) and np.array_equal(q, p)
+    fp = fpm.from_pressure(pts, p)
+    assert fp.n == 4 and fp.kind == "pressure" and fp.profile == "file"  # zero dropped
+    assert np.allclose(fp.weights, [0.125, 0.375, 0.125, 0.375])
+    assert fp.info["centroid_shift"] == pytest.approx([0.001, 0.001])    # equal cells' mean
+    assert fp.centre_of_pressure == pytest.approx([0.0005, 0.0], abs=1e-15)
+    assert fp.area == pytest.approx(4e-6)                                # the hull
+
+
+@pytest.mark.parametrize("text,words", [
+    ("x,y,p\n0,0,1\n", "header"), ("x_m,y_m,p_Pa\n0,0\n", "line 2"),
+    ("x_m,y_m,p_Pa\n0,0,abc\n", "line 2"), ("x_m,y_m,p_Pa\n", "no points"),
+    ("x_m,y_m,p_Pa\n0,0,nan\n", "finite"),
+])
+def test_bad_pressure_files(tmp_path, text, words):
+    f = tmp_path / "p.csv"
+    f.write_text(text)
+    with pytest.raises(InputError, match=words):
+        fpm.read_pressure(f)
+
+
+@pytest.mark.parametrize("p,words", [([1.0, -1.0], "does not carry the load"),
+                                     ([0.0, 0.0], "does not carry the load")])
+def test_pressures_that_do_not_carry_the_load(p, words):
+    with pytest.raises(InputError, match=words):
+        fpm.from_pressure([[0, 0], [1e-3, 0]], p)
+
+
+def test_pressure_on_a_shape_keeps_its_frame_and_refuses_points_outside():
+    shape = fpm.polygon(L_SHAPE, contact_points=100)
+    pts = [[0.005, 0.005], [0.04, 0.005], [0.005, 0.03]]
+    fp = fpm.from_pressure(pts, [1.0, 1.0, 2.0], shape=shape)
+    c = np.array(shape.info["centroid_shift"])
+    assert np.allclose(fp.points, np.array(pts) - c)
+    assert fp.inertia_per_mass == shape.inertia_per_mass and fp.area == shape.area
+    with pytest.raises(InputError, match="outside"):
+        fpm.from_pressure([[0.03, 0.03]], [1.0], shape=shape)          # the L's notch
+    with pytest.raises(InputError, match="outside"):
+        fpm.from_pressure([[0.0, 0.011]], [1.0], shape=fpm.disc(0.01))
+
+
+# ----------------------------------------------------------------------------- a mesh's patch
+
+@pytest.fixture(scope="module")
+def meshes(tmp_path_factory):
+    import trimesh
+    d = tmp_path_factory.mktemp("meshes")
+    trimesh.creation.box(extents=(40, 20, 10)).export(d / "box.stl")
+    feet = [trimesh.creation.box(extents=(10, 10, 30)) for _ in range(2)]
+    feet[1].apply_translation((40, 0, 0))
+    top = trimesh.creation.box(extents=(60, 20, 5))
+    top.apply_translation((20, 0, 17.5))                          # a bridge on two feet
+    trimesh.util.concatenate(feet + [top]).export(d / "bridge.stl")
+    return d
+
+
+def test_mesh_patch_of_a_box_is_its_bottom(meshes):
+    fp = fpm.mesh_patch(meshes / "box.stl", unit="mm", contact_points=200)
+    assert fp.kind == "mesh" and fp.info["faces"] == 2
+    assert fp.area == pytest.approx(8e-4, rel=1e-12)
+    assert fp.inertia_per_mass == pytest.approx((0.04**2 + 0.02**2) / 12, rel=1e-12)
+    assert np.all(np.abs(fp.points) <= [0.02, 0.01])
+    assert fp.info["lowest_z_m"] == pytest.approx(-0.005)
+
+
+def test_mesh_patch_of_a_part_on_two_feet(meshes):
+    """Only the feet's soles touch; the bridge's underside (15 mm up) does not."""
+    fp = fpm.mesh_patch(meshes / "bridge.stl", unit="mm", contact_points=200)
+    assert fp.area == pytest.approx(2e-4, rel=1e-12)
+    assert fp.info["centroid_shift"] == pytest.approx([0.02, 0.0], abs=1e-15)
+    assert fp.inertia_per_mass == pytest.approx(0.01**2 / 6 + 0.02**2, rel=1e-12)
+    assert np.all(np.abs(np.abs(fp.points[:, 0]) - 0.02) <= 0.005)
+
+
+def test_mesh_patch_of_a_tilted_block_needs_the_tolerance(meshes):
+    """A block tilted by 0.5 deg about y: its sole rises 40 mm x tan(0.5 deg) = 0.35 mm
+    across; a tolerance below that finds no whole triangle, one above finds the sole."""
+    import trimesh
+    m = trimesh.creation.box(extents=(40, 20, 10))
+    m.apply_transform(trimesh.transformations.rotation_matrix(math.radians(0.5), (0, 1, 0)))
+    m.export(meshes / "tilted.stl")
+    with pytest.raises(InputError, match="tolerance"):
+        fpm.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=1e-4)
+    fp = fpm.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=4e-4, contact_points=100)
+    assert fp.area == pytest.approx(0.04 * math.cos(math.radians(0.5)) * 0.02, rel=1e-6)  # STL: float32
+
+
+def test_mesh_patch_refusals(meshes, tmp_path):
+    with pytest.raises(InputError, match="unit"):
+        fpm.mesh_patch(meshes / "box.stl")
+    with pytest.raises(InputError, match="mesh"):
+        fpm.mesh_patch(tmp_path / "missing.stl", unit="mm")
+    with pytest.raises(InputError, match="tolerance"):
+        fpm.mesh_patch(meshes / "box.stl", unit="mm", tolerance=-1.0)
+
+
+# ----------------------------------------------------------------------------- body files
+
+SURFACES = __import__("pathlib").Path(__file__).resolve().parents[1] / "surfaces"
+
+
+def test_shipped_body_files():
+    from asperity.bodies.body_file import read_body
+    b = read_body(SURFACES / "body-bracket.toml")
+    assert b.name == "bracket" and b.footprint.kind == "polygon" and b.mass == 0.0165
+    assert b.footprint.profile == "linear"
+    assert b.footprint.centre_of_pressure == pytest.approx([0.002, 0.0], abs=1e-4)
+    assert b.inertia == pytest.approx(b.mass * b.footprint.inertia_per_mass)
+    b = read_body(SURFACES / "body-plate.toml")
+    assert b.footprint.kind == "rectangle" and b.footprint.n == 512
+    assert b.inertia == pytest.approx(0.0194 * (0.08**2 + 0.03**2) / 12, rel=1e-12)
+
+
+def _body(tmp_path, text, name="b.toml"):
+    from asperity.bodies.body_file import read_body
+    f = tmp_path / name
+    f.write_text(text)
+    return read_body(f)
+
+
+def test_body_file_shapes_inertia_and_pressure_file(tmp_path):
+    b = _body(tmp_path, '[body]\nshape = "disc"\nradius = 0.02\nmass = 0.1\n')
+    assert b.footprint.n == fpm.DEFAULT_CONTACT_POINTS["disc"]
+    assert b.inertia == pytest.approx(0.1 * 0.02**2 / 2)
+    b = _body(tmp_path, '[body]\nshape = "ring"\nradius = 0.02\nmass = 0.1\ninertia = 3e-5\n'
+              'contact_points = 64\n')
+    assert b.inertia == 3e-5 and b.footprint.n == 64
+    b = _body(tmp_path, '[body]\nshape = "disc"\nradius = 0.02\nmass = 0.1\n'
+              'pressure_profile = "hertz"\ncontact_points = 100\n')
+    assert b.footprint.profile == "hertz"
+    # a pressure file beside the body file, in a sub-folder: named relative to the file
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "p.csv").write_text("x_m,y_m,p_Pa\n0.01,0.005,1e5\n0.02,0.005,2e5\n")
+    b = _body(tmp_path / "sub", '[body]\nshape = "rectangle"\nsize = [0.04, 0.01]\n'
+              'mass = 0.05\npressure_file = "p.csv"\n')
+    assert b.footprint.n == 2 and b.footprint.profile == "file"
+    assert b.footprint.weights == pytest.approx([1 / 3, 2 / 3])
+    assert b.inertia == pytest.approx(0.05 * (0.04**2 + 0.01**2) / 12)
+
+
+@pytest.mark.parametrize("body,words", [
+    ('shape = "disc"\nradius = 0.0\nmass = 1.0', "body.radius"),
+    ('shape = "disc"\nradius = nan\nmass = 1.0', "body.radius"),
+    ('shape = "disc"\nradius = inf\nmass = 1.0', "body.radius"),
+    ('shape = "rectangle"\nsize = [0.1, -0.1]\nmass = 1.0', "body.b"),
+    ('shape = "rectangle"\nsize = [0.1]\nmass = 1.0', "size"),
+    ('shape = "hexagon"\nradius = 0.1\nmass = 1.0', "body.shape"),
+    ('shape = "polygon"\nvertices = [[0, 0], [3, 0], [0, 1], [1, 1]]\nmass = 1.0',
+     "crosses itself"),
+    ('shape = "polygon"\nvertices = [[0, 0], [1, 1], [2, 2]]\nmass = 1.0', "zero area"),
+    ('shape = "disc"\nradius = 0.1\nmass = 1.0\npressure_profile = "linear"\n'
+     'centre_of_pressure = [0.03, 0.0]', "does not carry the load"),
+    ('shape = "disc"\nradius = 0.1\nmass = 1.0\ncontact_points = 0', "body.contact_points"),
+    ('shape = "disc"\nradius = 0.1\nmass = 1.0\ncontact_points = 10000000000',
+     "body.contact_points"),
+    ('shape = "disc"\nradius = 0.1\nmass = 0.0', "body.mass"),
+    ('shape = "disc"\nradius = 0.1', "body.mass"),
+    ('shape = "disc"\nsize = [1, 2]\nmass = 1.0', "body.size"),
+    ('shape = "disc"\nradius = 0.1\nmass = 1.0\ncolour = "red"', "body.colour"),
+    ('shape = "disc"\nradius = 0.1\nmass = 1.0\ninertia = -1.0', "body.inertia"),
+    ('shape = "disc"\nradius = 0.1\nmass = 1.0\npressure_file = "missing.csv"', "missing.csv"),
+    ('shape = "rectangle"\nsize = [0.1, 0.1]\nmass = 1.0\npressure_profile = "hertz"',
+     "pressure_profile"),
+])
+def test_body_file_refusals_are_one_line_naming_the_field(tmp_path, body, words):
+    with pytest.raises(InputError) as e:
+        _body(tmp_path, "[body]\n" + body + "\n")
+    msg = str(e.value)
+    assert words in msg and "\n" not in msg and str(tmp_path) in msg, msg

@@ -101,6 +101,9 @@ def _ekb(x: np.ndarray):
 
 
 def _eps_array(eps):
+    if isinstance(eps, (bool, np.bool_)) or (isinstance(eps, (list, tuple)) and any(
+            isinstance(x, (bool, np.bool_)) for x in eps)):
+        raise InputError(f"eps (v / (R omega)) must be a number or an array, got {eps!r}")
     a = check_array("eps", eps, ndim=None, finite=False)
     if np.any(np.isnan(a)) or np.any(a < 0):
         bad = a[np.isnan(a) | (a < 0)].ravel()[0]

@@ -107,6 +107,9 @@ class Footprint:
 
     def __post_init__(self):
         check_choice("kind", self.kind, KINDS)
+        check_choice("profile", self.profile, PROFILES + ("file",))
+        from ..errors import check_instance
+        check_instance("info", self.info, dict)
         p = check_array("points", self.points, shape=(None, 2), min_size=2)
         w = check_array("weights", self.weights, shape=(p.shape[0],))
         if np.any(w <= 0) or abs(w.sum() - 1.0) > 1e-9:
@@ -152,15 +155,19 @@ def _profile(profile, allowed=PROFILES) -> str:
     return check_choice("pressure_profile", profile, allowed)
 
 
-def _cop(value) -> np.ndarray:
-    return check_array("centre_of_pressure", value, shape=(2,))
+def _cop(value, profile: str) -> np.ndarray:
+    c = check_array("centre_of_pressure", value, shape=(2,))
+    for v in c:
+        check_range("centre_of_pressure", v, -LENGTH_RANGE[1], LENGTH_RANGE[1], unit="m")
+    if profile != "linear" and np.any(c != 0):
+        raise InputError("centre_of_pressure applies to pressure_profile linear only, got "
+                         f"{profile!r}")
+    return c
 
 
 def _linear_beta(cop: np.ndarray, area: float, J: np.ndarray, scale: float) -> np.ndarray:
     """beta of p = a (1 + beta . r) with centre of pressure ``cop``: J beta = A cop, J the
     second moments [[Ixx, Ixy], [Ixy, Iyy]] about the centroid."""
-    for v in cop:
-        check_range("centre_of_pressure", v, -LENGTH_RANGE[1], LENGTH_RANGE[1], unit="m")
     return np.linalg.solve(J, area * cop)
 
 
@@ -218,7 +225,7 @@ def disc(radius: float, *, contact_points: int | None = None, profile: str = "un
     R = _length("radius", radius)
     n = _count("disc", contact_points)
     profile = _profile(profile)
-    cop = _cop(centre_of_pressure)
+    cop = _cop(centre_of_pressure, profile)
     r, W, k = _disc_rule(n, profile)
     pts, wts = [], []
     for j, (rj, Wj, kj) in enumerate(zip(r, W, k)):
@@ -464,6 +471,21 @@ def _lamina(kind, a, b, n, profile, cop, outline, grid=None, core=""):
                      {"centroid_shift": c.tolist(), "cell": [float(hxy[0]), float(hxy[1])]})
 
 
+def _grid_counts(n: int, a: float, b: float) -> tuple[int, int]:
+    """(n_a, n_b): n_a n_b <= n as large as possible with cells within 1.5 of square
+    (closest to square among those)."""
+    ideal = math.sqrt(n * a / b)
+    best = None
+    lo = min(n, max(1, int(ideal / 1.6)))
+    for na in range(lo, max(lo, min(n, int(ideal * 1.6) + 2)) + 1):
+        nb = max(1, n // na)
+        aspect = (a / na) / (b / nb)
+        key = (1 / 1.5 <= aspect <= 1.5, na * nb, -abs(math.log(aspect)))
+        if best is None or key > best[0]:
+            best = (key, na, nb)
+    return best[1], best[2]
+
+
 def rectangle(a: float, b: float, *, contact_points: int | None = None,
               profile: str = "uniform", centre_of_pressure=(0.0, 0.0)) -> Footprint:
     """A rectangle a x b (m; a along the body's x axis) centred on the origin: the
@@ -474,10 +496,8 @@ def rectangle(a: float, b: float, *, contact_points: int | None = None,
     b = _length("b", b)
     n = _count("rectangle", contact_points)
     profile = _profile(profile, ("uniform", "linear"))
-    cop = _cop(centre_of_pressure)
-    na = max(1, int(round(math.sqrt(n * a / b))))
-    na = min(na, n)
-    nb = max(1, n // na)
+    cop = _cop(centre_of_pressure, profile)
+    na, nb = _grid_counts(n, a, b)
     v = np.array([[-a / 2, -b / 2], [a / 2, -b / 2], [a / 2, b / 2], [-a / 2, b / 2]])
     fp = _lamina("rectangle", v, np.roll(v, -1, axis=0), n, profile, cop,
                  np.vstack([v, v[:1]]), grid=(-a / 2, -b / 2, a / na, b / nb, na, nb),
@@ -493,7 +513,7 @@ def polygon(vertices, *, contact_points: int | None = None, profile: str = "unif
     v = check_polygon(vertices)
     n = _count("polygon", contact_points)
     profile = _profile(profile, ("uniform", "linear"))
-    cop = _cop(centre_of_pressure)
+    cop = _cop(centre_of_pressure, profile)
     return _lamina("polygon", v, np.roll(v, -1, axis=0), n, profile, cop,
                    np.vstack([v, v[:1]]))
 
@@ -520,3 +540,220 @@ def coulomb_wrench(fp: Footprint, eps: float, R: float | None = None,
     F = -(fp.weights[:, None] * d).sum(axis=0)
     T = -float(np.sum(fp.weights * (r[:, 0] * d[:, 1] - r[:, 1] * d[:, 0]))) / R
     return F, T
+
+
+# ----------------------------------------------------------------------------- pressure per point
+
+def _inside_polygon(pts: np.ndarray, v: np.ndarray, tol: float) -> np.ndarray:
+    """Whether each point lies in the closed polygon v (even-odd rule), or within ``tol``
+    of its boundary."""
+    x, y = pts[:, 0:1], pts[:, 1:2]
+    a, b = v[None, :, :], np.roll(v, -1, axis=0)[None, :, :]
+    ya, yb = a[..., 1], b[..., 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xc = a[..., 0] + (y - ya) * (b[..., 0] - a[..., 0]) / (yb - ya)
+    cross = ((ya > y) != (yb > y)) & (x < xc)
+    inside = np.count_nonzero(cross, axis=1) % 2 == 1
+    # distance to the edges
+    d = b - a
+    L2 = np.maximum((d**2).sum(-1), 1e-300)
+    t = np.clip(((pts[:, None, :] - a) * d).sum(-1) / L2, 0, 1)
+    near = np.hypot(*(a + t[..., None] * d - pts[:, None, :]).transpose(2, 0, 1)).min(axis=1)
+    return inside | (near <= tol)
+
+
+def from_pressure(points, pressures, *, shape: Footprint | None = None,
+                  cell_areas=None) -> Footprint:
+    """A footprint of given points (n, 2) m and their pressures (n,) Pa (>= 0, some > 0):
+    a contact solution or a measured pressure film.  Each point carries pressure x area of
+    its cell (``cell_areas`` (n,) m^2; None: equal cells, the points of a regular grid);
+    only the shape of the pressure matters, the weights are normalised (the body's weight
+    is the load).  Points of zero pressure are dropped.
+
+    ``shape``: the footprint the pressure acts on (its outline, area and inertia; the
+    points are in its frame before it was centred, i.e. its ``info['centroid_shift']`` is
+    subtracted; points outside it are refused).  None: the points' own (their convex hull
+    as outline and area, the uniform lamina of the points for the inertia, centred on
+    their area-weighted mean)."""
+    p = check_array("points", points, shape=(None, 2), min_size=2)
+    q = check_array("pressures", pressures, shape=(p.shape[0],))
+    if p.shape[0] > MAX_CONTACT_POINTS:
+        raise InputError(f"contact_points (the pressure's points) must be a whole number in "
+                         f"[1, {MAX_CONTACT_POINTS}], got {p.shape[0]}")
+    if np.any(np.abs(p) > LENGTH_RANGE[1]):
+        raise InputError(f"points must lie within {LENGTH_RANGE[1]:g} m of the origin")
+    if np.any(q < 0):
+        k = int(np.flatnonzero(q < 0)[0])
+        raise InputError(f"pressures must be >= 0 Pa, got {q[k]:g} at point {k}: {NOT_CARRIED}")
+    if not np.any(q > 0):
+        raise InputError(f"pressures are all zero: {NOT_CARRIED}")
+    if cell_areas is None:
+        cells = np.ones(p.shape[0])
+    else:
+        cells = check_array("cell_areas", cell_areas, shape=(p.shape[0],))
+        if np.any(cells <= 0):
+            raise InputError("cell_areas must be > 0 m^2")
+    if shape is not None:
+        from ..errors import check_instance
+        check_instance("shape", shape, Footprint)
+        shift = np.asarray(shape.info.get("centroid_shift", (0.0, 0.0)), dtype=float)
+        p = p - shift
+        if shape.kind in ("disc", "ring"):
+            tol = 1e-9 * shape.radius
+            r = np.hypot(p[:, 0], p[:, 1])
+            out = (r > shape.radius + tol) if shape.kind == "disc" else \
+                (np.abs(r - shape.radius) > 1e-6 * shape.radius)
+        elif shape.kind in ("rectangle", "polygon"):
+            o = shape.outline[:-1]
+            out = ~_inside_polygon(p, o, 1e-9 * float(np.ptp(o, axis=0).max()))
+        else:
+            out = np.zeros(p.shape[0], dtype=bool)
+        if np.any(out):
+            k = int(np.flatnonzero(out)[0])
+            raise InputError(f"points: point {k} ({points[k][0]:g}, {points[k][1]:g}) m lies "
+                             f"outside the body's {shape.kind}")
+    keep = q > 0
+    w = q[keep] * cells[keep]
+    w = w / w.sum()
+    if shape is not None:
+        return Footprint(shape.kind, p[keep], w, shape.outline, shape.area, shape.radius,
+                         "file", shape.inertia_per_mass, dict(shape.info))
+    c = cells @ p / cells.sum()
+    p = p - c
+    area, outline = float(cells.sum()) if cell_areas is not None else 0.0, p[:1]
+    if p.shape[0] >= 3:
+        from scipy.spatial import ConvexHull, QhullError
+        try:
+            hull = ConvexHull(p)
+            outline = np.vstack([p[hull.vertices], p[hull.vertices[:1]]])
+            if cell_areas is None:
+                area = float(hull.volume)
+        except (QhullError, ValueError):        # all points on a line
+            pass
+    J = float(cells @ (p**2).sum(axis=1) / cells.sum())
+    return Footprint("pressure", p[keep], w, outline, area, None, "file", J,
+                     {"centroid_shift": c.tolist()})
+
+
+def read_pressure(path) -> tuple[np.ndarray, np.ndarray]:
+    """(points (n, 2) m, pressures (n,) Pa) of a pressure file: CSV with the header
+    ``x_m,y_m,p_Pa`` (commas, one point a line) or a ``.npy`` array (n, 3) of the same
+    columns."""
+    from os import PathLike
+    from pathlib import Path
+
+    from ..errors import check_instance
+    from ..io import read_text_file
+    pth = Path(check_instance("path", path, (str, PathLike), "file name (text or a Path)"))
+    if not str(path):
+        raise InputError("path: the pressure file's name is empty")
+    if pth.suffix.lower() == ".npy":
+        if not pth.is_file():
+            raise InputError(f"pressure file {str(pth)!r} does not exist or is not a file")
+        try:
+            a = np.load(pth, allow_pickle=False)
+        except (OSError, ValueError, EOFError) as exc:
+            from ..errors import one_line
+            raise InputError(f"{pth}: not a readable .npy pressure file ({one_line(exc)})") \
+                from None
+        a = check_array(f"{pth}: pressure array", a, shape=(None, 3), min_size=3)
+    else:
+        text = read_text_file(pth, "pressure file")
+        lines = [ln.strip() for ln in text.splitlines() if ln.strip() and
+                 not ln.lstrip().startswith("#")]
+        if not lines or [h.strip() for h in lines[0].split(",")] != ["x_m", "y_m", "p_Pa"]:
+            raise InputError(f"{pth}: a pressure file's first line must be the header "
+                             "x_m,y_m,p_Pa")
+        rows = []
+        for i, ln in enumerate(lines[1:], start=2):
+            parts = ln.split(",")
+            try:
+                if len(parts) != 3:
+                    raise ValueError
+                rows.append([float(x) for x in parts])
+            except ValueError:
+                raise InputError(f"{pth}: line {i} must hold three numbers x_m,y_m,p_Pa, "
+                                 f"got {ln[:60]!r}") from None
+        if not rows:
+            raise InputError(f"{pth}: the pressure file holds no points")
+        a = check_array(f"{pth}: pressure values", rows, shape=(None, 3))
+    return a[:, :2].copy(), a[:, 2].copy()
+
+
+# ----------------------------------------------------------------------------- a mesh's patch
+
+def mesh_patch(mesh, *, unit: str | None = None, tolerance: float | None = None,
+               contact_points: int | None = None, profile: str = "uniform",
+               centre_of_pressure=(0.0, 0.0)) -> Footprint:
+    """The contact patch of a triangle mesh resting on a plane: the triangles whose three
+    vertices lie within ``tolerance`` (m; None: 1e-3 of the mesh's largest extent) of its
+    lowest point, projected on the x-y plane -- a flat bottom, a rim, several feet.  Their
+    union is sampled as a polygon (the boundary edges of the projected triangles, so that
+    edges shared by two triangles cancel); triangles standing on edge (no projected area)
+    add nothing, and where the selected triangles face both ways (a closed mesh, normals
+    outward) only those facing down are kept.  Triangles that overlap seen from below
+    (a mesh that is not a single surface) would count twice.  ``mesh``: a file read as :func:`asperity.read_surface` reads meshes
+    (``.stl .obj .ply``; ``unit`` required, the files carry none) or a TriangleMesh.
+
+    What it is not: a contact solution.  It assumes the part rests on the plane with the
+    patch flat on it (rigid part, rigid support), pressure by ``profile``."""
+    from os import PathLike
+
+    from ..errors import check_instance
+    from ..surface.topography import TriangleMesh
+    check_instance("mesh", mesh, (str, PathLike, TriangleMesh),
+                   "mesh file name or TriangleMesh")
+    if not isinstance(mesh, TriangleMesh):
+        from ..surface.readers import read_surface
+        if not str(mesh):
+            raise InputError("mesh: the file name is empty")
+        try:
+            mesh = read_surface(mesh, unit=unit)
+        except InputError as exc:
+            raise type(exc)(f"mesh: {exc}") from None
+        if not isinstance(mesh, TriangleMesh):
+            raise InputError("mesh must be a triangle mesh (.stl .obj .ply), got a height map")
+    n = _count("mesh", contact_points)
+    profile = _profile(profile, ("uniform", "linear"))
+    cop = _cop(centre_of_pressure, profile)
+    v, f = np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
+    extent = float(np.ptp(v, axis=0).max())
+    if tolerance is None:
+        tol = 1e-3 * extent
+    else:
+        tol = check_range("tolerance", tolerance, 0.0, LENGTH_RANGE[1], unit="m")
+    z0 = float(v[f].reshape(-1, 3)[:, 2].min())
+    sel = f[np.all(v[f][:, :, 2] <= z0 + tol, axis=1)]
+    tri = v[sel][:, :, :2]
+    s = 0.5 * ((tri[:, 1, 0] - tri[:, 0, 0]) * (tri[:, 2, 1] - tri[:, 0, 1])
+               - (tri[:, 2, 0] - tri[:, 0, 0]) * (tri[:, 1, 1] - tri[:, 0, 1]))
+    flat = np.abs(s) > 1e-12 * max(extent, 1e-300) ** 2
+    sel, s = sel[flat], s[flat]
+    if np.any(s < 0) and np.any(s > 0):
+        # both windings: a closed mesh with outward normals; its underside faces down
+        # (clockwise seen from above), the tops of inner steps up -- keep the underside
+        sel, s = sel[s < 0], s[s < 0]
+    if sel.shape[0] == 0:
+        raise InputError(f"tolerance: no triangle of the mesh lies within {tol:g} m of its "
+                         "lowest point with an area seen from below: no contact patch "
+                         "(raise tolerance)")
+    sel = np.where((s < 0)[:, None], sel[:, ::-1], sel)          # counter-clockwise
+    e = np.concatenate([sel[:, [0, 1]], sel[:, [1, 2]], sel[:, [2, 0]]])
+    key = np.sort(e, axis=1)
+    sign = np.where(e[:, 0] < e[:, 1], 1, -1)
+    uniq, inv = np.unique(key, axis=0, return_inverse=True)
+    net = np.zeros(uniq.shape[0], dtype=np.int64)
+    np.add.at(net, inv.ravel(), sign)
+    keep = net != 0
+    edges = []
+    for (i, j), k in zip(uniq[keep], net[keep]):
+        for _ in range(abs(int(k))):
+            edges.append((i, j) if k > 0 else (j, i))
+    ed = np.asarray(edges, dtype=np.int64)
+    a, b = v[ed[:, 0], :2], v[ed[:, 1], :2]
+    outline = np.full((3 * a.shape[0], 2), np.nan)
+    outline[0::3], outline[1::3] = a, b
+    fp = _lamina("mesh", a, b, n, profile, cop, outline)
+    fp.info.update({"faces": int(sel.shape[0]), "tolerance_m": tol, "lowest_z_m": z0,
+                    "source": mesh.source})
+    return fp
