@@ -51,10 +51,16 @@ def test_disc_default_meets_half_a_percent_for_every_eps():
     values and the pure slide, whatever the direction of the velocity."""
     fp = fpm.disc(0.05)
     assert fp.n == fpm.DEFAULT_CONTACT_POINTS["disc"]
-    eps = sorted({*np.round(np.linspace(0.01, 1.2, 60), 4), 0.0, 0.1, 0.653, 1.0, 3.0,
-                  100.0, math.inf})
-    bad = [(e, ef, em) for e, ef, em in worst_errors(fp, disc_f_m, eps) if max(ef, em) > 5e-3]
+    eps = [*np.linspace(0.004, 1.2, 300), *fpm.TABLE_EPS, math.inf]
+    errs = fpm.sampling_errors(fp, eps, directions=48)
+    bad = [e for e in errs if max(e["force"], e["torque"]) > 5e-3]
     assert not bad, bad
+    # and the slow check agrees with the vectorised one
+    slow = worst_errors(fp, disc_f_m, [0.653, 1.0], n_dir=48)
+    fast = fpm.sampling_errors(fp, [0.653, 1.0], directions=48)
+    for (_, ef, em), e in zip(slow, fast):
+        assert ef == pytest.approx(e["force"], rel=1e-9) and em == pytest.approx(e["torque"],
+                                                                               rel=1e-9)
 
 
 def test_disc_exact_moments_of_the_rule():
@@ -88,9 +94,10 @@ def test_ring_default():
     fp = fpm.ring(R)
     assert np.allclose(np.hypot(*fp.points.T), R, rtol=1e-14)
     assert np.allclose(fp.weights, 1 / fp.n) and fp.inertia_per_mass == pytest.approx(R * R)
-    eps = [0.0, 0.1, 0.653, 0.95, 1.0, 1.05, 3.0, 100.0, math.inf]
-    bad = [(e, a, b) for e, a, b in worst_errors(fp, ring_f_m, eps) if max(a, b) > 5e-3]
+    eps = [*np.linspace(0.004, 2.0, 200), *fpm.TABLE_EPS, math.inf]
+    bad = [e for e in fpm.sampling_errors(fp, eps) if max(e["force"], e["torque"]) > 5e-3]
     assert not bad, bad
+    assert worst_errors(fp, ring_f_m, [0.95, 1.0])[1][1] > 1e-3      # the rim: O(1/N)
     assert fp.area == 0.0
 
 
@@ -340,6 +347,13 @@ def test_mesh_patch_of_a_tilted_block_needs_the_tolerance(meshes):
         fpm.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=1e-4)
     fp = fpm.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=4e-4, contact_points=100)
     assert fp.area == pytest.approx(0.04 * math.cos(math.radians(0.5)) * 0.02, rel=1e-6)  # STL: float32
+
+
+def test_mesh_patch_keeps_the_underside_of_a_closed_mesh(meshes):
+    """A tolerance above the whole box takes every face; the top (facing up) is not a
+    second layer of contact: only the faces facing down count."""
+    fp = fpm.mesh_patch(meshes / "box.stl", unit="mm", tolerance=0.011, contact_points=100)
+    assert fp.area == pytest.approx(8e-4, rel=1e-12) and fp.info["faces"] == 2
 
 
 def test_mesh_patch_refusals(meshes, tmp_path):

@@ -32,14 +32,7 @@ from dataclasses import dataclass
 from os import PathLike
 from pathlib import Path
 
-from ..errors import (
-    InputError,
-    check_choice,
-    check_instance,
-    check_range,
-    check_table,
-    check_text,
-)
+from ..errors import InputError, check_choice, check_instance, check_range, check_table, check_text
 from . import footprint as fpm
 
 SHAPES = ("disc", "ring", "rectangle", "polygon", "mesh")

@@ -51,13 +51,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import (
-    InputError,
-    check_array,
-    check_choice,
-    check_int,
-    check_range,
-)
+from ..errors import InputError, check_array, check_choice, check_int, check_range
 
 KINDS = ("point", "disc", "ring", "rectangle", "polygon", "mesh", "pressure")
 PROFILES = ("uniform", "hertz", "linear")
@@ -72,6 +66,8 @@ RING_POWER = 0.25
 MAX_CONTACT_POINTS = 1_000_000
 #: memory a contact point costs in a footprint and a solver (points, weights, work arrays)
 BYTES_PER_POINT = 512
+#: most vertices of a polygon (its self-crossing check takes k^2 / 2 edge pairs)
+MAX_VERTICES = 10_000
 #: size limits of a footprint's lengths, m
 LENGTH_RANGE = (1e-9, 1e3)
 NOT_CARRIED = "a pressure profile that does not carry the load"
@@ -165,7 +161,7 @@ def _cop(value, profile: str) -> np.ndarray:
     return c
 
 
-def _linear_beta(cop: np.ndarray, area: float, J: np.ndarray, scale: float) -> np.ndarray:
+def _linear_beta(cop: np.ndarray, area: float, J: np.ndarray) -> np.ndarray:
     """beta of p = a (1 + beta . r) with centre of pressure ``cop``: J beta = A cop, J the
     second moments [[Ixx, Ixy], [Ixy, Iyy]] about the centroid."""
     return np.linalg.solve(J, area * cop)
@@ -235,7 +231,7 @@ def disc(radius: float, *, contact_points: int | None = None, profile: str = "un
     pts, wts = np.concatenate(pts), np.concatenate(wts)
     if profile == "linear":
         J = np.eye(2) * math.pi * R**4 / 4.0
-        beta = _linear_beta(cop, math.pi * R * R, J, R)
+        beta = _linear_beta(cop, math.pi * R * R, J)
         th = np.linspace(0.0, 2 * math.pi, 721)
         _refuse_negative(cop, beta, R * np.column_stack([np.cos(th), np.sin(th)]),
                          f" |c| <= R/4 = {R / 4:g} m")
@@ -289,41 +285,42 @@ def _edges_moments(a: np.ndarray, b: np.ndarray):
     return A, np.array([Sx, Sy]), np.array([[Ixx, Ixy], [Ixy, Iyy]])
 
 
+def _orient(p, q, r):
+    """Twice the signed area of the triangles p, q, r (arrays of points, broadcast)."""
+    return (q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - \
+        (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0])
+
+
+def _on_segment(p, q, r, o, tol, slack):
+    """r lies on the segment p-q, given _orient(p, q, r) = o."""
+    return (np.abs(o) <= tol) & \
+        (np.minimum(p[..., 0], q[..., 0]) - slack <= r[..., 0]) & \
+        (r[..., 0] <= np.maximum(p[..., 0], q[..., 0]) + slack) & \
+        (np.minimum(p[..., 1], q[..., 1]) - slack <= r[..., 1]) & \
+        (r[..., 1] <= np.maximum(p[..., 1], q[..., 1]) + slack)
+
+
 def _crossing(v: np.ndarray):
     """The first pair (i, j) of non-adjacent edges of the closed polygon v that meet, else
-    None (segments touching at a point count: a polygon whose boundary touches itself)."""
+    None (segments touching at a point count: a boundary that touches itself)."""
     k = v.shape[0]
     a, b = v, np.roll(v, -1, axis=0)
-    d = b - a
     scale = float(np.max(np.abs(v))) or 1.0
-    tol = 1e-12 * scale * scale
+    tol, slack = 1e-12 * scale * scale, 1e-12 * scale
     for i in range(k - 2):
-        j = np.arange(i + 2, k if i > 0 else k - 1)
+        j = np.arange(i + 2, k if i > 0 else k - 1)          # not i's neighbours
         if j.size == 0:
             continue
-
-        def orient(p, q, r):
-            return (q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - \
-                (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0])
-        o1 = orient(a[i], b[i], a[j])
-        o2 = orient(a[i], b[i], b[j])
-        o3 = orient(a[j], b[j], a[i])
-        o4 = orient(a[j], b[j], b[i])
-        proper = (o1 * o2 < -tol * 0) & (o3 * o4 < 0) & (np.abs(o1) > tol) & \
-            (np.abs(o2) > tol) & (np.abs(o3) > tol) & (np.abs(o4) > tol)
-
-        def on_seg(p, q, r, o):            # r on segment p-q, given orient(p, q, r) = o
-            return (np.abs(o) <= tol) & \
-                (np.minimum(p[..., 0], q[..., 0]) - 1e-12 * scale <= r[..., 0]) & \
-                (r[..., 0] <= np.maximum(p[..., 0], q[..., 0]) + 1e-12 * scale) & \
-                (np.minimum(p[..., 1], q[..., 1]) - 1e-12 * scale <= r[..., 1]) & \
-                (r[..., 1] <= np.maximum(p[..., 1], q[..., 1]) + 1e-12 * scale)
-        touch = on_seg(a[i], b[i], a[j], o1) | on_seg(a[i], b[i], b[j], o2) | \
-            on_seg(a[j], b[j], a[i], o3) | on_seg(a[j], b[j], b[i], o4)
+        o1, o2 = _orient(a[i], b[i], a[j]), _orient(a[i], b[i], b[j])
+        o3, o4 = _orient(a[j], b[j], a[i]), _orient(a[j], b[j], b[i])
+        proper = (o1 * o2 < 0) & (o3 * o4 < 0)
+        touch = _on_segment(a[i], b[i], a[j], o1, tol, slack) | \
+            _on_segment(a[i], b[i], b[j], o2, tol, slack) | \
+            _on_segment(a[j], b[j], a[i], o3, tol, slack) | \
+            _on_segment(a[j], b[j], b[i], o4, tol, slack)
         hit = np.flatnonzero(proper | touch)
         if hit.size:
             return i, int(j[hit[0]])
-    del d
     return None
 
 
@@ -334,8 +331,8 @@ def check_polygon(vertices) -> np.ndarray:
     v = check_array("vertices", vertices, shape=(None, 2))
     if v.shape[0] < 3:
         raise InputError(f"vertices must hold at least 3 points (x, y), got {v.shape[0]}")
-    if v.shape[0] > 100_000:
-        raise InputError(f"vertices must hold at most 100000 points, got {v.shape[0]}")
+    if v.shape[0] > MAX_VERTICES:
+        raise InputError(f"vertices must hold at most {MAX_VERTICES} points, got {v.shape[0]}")
     if np.any(np.abs(v) > LENGTH_RANGE[1]):
         raise InputError(f"vertices must lie within {LENGTH_RANGE[1]:g} m of the origin")
     if v.shape[0] > 3 and np.all(v[0] == v[-1]):
@@ -456,7 +453,7 @@ def _lamina(kind, a, b, n, profile, cop, outline, grid=None, core=""):
     pts, cell, hxy = _sample_region(a, b, n, area, g)
     w = cell / cell.sum()
     if profile == "linear":
-        beta = _linear_beta(cop, area, J, 1.0)
+        beta = _linear_beta(cop, area, J)
         _refuse_negative(cop, beta, np.concatenate([a, b]), core)
         w = cell * (1.0 + pts @ beta)          # exact integral of a linear p over the cell
         if np.any(w <= 0):
@@ -757,3 +754,38 @@ def mesh_patch(mesh, *, unit: str | None = None, tolerance: float | None = None,
     fp.info.update({"faces": int(sel.shape[0]), "tolerance_m": tol, "lowest_z_m": z0,
                     "source": mesh.source})
     return fp
+
+
+#: the eps of the error table (issue 20): pure spin, slow slide, the disc's terminal ratio,
+#: the instantaneous centre on the rim, fast slides
+TABLE_EPS = (0.0, 0.1, 0.653, 1.0, 3.0, 100.0)
+
+
+def sampling_errors(fp: Footprint, eps_values, directions: int = 48) -> list[dict]:
+    """Worst relative errors of a disc's or ring's sampled Coulomb force (as a vector:
+    |F + f e_v| / f) and torque (|T + m| / m) against the closed forms, over ``directions``
+    velocity directions, for each eps (at eps = 0 the force's magnitude itself, the exact
+    force being zero)."""
+    from .closed_forms import footprint_f_m
+    if fp.kind not in ("disc", "ring"):
+        raise InputError(f"sampling_errors: a disc or ring footprint, got a {fp.kind}")
+    R = fp.radius
+    r = fp.points / R
+    d = 2.0 * math.pi * np.arange(directions) / directions
+    ev = np.column_stack([np.cos(d), np.sin(d)])                   # (k, 2)
+    out = []
+    for eps in eps_values:
+        f, m = footprint_f_m(fp.kind, float(eps))
+        if math.isinf(eps):
+            u = np.broadcast_to(ev[:, None, :], (directions, r.shape[0], 2))
+        else:
+            u = eps * ev[:, None, :] + np.column_stack([-r[:, 1], r[:, 0]])[None]
+        s = np.hypot(u[..., 0], u[..., 1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            un = np.where(s[..., None] > 0, u / s[..., None], 0.0)
+        F = np.einsum("j,kjc->kc", fp.weights, un)
+        T = np.einsum("j,kj->k", fp.weights, r[:, 0] * un[..., 1] - r[:, 1] * un[..., 0])
+        ef = np.hypot(*(F - f * ev).T).max() / (f if f > 0 else 1.0)
+        em = np.abs(T - m).max() / (m if m > 0 else 1.0)
+        out.append({"eps": float(eps), "force": float(ef), "torque": float(em)})
+    return out
