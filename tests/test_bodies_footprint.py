@@ -409,6 +409,20 @@ def test_body_file_shapes_inertia_and_pressure_file(tmp_path):
     assert b.inertia == pytest.approx(0.05 * (0.04**2 + 0.01**2) / 12)
 
 
+def test_body_file_mesh_named_relative_to_the_file(tmp_path, meshes):
+    import shutil
+    (tmp_path / "parts").mkdir()
+    shutil.copy(meshes / "bridge.stl", tmp_path / "parts" / "bridge.stl")
+    b = _body(tmp_path, '[body]\nshape = "mesh"\nmesh = "parts/bridge.stl"\nunit = "mm"\n'
+              'mass = 0.2\ncontact_points = 100\n')
+    assert b.footprint.kind == "mesh" and b.footprint.area == pytest.approx(2e-4)
+    with pytest.raises(InputError, match="body.mesh"):
+        _body(tmp_path, '[body]\nshape = "mesh"\nmesh = "bridge.stl"\nunit = "mm"\n'
+              'mass = 0.2\n')
+    with pytest.raises(InputError, match="body.unit"):
+        _body(tmp_path, '[body]\nshape = "disc"\nradius = 0.1\nunit = "mm"\nmass = 0.2\n')
+
+
 @pytest.mark.parametrize("body,words", [
     ('shape = "disc"\nradius = 0.0\nmass = 1.0', "body.radius"),
     ('shape = "disc"\nradius = nan\nmass = 1.0', "body.radius"),
