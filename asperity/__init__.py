@@ -66,6 +66,19 @@ _LAZY = {
     "ElasticContact": "asperity.surface.contact_facets",
     "load_elastic": "asperity.surface.contact_facets",
     "derive_family": "asperity.friction.family",
+    "Footprint": "asperity.bodies.footprint",
+    "disc_footprint": "asperity.bodies.footprint",
+    "ring_footprint": "asperity.bodies.footprint",
+    "rectangle_footprint": "asperity.bodies.footprint",
+    "polygon_footprint": "asperity.bodies.footprint",
+    "mesh_patch": "asperity.bodies.footprint",
+    "pressure_footprint": "asperity.bodies.footprint",
+    "read_pressure": "asperity.bodies.footprint",
+    "read_body": "asperity.bodies.body_file",
+    "disc_f_m": "asperity.bodies.closed_forms",
+    "ring_f_m": "asperity.bodies.closed_forms",
+    "spin_drift_force": "asperity.bodies.closed_forms",
+    "disc_reference": "asperity.bodies.closed_forms",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }
@@ -74,7 +87,10 @@ __all__ = ["__version__", *_LAZY]
 
 
 #: public names that differ from the module's own
-_RENAMED = {"simulate_microslip": "simulate", "law_from_gauge": "from_gauge"}
+_RENAMED = {"simulate_microslip": "simulate", "law_from_gauge": "from_gauge",
+            "disc_footprint": "disc", "ring_footprint": "ring",
+            "rectangle_footprint": "rectangle", "polygon_footprint": "polygon",
+            "pressure_footprint": "from_pressure"}
 
 
 def __getattr__(name: str):

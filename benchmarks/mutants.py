@@ -77,6 +77,7 @@ WEB_CONTACT = ("test_web_contact.py",)
 REPORT = ("test_report.py",)
 FAMILY_AXES = ("test_family_axes.py",)
 WEB_FAMILY = ("test_web_law_family.py",)
+BODIES = ("test_bodies_closed_forms.py", "test_bodies_footprint.py")
 
 
 @dataclass(frozen=True)
@@ -90,6 +91,49 @@ class Mutant:
 
 
 MUTANTS = [
+    # ---- bodies (issue 20): closed forms of the disc and ring, footprints
+    Mutant("disc-f-constant", "bodies/closed_forms.py",
+           "f = np.where(low, (4.0 / (3.0 * math.pi)) * e * (E + B),",
+           "f = np.where(low, (4.0 / (9.0 * math.pi)) * e * (E + B),", BODIES,
+           "disc force below eps = 1 with 4/(9 pi) instead of 4/(3 pi)"),
+    Mutant("disc-m-constant", "bodies/closed_forms.py",
+           "(4.0 / (9.0 * math.pi)) * ((3.0 - 2.0 * x) * E + x * B)",
+           "(4.0 / (9.0 * math.pi)) * ((3.0 - x) * E + x * B)", BODIES,
+           "disc torque below eps = 1: (3 - x) E instead of (3 - 2x) E"),
+    Mutant("disc-wrong-branch", "bodies/closed_forms.py",
+           "f = np.where(low, (4.0 / (3.0 * math.pi)) * e",
+           "f = np.where(e < 1.5, (4.0 / (3.0 * math.pi)) * e", BODIES,
+           "disc force: the eps <= 1 branch used up to eps = 1.5"),
+    Mutant("ring-m-beyond-one", "bodies/closed_forms.py",
+           "m = np.where(low, small, big * inv)", "m = np.where(low, small, small * inv)",
+           BODIES, "ring torque beyond eps = 1 from E instead of B"),
+    Mutant("elliptic-series-unsquared", "bodies/closed_forms.py",
+           "c[j] = c[j - 1] * ((2 * j - 1) / (2 * j)) ** 2",
+           "c[j] = c[j - 1] * ((2 * j - 1) / (2 * j))", BODIES,
+           "power series of K and E with the ratio of double factorials not squared"),
+    Mutant("reference-without-inertia-factor", "bodies/closed_forms.py",
+           "return [e - kI * f / m, dt, e * w * dt, w / R * dt]",
+           "return [e - f / m, dt, e * w * dt, w / R * dt]", BODIES,
+           "reference ODE: d eps/d lambda without k_I (the disc's I = m R^2 / 2 ignored)"),
+    Mutant("spin-drift-sign", "bodies/closed_forms.py",
+           "return -np.mean(law.force(psi), axis=0)", "return np.mean(law.force(psi), axis=0)",
+           BODIES, "spin drift: +mean p instead of -mean p (drifts the wrong way)"),
+    Mutant("disc-ring-weight-no-r", "bodies/footprint.py",
+           "W = w * r                                        # int 2 r g dr",
+           "W = w                                            # int 2 r g dr", BODIES,
+           "disc quadrature: a ring's weight without the Jacobian r"),
+    Mutant("polygon-crossing-check-off", "bodies/footprint.py",
+           "hit = _crossing(v)", "hit = None", BODIES,
+           "a polygon whose boundary crosses itself is accepted"),
+    Mutant("linear-pressure-without-area", "bodies/footprint.py",
+           "return np.linalg.solve(J, area * cop)", "return np.linalg.solve(J, cop)", BODIES,
+           "linear pressure: J beta = c instead of J beta = A c"),
+    Mutant("clip-piece-at-its-start", "bodies/footprint.py",
+           "ym = ay[..., None] + dy[..., None] * tm", "ym = ay[..., None] + dy[..., None] * t0",
+           BODIES, "cell clipping: a piece's strip decided at its start (on the strip line)"),
+    Mutant("mesh-patch-upside", "bodies/footprint.py",
+           "sel, s = sel[s < 0], s[s < 0]", "sel, s = sel[s > 0], s[s > 0]", BODIES,
+           "a closed mesh's patch from the faces facing up"),
     # ---- the five that the suite missed in issue 11
     Mutant("admissibility-hard-wired", "friction/diagnostics.py",
            "return Admissibility(dmin >= -ADMISSIBILITY_TOL, dmin,",

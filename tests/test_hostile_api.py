@@ -61,6 +61,9 @@ def _files(folder: Path) -> dict:
     members = tuple(replace(gl, source={**gl.source, "elastic_contact": {
         "area_fraction": 0.1, "pressure_Pa": p, "max_pressure_Pa": 1e8, "E_star_Pa": 1e9,
         "boundary": "periodic", "hardness_Pa": None}}) for p in (1e6, 1e7))
+    import trimesh
+    trimesh.creation.box(extents=(40, 20, 10)).export(folder / "box.stl")
+    (folder / "pressure.csv").write_text("x_m,y_m,p_Pa\n0,0,1e5\n0.001,0,2e5\n0,0.001,1e5\n")
     return dict(d=A.derive(TEX, n_directions=72), npy=folder / "z.npy", gauge=folder / "g.json", gl=gl, chain=chain, members=members,
                 loading=loading, asm=asm, friction=A.assembly_friction(asm),
                 law=A.ellipse_law(0.2, 0.1), fs=A.load_surface(folder / "z.npy", unit="m",
@@ -103,7 +106,63 @@ def api_table(folder: Path) -> list[Row]:
                                    ("inf", "inf value", (p, [20.0, math.inf])),
                                    ("range", "out-of-range value", (p, [20.0, 95.0]))])
     mu_slider = number(1e-6, 1e4, inf=True)
+    length = number(1e-9, 1e3)
+    points = whole(1, 1_000_000, none=True)
+    cop = array(-1e3, 1e3, extra=[("shape", "3 values", [0.0, 0.0, 0.0]),
+                                  ("range", "off the core", [0.9, 0.0])])
+    eps = array(0.0, None, ndim=None, inf=True, extra=[
+        ("NaN", "NaN", NAN), ("range", "negative", -1.0), ("overflow", "10**400", BIG)])
+    shape_kw = dict(contact_points=points, profile=choice(), centre_of_pressure=cop)
+    shape_args = dict(contact_points=16, profile="linear", centre_of_pressure=(0.0, 0.0))
+    shape_words = {"profile": ("pressure_profile",)}
+    disc_fp = A.disc_footprint(1.0, contact_points=16)
     rows = [
+        Row("Footprint", A.Footprint,
+            dict(kind="disc", points=disc_fp.points, weights=disc_fp.weights,
+                 outline=disc_fp.outline, area=1.0, radius=1.0, profile="uniform",
+                 inertia_per_mass=0.5, info={}),
+            dict(kind=choice(), points=array(-1e3, 1e3, ndim=2),
+                 weights=array(0.0, 1.0, lo_open=True, extra=[
+                     ("range", "not summing to 1", [0.5] * 16)]),
+                 outline=array(ndim=2), area=number(0.0, None),
+                 radius=number(1e-9, 1e3, none=True), profile=choice(),
+                 inertia_per_mass=number(0.0, None), info=instance(skip=("dict",)))),
+        Row("disc_footprint", A.disc_footprint, dict(radius=1.0, **shape_args),
+            dict(radius=length, **shape_kw), shape_words),
+        Row("ring_footprint", A.ring_footprint, dict(radius=0.1, contact_points=16),
+            dict(radius=length, contact_points=whole(3, 1_000_000, none=True))),
+        Row("rectangle_footprint", A.rectangle_footprint, dict(a=0.04, b=0.02, **shape_args),
+            dict(a=length, b=length, **shape_kw), shape_words),
+        Row("polygon_footprint", A.polygon_footprint,
+            dict(vertices=[[0, 0], [1, 0], [1, 1], [0, 1]], **shape_args),
+            dict(vertices=array(-1e3, 1e3, ndim=2, extra=[
+                ("shape", "two points", [[0, 0], [1, 0]]),
+                ("range", "zero area", [[0, 0], [1, 1], [2, 2]]),
+                ("range", "crossing itself", [[0, 0], [3, 0], [0, 1], [1, 1]])]),
+                 **shape_kw), shape_words),
+        Row("mesh_patch", A.mesh_patch,
+            dict(mesh=folder / "box.stl", unit="mm", tolerance=None, **shape_args),
+            dict(mesh=infile(folder, ".stl"), unit=choice(none=True),
+                 tolerance=number(0.0, 1e3, none=True), **shape_kw), shape_words),
+        Row("pressure_footprint", A.pressure_footprint,
+            dict(points=[[0.0, 0.0], [0.001, 0.0]], pressures=[1e5, 2e5], shape=None,
+                 cell_areas=None),
+            dict(points=array(-1e3, 1e3, ndim=2), pressures=array(0.0, None, extra=[
+                ("range", "all zero", [0.0, 0.0])]), shape=instance(none=True),
+                 cell_areas=array(0.0, None, lo_open=True, none=True))),
+        Row("read_pressure", A.read_pressure, dict(path=folder / "pressure.csv"),
+            dict(path=infile(folder, ".csv")), {"path": ("pressure file",)}),
+        Row("read_body", A.read_body, dict(path=SURF / "body-plate.toml"),
+            dict(path=infile(folder, ".toml")), {"path": ("body file",)}),
+        Row("disc_f_m", A.disc_f_m, dict(eps=0.5), dict(eps=eps)),
+        Row("ring_f_m", A.ring_f_m, dict(eps=0.5), dict(eps=eps)),
+        Row("spin_drift_force", A.spin_drift_force, dict(law=f["law"], n=64),
+            dict(law=instance(), n=whole(8, 10**7))),
+        Row("disc_reference", A.disc_reference,
+            dict(v0=1.0, omega0=10.0, mu=0.3, g=9.81, R=0.05, kind="disc", rtol=1e-8),
+            dict(v0=number(0.0, 1e4), omega0=number(0.0, 1e6), mu=number(1e-6, 100.0),
+                 g=number(1e-6, 1e4), R=number(1e-9, 1e3), kind=choice(),
+                 rtol=number(1e-14, 1e-3))),
         Row("WedgeTexture", A.WedgeTexture,
             dict(alpha_deg=30, beta_deg=10, mu_alpha=0.1, mu_beta=0.2, height=1e-6),
             dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,
