@@ -1,0 +1,279 @@
+"""Moreau time stepping of a planar rigid body whose footprint is sampled at N contact points
+(issue 20; SPEC.md sections 4 and 8).
+
+The body (x, y, theta) slides on a flat support; contact i sits at body offset r_i and carries
+the share w_i of the weight (normal impulse lambda_i = w_i m g dt per step, no lift-off).  All
+points obey one :class:`~asperity.laws.planar.PlanarLaw`, fixed to the support with its t_a
+axis at ``texture_angle_deg`` from the x axis.  The scheme is the midpoint scheme of SPEC.md 4:
+
+    q_M = q_A + dt/2 u_A,   M (u_E - u_A) = dt f(t_M) + sum_i W_i P_i,   q_E = q_M + dt/2 u_E
+
+with M = diag(m, m, I) and W_i^T u = (vx - omega o_y, vy + omega o_x) the slip of point i
+(o_i = r_i turned by theta_M).  The solver itself is :func:`simulate_body`; the motion is
+computed in the frame of the law (the texture) and turned back to the x, y frame.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError, check_array, check_instance, check_int, check_range
+from ..laws.planar import PlanarLaw
+from ..resources import check_memory, check_work
+from .moreau import LIMITS, MAX_STEPS, Force, Settings
+
+#: most contact points of a footprint (the kernel's memory is a few arrays of this length)
+MAX_POINTS = 1_000_000
+#: velocities below this fraction of the initial velocity scale count as zero for the
+#: separate slide / spin stop times (the joint stop time is exact: u_E = 0 bit for bit)
+STOP_FRACTION = 1e-10
+#: safety factor of the horizon used when t_end is None (see :func:`rest_horizon`)
+HORIZON_FACTOR = 1.5
+
+
+@dataclass(frozen=True)
+class BodySettings:
+    """Settings of the body solver.
+
+    tol : relative tolerance of a step's equation (residual / scale of the impulses)
+    max_iterations : iteration limit per step
+    """
+
+    tol: float = 1e-12
+    max_iterations: int = 2000
+
+    def __post_init__(self):
+        check_range("tol", self.tol, 1e-15, 1e-3)
+        check_int("max_iterations", self.max_iterations, 1, 1_000_000)
+
+
+@dataclass(frozen=True)
+class BodyResult:
+    """A simulated body.
+
+    t (k,), q (k, 3) = (x, y, theta), u (k, 3) = (vx, vy, omega): recorded states (every
+        ``record_every`` steps, the first and the last included), SI units, x, y frame
+    dt, steps : step and steps integrated
+    status : "ok", "not-converged" or "non-finite" (see ``status_message``)
+    stop_time : time at which the body came to rest for good (u exactly 0), None if moving
+    slide_stop_time, spin_stop_time : from when on |v| (resp. rho |omega|, rho = sqrt(I/m))
+        stays below STOP_FRACTION of the initial velocity scale; None if it does not
+    final_angle_rad : theta at the end
+    max_iterations_used, mean_iterations : iterations of the step solver
+    last_moving : (3,) the last velocity before the final rest (None if none), for
+        :meth:`terminal_ratio`
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    u: np.ndarray
+    dt: float
+    steps: int
+    status: str
+    stop_time: float | None
+    slide_stop_time: float | None
+    spin_stop_time: float | None
+    final_angle_rad: float
+    max_iterations_used: int
+    mean_iterations: float
+    mass: float
+    inertia: float
+    q_final: np.ndarray
+    u_final: np.ndarray
+    last_moving: np.ndarray | None
+    message: str = "ok"
+
+    @property
+    def energy(self) -> np.ndarray:
+        """(k,) kinetic energy of the recorded states, J."""
+        u = self.u
+        return 0.5 * (self.mass * (u[:, 0] ** 2 + u[:, 1] ** 2) + self.inertia * u[:, 2] ** 2)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+    @property
+    def rest(self) -> bool:
+        return self.stop_time is not None
+
+    def status_message(self) -> str:
+        return self.message
+
+    def terminal_ratio(self, radius: float) -> float | None:
+        """v / (R omega) as the motion ends: of the last moving state before the final rest
+        (of the final state if the body still moves); None without spin then."""
+        R = check_range("radius", radius, 1e-9, 1e6, unit="m")
+        u = self.last_moving if self.last_moving is not None else self.u_final
+        if u is None or u[2] == 0.0:
+            return None
+        return float(math.hypot(u[0], u[1]) / (R * abs(u[2])))
+
+
+# ----------------------------------------------------------------------------- input
+
+def _check_points(points, weights) -> tuple[np.ndarray, np.ndarray]:
+    p = np.array(check_array("points", points, shape=(None, 2), min_size=2), dtype=float)
+    n = p.shape[0]
+    if n > MAX_POINTS:
+        raise InputError(f"points must be at most {MAX_POINTS} contact points, got {n}")
+    check_memory(n * 8.0 * 32, f"a footprint of {n} contact points", "use fewer contact points")
+    if np.any(np.abs(p) > 1e3):
+        raise InputError(f"points must lie within 1 km of the centre of mass, got "
+                         f"{np.abs(p).max():g} m")
+    w = np.array(check_array("weights", weights, ndim=1), dtype=float)
+    if w.shape != (n,):
+        raise InputError(f"weights must have shape ({n},) (one per point), got {w.shape}")
+    if np.any(w <= 0) or abs(w.sum() - 1.0) > 1e-9:
+        raise InputError(f"weights must be positive and sum to 1 (shares of the load), got "
+                         f"min {w.min():g}, sum {w.sum():.12g}")
+    return np.ascontiguousarray(p), np.ascontiguousarray(w / w.sum())
+
+
+def _rot(a: float) -> np.ndarray:
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s], [s, c]])
+
+
+def _turn_force(force: Force, a: float) -> Force:
+    """The force in the frame of the law (turned by -a)."""
+    R = _rot(-a)
+    c = np.asarray(force.constant)
+    m = np.asarray(force.amplitude)
+    return Force(constant=(*(R @ c[:2]), c[2]), amplitude=(*(R @ m[:2]), m[2]),
+                 period=force.period, waveform=force.waveform)
+
+
+def rest_horizon(points, weights, law: PlanarLaw, mass: float, inertia: float, u0, g: float
+                 ) -> float:
+    """A time by which a body with no external force is surely at rest.
+
+    With |u|_* = sqrt(v^2 + (I/m) omega^2) the friction power is at least
+    m g mu_min sum_i w_i |gamma_i| >= m g mu_min kappa |u|_*, kappa = min over unit u of
+    sum_i w_i |W_i^T u| (sampled on 2000 directions, then halved for safety), so
+    d|u|_*/dt <= -g mu_min kappa and the body stops before |u0|_* / (g mu_min kappa)."""
+    u0 = np.asarray(u0, dtype=float)
+    rho2 = inertia / mass
+    n = 2000
+    k = np.arange(n) + 0.5
+    z = 1.0 - 2.0 * k / n
+    ph = math.pi * (1.0 + 5 ** 0.5) * k
+    r = np.sqrt(1.0 - z * z)
+    d = np.column_stack([r * np.cos(ph), r * np.sin(ph), z / math.sqrt(rho2)])  # |d|_* = 1
+    gx = d[:, 0:1] - d[:, 2:3] * points[None, :, 1]
+    gy = d[:, 1:2] + d[:, 2:3] * points[None, :, 0]
+    kappa = 0.5 * float((np.hypot(gx, gy) @ weights).min())
+    speed = math.sqrt(u0[0] ** 2 + u0[1] ** 2 + rho2 * u0[2] ** 2)
+    return speed / (g * law.min_tangential() * kappa)
+
+
+# ----------------------------------------------------------------------------- solver
+
+def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: float,
+                  u0=(0.0, 0.0, 0.0), q0=(0.0, 0.0, 0.0), dt: float, t_end: float | None = None,
+                  force: Force | None = None, g: float = 9.81, texture_angle_deg: float = 0.0,
+                  settings: BodySettings = BodySettings(), record_every: int = 1) -> BodyResult:
+    """Slide and spin a rigid body with its footprint sampled at ``points`` (n, 2) (body frame,
+    m, origin at the centre of mass) carrying ``weights`` (n,) of the load (> 0, sum 1).
+
+    mass (kg), inertia (kg m^2 about the centre of mass), u0 = (vx, vy, omega) (m/s, rad/s),
+    q0 = (x, y, theta), dt (s); t_end None: until rest (needs no external force);
+    force: a :class:`~asperity.dynamics.moreau.Force` (fx, fy, torque), constant or periodic;
+    texture_angle_deg: angle of the law's t_a axis from x.  Returns a :class:`BodyResult`."""
+    check_instance("law", law, PlanarLaw)
+    check_instance("settings", settings, BodySettings)
+    if force is not None:
+        check_instance("force", force, Force)
+    pts, w = _check_points(points, weights)
+    mass = check_range("mass", mass, *LIMITS["mass"], unit="kg")
+    inertia = check_range("inertia", inertia, *LIMITS["inertia"], unit="kg m^2")
+    u0 = np.array(check_array("u0", u0, shape=(3,)), dtype=float)
+    if np.any(np.abs(u0[:2]) > LIMITS["u0"][1]) or abs(u0[2]) > 1e6:
+        raise InputError(f"u0 must be (vx, vy, omega) within +-{LIMITS['u0'][1]:g} m/s and "
+                         f"+-1e6 rad/s, got {u0}")
+    q0 = np.array(check_array("q0", q0, shape=(3,)), dtype=float)
+    if np.any(np.abs(q0) > 1e9):
+        raise InputError(f"q0 must be (x, y, theta) within +-1e9, got {q0}")
+    dt = check_range("dt", dt, *LIMITS["dt"], unit="s")
+    g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
+    a = math.radians(check_range("texture_angle_deg", texture_angle_deg, -360.0, 360.0,
+                                 unit="deg"))
+    record_every = check_int("record_every", record_every, 1, int(MAX_STEPS))
+    halt = t_end is None
+    if t_end is None:
+        if force is not None:
+            raise InputError("t_end must be given with an external force (the body need not "
+                             "come to rest)")
+        t_end = HORIZON_FACTOR * rest_horizon(pts, w, law, mass, inertia, u0, g) + 10 * dt
+        t_end = min(t_end, LIMITS["t_end"][1])
+    else:
+        t_end = check_range("t_end", t_end, *LIMITS["t_end"], unit="s")
+    n_steps = int(round(t_end / dt))
+    check_work(n_steps * max(1.0, pts.shape[0] / 16.0), MAX_STEPS,
+               "this simulation (t_end / dt times the contact points / 16)",
+               "raise dt, lower t_end or use fewer contact points")
+    check_memory((n_steps // record_every + 2) * 7 * 8.0,
+                 f"recording {n_steps // record_every + 2:.3g} states", "raise record_every")
+    # the motion in the frame of the law: x, y turned by -a, theta - a
+    Rm = _rot(-a)
+    ul = np.array([*(Rm @ u0[:2]), u0[2]])
+    ql = np.array([*(Rm @ q0[:2]), q0[2] - a])
+    fl = None if force is None else _turn_force(force, a)
+    res = _run_moreau(pts, w, law, mass, inertia, ul, ql, dt, n_steps, fl, g, settings,
+                      record_every, halt)
+    t, q, u, steps, stop_step, status, message, max_it, mean_it = res
+    Rp = _rot(a)
+    q = q.copy()
+    u = u.copy()
+    q[:, :2] = q[:, :2] @ Rp.T
+    q[:, 2] += a
+    u[:, :2] = u[:, :2] @ Rp.T
+    return _result(t, q, u, dt, steps, stop_step, status, message, max_it, mean_it, mass,
+                   inertia, u0)
+
+
+def _stop_index(moving: np.ndarray) -> int | None:
+    """Index of the first record after which ``moving`` is False for good (None: moving at
+    the end)."""
+    if moving[-1]:
+        return None
+    idx = np.flatnonzero(moving)
+    return 0 if idx.size == 0 else int(idx[-1]) + 1
+
+
+def _result(t, q, u, dt, steps, stop_step, status, message, max_it, mean_it, mass, inertia,
+            u0) -> BodyResult:
+    rho = math.sqrt(inertia / mass)
+    scale = STOP_FRACTION * (math.hypot(u0[0], u0[1]) + rho * abs(u0[2]) + 1e-300)
+    v = np.hypot(u[:, 0], u[:, 1])
+    ks = _stop_index(v > scale)
+    kw = _stop_index(rho * np.abs(u[:, 2]) > scale)
+    last = None
+    if stop_step is not None and stop_step > 0:
+        mov = np.flatnonzero(np.any(u != 0.0, axis=1))
+        if mov.size:
+            last = u[int(mov[-1])].copy()
+    return BodyResult(t=t, q=q, u=u, dt=dt, steps=steps, status=status,
+                      stop_time=None if stop_step is None else stop_step * dt,
+                      slide_stop_time=None if ks is None else float(t[ks]),
+                      spin_stop_time=None if kw is None else float(t[kw]),
+                      final_angle_rad=float(q[-1, 2]), max_iterations_used=max_it,
+                      mean_iterations=mean_it, mass=mass, inertia=inertia,
+                      q_final=q[-1].copy(), u_final=u[-1].copy(), last_moving=last,
+                      message=message)
+
+
+def _run_moreau(pts, w, law, mass, inertia, u0, q0, dt, n_steps, force, g, settings,
+                record_every, halt):
+    """The step by the existing multi-contact solver (Jacobi fixed point over the contact
+    impulses, :func:`asperity.dynamics.moreau.simulate`)."""
+    from .moreau import Body, simulate
+    body = Body(mass=mass, laws=law, inertia=inertia, contacts=pts, share=w)
+    r = simulate(body, u0, dt=dt, t_end=n_steps * dt, q0=q0, force=force, g=g,
+                 settings=Settings(tol=max(settings.tol, 1e-15),
+                                   max_iterations=settings.max_iterations),
+                 record_every=record_every, halt_at_rest=halt)
+    return (r.t, r.q, r.u, r.steps, r.stop_step, r.status, r.status_message(),
+            r.max_iterations_used, r.mean_iterations)
