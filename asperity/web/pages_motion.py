@@ -7,6 +7,7 @@ from fastapi.responses import HTMLResponse
 from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
 from .forms import Form, FormError, at
 from .labels import label
+from .pages_body import BODIES
 from .pages import CONTACTS, UNITS
 from .store import UploadError, check_plain_name
 from .words import STRIP, TWO_NODE
@@ -84,7 +85,7 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
         default_friction = f"law:{q['law']}"
     return web.page(request, "motion.html", status, page="motion", laws=laws,
                     default_law=default_law, family_laws=family_jobs(web, laws_done), frictions=frictions,
-                    default_friction=default_friction, jobs=jobs, **ctx)
+                    default_friction=default_friction, jobs=jobs, bodies=BODIES, **ctx)
 
 
 def render_studies(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
@@ -122,7 +123,14 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
               "mass": form.number("mass", 1.0, label="mass (kg)"),
               "g": form.number("g", 9.81, label="g (m/s^2)"),
               "dt": form.number("dt", 1e-4, label="time step (s)"), "law_text": what}
-    return params, f"slide on {what}"
+    from .pages_body import body_params
+    body = body_params(web, form, kept, dt=params["dt"])
+    if body is None:
+        return params, f"slide on {what}"
+    params["body"] = body
+    shown = body.get("name") or {"disc": "a disc", "ring": "a ring",
+                                 "rectangle": "a rectangle"}[body["shape"]]
+    return params, f"{shown} sliding on {what}"
 
 
 def _assembly_from_form(form: Form) -> dict:

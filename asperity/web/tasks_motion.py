@@ -69,6 +69,9 @@ def slide_task(params: dict, ctx: dict, bar) -> dict:
     u0 = check_range("u0", params["u0"], 0.0, 1e4, unit="m/s")
     g = check_range("g", params["g"], 1e-6, 1e6, unit="m/s^2")
     dt = check_range("dt", params["dt"], 1e-9, 1.0, unit="s")
+    if params.get("body"):
+        from .tasks_body import body_task
+        return body_task(params, ctx, bar, law, *_law_words(params["law"], law, params, ctx))
     low = law.min_tangential()
     steps = 1.5 * u0 / (g * low) / dt if low > 0 else MAX_POINTS
     every = max(1, int(steps // MAX_POINTS)) if math.isfinite(steps) else 1

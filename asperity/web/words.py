@@ -25,6 +25,7 @@ FILE_FIELDS = {"file": ("file", "upload"), "friction_map": ("friction_map", "map
                "gauge": ("gauge", "gauge_upload"),
                "assembly_file": ("assembly", "assembly_upload"),
                "texture_file": ("texture", "texture_upload"),
+               "body_file": ("body", "body_upload"),
                "study": ("study", "study_upload"),
                "companions": ("companions", "companion_uploads")}
 #: file fields that take several files
