@@ -1,0 +1,239 @@
+"""The Motion page's body (issue 20, item 5), through a real ``asperity serve`` on 127.0.0.1:
+a disc's job gives the library's figures for the same inputs (rest point, final angle, stop
+times, terminal ratio, the CSV of the motion, the JSON download) and draws its outline and
+orientation along the path and the stop times on the speed and spin plot; a body file
+upload runs as :func:`asperity.bodies.read_body` reads it; a body file naming another file
+(a mesh, a pressure file: any form of name) is refused in one line at its field, runs no
+job and is never read; a bad field is one line at that field; the pressure field of a law
+family shows only for a law family.  Runs are small (16 contact points, dt 1e-3): the body
+solver is still the slow one."""
+from __future__ import annotations
+
+import csv
+import html
+import io
+import json
+import math
+import re
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+pytest.importorskip("fastapi")
+httpx = pytest.importorskip("httpx")
+with warnings.catch_warnings():
+    warnings.filterwarnings("ignore", message=".*httpx2.*")
+    from web_forms import Page  # noqa: E402
+from web_server import Server  # noqa: E402
+
+from asperity import ellipse_law, star_law  # noqa: E402
+from asperity.bodies.body_file import read_body  # noqa: E402
+from asperity.bodies.footprint import disc  # noqa: E402
+from asperity.dynamics.body import simulate_body  # noqa: E402
+from asperity.dynamics.moreau import Force  # noqa: E402
+
+MARKER = "SECRET-b0d7-not-for-visitors"
+COLUMNS = ["t_s", "x_m", "y_m", "theta_rad", "vx_m_s", "vy_m_s", "omega_rad_s"]
+DISC = {"law": "ellipse", "mu1": "0.2", "mu2": "0.1", "u0": "0.5", "angle_deg": "30",
+        "mass": "2", "g": "9.81", "dt": "1e-3", "body": "disc", "radius": "0.05",
+        "contact_points": "16", "pressure_profile": "uniform", "omega0": "20",
+        "texture_angle_deg": "15"}
+RING_FILE = """name = "washer"
+[body]
+shape = "ring"
+radius = 0.04
+mass = 0.3
+contact_points = 12
+"""
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    srv = Server(tmp_path_factory.mktemp("web-body") / "data", "--workers", "1")
+    try:
+        yield srv
+    finally:
+        assert srv.stop() == 0
+    assert "Traceback" not in "".join(srv.err), "".join(srv.err)
+
+
+def post(server, data, files=None):
+    return httpx.post(server.base + "/motion/slide", data=data, files=files, timeout=120)
+
+
+def done(server, r, timeout=180.0) -> str:
+    assert r.status_code == 303, (r.status_code, alerts(r))
+    jid = r.headers["location"].rsplit("/", 1)[-1]
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        st = httpx.get(f"{server.base}/api/jobs/{jid}").json()
+        if st["status"] not in ("queued", "running"):
+            assert st["status"] == "done", st
+            return jid
+        time.sleep(0.1)
+    raise AssertionError(f"job {jid} did not finish")
+
+
+def alerts(resp) -> list[str]:
+    found = re.findall(r'<[^>]*(?:role="alert"|class="error[^"]*")[^>]*>(.*?)</',
+                       resp.text, re.S)
+    return [html.unescape(m).strip() for m in found]
+
+
+def cell(page: str, key: str) -> str:
+    return html.unescape(re.search(rf'id="{key}">([^<]*)<', page).group(1))
+
+
+def figure(page: str, name: str) -> dict:
+    return json.loads(html.unescape(re.search(
+        rf'<script type="application/json" id="fig-{name}">(.*?)</script>', page, re.S).group(1)))
+
+
+def files_of(server, jid):
+    out = {n: httpx.get(f"{server.base}/jobs/{jid}/files/{n}") for n in ("path.csv",
+                                                                        "body.json")}
+    for r in out.values():
+        assert r.status_code == 200
+    rows = list(csv.reader(io.StringIO(out["path.csv"].text)))
+    return rows, out["body.json"].json(), out
+
+
+def test_a_disc_job_gives_the_librarys_figures(server):
+    jid = done(server, post(server, DISC))
+    fp = disc(0.05, contact_points=16)
+    a = math.radians(30.0)
+    ref = simulate_body(fp.points, fp.weights, ellipse_law(0.2, 0.1), mass=2.0,
+                        inertia=2.0 * 0.5 * 0.05 ** 2, u0=(0.5 * math.cos(a),
+                                                           0.5 * math.sin(a), 20.0),
+                        dt=1e-3, g=9.81, texture_angle_deg=15.0)
+    assert ref.rest and ref.steps < 4000         # one record a step on the page too
+    rows, obj, got = files_of(server, jid)
+    assert rows[0] == COLUMNS
+    table = np.array(rows[1:], dtype=float)
+    want = np.column_stack([ref.t, ref.q, ref.u])
+    assert table.shape == want.shape
+    np.testing.assert_allclose(table, want, rtol=1e-9, atol=1e-12)
+    assert obj["rest"] == pytest.approx(list(ref.q_final[:2]), rel=1e-12, abs=1e-15)
+    for key in ("final_angle_rad", "stop_time", "slide_stop_time", "spin_stop_time"):
+        assert obj[key] == pytest.approx(getattr(ref, key), rel=1e-12), key
+    assert obj["terminal_ratio"] == pytest.approx(ref.terminal_ratio(0.05), rel=1e-12)
+    assert obj["contact_points"] == 16 and obj["inertia"] == pytest.approx(2.5e-3)
+    assert obj["texture_angle_deg"] == 15.0 and obj["omega0"] == 20.0
+    assert "disc_body.json" in got["body.json"].headers["content-disposition"]
+    page = httpx.get(f"{server.base}/jobs/{jid}").text
+    assert cell(page, "terminal-ratio") == f"{ref.terminal_ratio(0.05):.4f}"
+    assert cell(page, "final-angle").startswith(f"{ref.final_angle_rad:.6g} rad")
+    assert cell(page, "slide-stop") == f"{ref.slide_stop_time:.6g} s"
+    assert cell(page, "spin-stop") == f"{ref.spin_stop_time:.6g} s"
+    assert cell(page, "stopped").startswith(f"{ref.stop_time:.6g} s")
+    x, y = ref.q_final[:2] * 1e3                  # mm: the page's unit for ~0.1 m
+    assert cell(page, "rest") == f"({x:.6g}, {y:.6g}) mm"
+    # the path: outlines (the disc's circle turned and placed) at intervals, the arms
+    # from the centre to the body's +x edge at the recorded angle
+    path = figure(page, "path")
+    outline, arms = path["data"][0], path["data"][1]
+    k = np.flatnonzero([v is None for v in arms["x"]])
+    assert k.size >= 10
+    ends = [(arms["x"][i - 1], arms["y"][i - 1], arms["x"][i - 2], arms["y"][i - 2])
+            for i in k]
+    last = ends[-1]
+    ang = math.atan2(last[1] - last[3], last[0] - last[2])
+    assert math.remainder(ang - ref.final_angle_rad, 2 * math.pi) == pytest.approx(0, abs=1e-6)
+    assert math.hypot(last[0] - last[2], last[1] - last[3]) == pytest.approx(50.0, rel=1e-6)
+    ox = np.array([v for v in outline["x"] if v is not None])
+    assert ox.size >= 10 * 100 and np.ptp(ox) > 100.0    # circles of 50 mm around the path
+    motion = figure(page, "motion")
+    marks = sorted(s["x0"] for s in motion["layout"]["shapes"])
+    assert marks == pytest.approx(sorted([ref.slide_stop_time, ref.spin_stop_time]))
+    omega = motion["data"][1]["y"]
+    assert omega[0] == 20.0 and omega[-1] == 0.0
+
+
+def test_a_body_file_upload_runs_as_read_body_reads_it(server, tmp_path):
+    data = dict(DISC, body="upload", law="star", mu1="0.3", mu2="0.15", omega0="-15",
+                mass="999", texture_angle_deg="0", force_wave="sine", force_x="0.4",
+                force_y="-0.2", torque="0.01", period="0.05", t_end="0.25")
+    jid = done(server, post(server, data, {"body_file": ("washer.toml", RING_FILE.encode())}))
+    (tmp_path / "washer.toml").write_text(RING_FILE)
+    b = read_body(tmp_path / "washer.toml")
+    assert b.mass == 0.3                           # the file's, not the form's 999 kg
+    a = math.radians(30.0)
+    ref = simulate_body(b.footprint.points, b.footprint.weights, star_law(0.3, 0.15),
+                        mass=b.mass, inertia=b.inertia, u0=(0.5 * math.cos(a),
+                                                            0.5 * math.sin(a), -15.0),
+                        dt=1e-3, t_end=0.25, g=9.81,
+                        force=Force(amplitude=(0.4, -0.2, 0.01), period=0.05,
+                                    waveform="sine"))
+    rows, obj, got = files_of(server, jid)
+    table = np.array(rows[1:], dtype=float)
+    np.testing.assert_allclose(table, np.column_stack([ref.t, ref.q, ref.u]), rtol=1e-9,
+                               atol=1e-12)
+    assert table[-1, 0] == pytest.approx(0.25)
+    assert obj["body"] == "washer" and obj["shape"] == "ring" and obj["mass"] == 0.3
+    assert obj["force"]["waveform"] == "sine" and obj["t_end"] == 0.25
+    assert "washer_body-path.csv" in got["path.csv"].headers["content-disposition"]
+    page = httpx.get(f"{server.base}/jobs/{jid}").text
+    assert "washer sliding on" in page and "sine wave force" in page
+
+
+def named(outside) -> dict[str, str]:
+    """Forms of a name a body file can give for a file outside its upload."""
+    p = outside / "secret.stl"
+    return {"absolute": str(p), "dotdot": f"../../../../..{p}", "plain": "secret.stl",
+            "tilde": "~/secret.stl", "glob": str(outside / "secret.*")}
+
+
+def test_a_body_file_naming_another_file_is_refused_and_never_read(server, tmp_path):
+    (tmp_path / "secret.stl").write_text(MARKER)
+    (tmp_path / "secret.csv").write_text(f"x_m,y_m,p_Pa\n0,0,{MARKER}\n")
+    data_dir = server.data_dir
+    jobs = set((data_dir / "jobs").iterdir()) if (data_dir / "jobs").exists() else set()
+    tried = 0
+    for key, shape in (("mesh", 'shape = "mesh"\nunit = "mm"'),
+                       ("pressure_file", 'shape = "disc"\nradius = 0.03')):
+        for form, value in named(tmp_path).items():
+            text = f"[body]\n{shape}\nmass = 1\n{key} = {json.dumps(value)}\n"
+            r = post(server, dict(DISC, body="upload"),
+                     {"body_file": ("part.toml", text.encode())})
+            lines = alerts(r)
+            assert r.status_code == 400 and len(lines) == 1, (key, form, lines)
+            assert f"body.{key} = " in lines[0] and "may not name other files" in lines[0]
+            page = Page(r.text)
+            f = [x for x in page.forms if x.id == "slide"][0]
+            assert len(f.errors) == 1
+            assert [x.name for x in f.fields if x.label == f.errors[0][0]][0] == "body_file"
+            assert MARKER not in r.text and "Traceback" not in r.text
+            tried += 1
+    assert tried == 10
+    now = set((data_dir / "jobs").iterdir()) if (data_dir / "jobs").exists() else set()
+    assert now == jobs, "a refused body file ran a job"
+
+
+@pytest.mark.parametrize("change, field, words", [
+    ({"radius": "0"}, "radius", "radius (m)"),
+    ({"radius": "2e3"}, "radius", "radius (m)"),
+    ({"contact_points": "0"}, "contact_points", "contact points"),
+    ({"contact_points": "20000"}, "contact_points", "contact points"),
+    ({"body": "rectangle", "pressure_profile": "hertz"}, "pressure_profile", "pressure profile"),
+    ({"pressure_profile": "linear", "cop_x": "0.02"}, "cop_x", "centre of pressure"),
+    ({"omega0": "2e6"}, "omega0", "omega0"),
+    ({"texture_angle_deg": "400"}, "texture_angle_deg", "texture angle"),
+    ({"force_wave": "square", "t_end": ""}, "t_end", "end time"),
+    ({"force_wave": "square", "t_end": "1e-4"}, "t_end", "end time"),
+    ({"force_wave": "square", "t_end": "1e8"}, "t_end", "end time"),
+    ({"force_wave": "sine", "t_end": "1", "period": "0"}, "period", "period"),
+    ({"force_wave": "constant", "t_end": "1", "torque": "1e13"}, "torque", "torque"),
+    ({"body": "upload"}, "body_file", "body file"),
+])
+def test_a_bad_field_is_one_line_at_it(server, change, field, words):
+    r = post(server, {**DISC, **change})
+    assert r.status_code == 400, (change, r.status_code, alerts(r))
+    page = Page(r.text)
+    f = [x for x in page.forms if x.id == "slide"][0]
+    assert len(f.errors) == 1 and len(page.page_errors) == 1, (change, f.errors)
+    at = [x.name for x in f.fields if x.label == f.errors[0][0]]
+    assert at[:1] == [field], (change, at, f.errors)
+    msg = f.errors[0][1]
+    assert words in msg and "_" not in msg.replace("body_file", ""), msg
