@@ -237,3 +237,31 @@ def test_a_bad_field_is_one_line_at_it(server, change, field, words):
     assert at[:1] == [field], (change, at, f.errors)
     msg = f.errors[0][1]
     assert words in msg and "_" not in msg.replace("body_file", ""), msg
+
+
+def pressure_shows_for(page: str) -> list[str]:
+    tag = re.search(r'<fieldset id="law-family-pressure"[^>]*>', page).group(0)
+    return re.search(r'data-values="([^"]*)"', tag).group(1).split()
+
+
+def test_the_pressure_field_shows_only_for_a_law_family(server, tmp_path):
+    """The nominal pressure (a law family's) is not offered for a gauge file to come nor
+    for a kept single law; a kept family file shows it (app.js reads a file chosen in the
+    browser the same way: format asperity-gauge, version 2)."""
+    from test_law_family import synthetic, wedge_law
+
+    from asperity import write_gauge
+    one = wedge_law(20, 6, "star")
+    write_gauge(tmp_path / "one.json", one)
+    write_gauge(tmp_path / "family.json", synthetic([one, wedge_law(30, 6, "star")],
+                                                   (1e6, 2e6)))
+    assert json.loads((tmp_path / "family.json").read_text())["version"] == 2
+    assert "upload" not in pressure_shows_for(httpx.get(server.base + "/motion").text)
+    shown = {}
+    for name in ("one.json", "family.json"):
+        r = post(server, {"law": "upload", "u0": "abc", "angle_deg": "30"},
+                 {"gauge": (name, (tmp_path / name).read_bytes())})
+        assert r.status_code == 400, alerts(r)
+        assert f"<b>{name}</b>" in r.text               # kept for the next submission
+        shown[name] = "upload" in pressure_shows_for(r.text)
+    assert shown == {"one.json": False, "family.json": True}

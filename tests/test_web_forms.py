@@ -42,9 +42,10 @@ FILE_HOSTILE = {"empty": None, "text": b"abc\x00\xff not a surface\n", "zero": b
 #: values never to be accepted in a text field (a number field or not)
 NEVER = ("NaN", "nan", "inf", "-inf", "1e999", "-1e999")
 #: whole-number fields: 2.5 and the huge values are refused too
-WHOLE = ("directions", "despike_window", "strip_n", "workers")
+WHOLE = ("directions", "despike_window", "strip_n", "workers", "contact_points")
 #: defaults that keep the walker's jobs short (a field not named here keeps the page's)
-QUICK = {"directions": "8", "strip_n": "11", "unit": "um", "pixel_size": "1", "r_unit": "um"}
+QUICK = {"directions": "8", "strip_n": "11", "unit": "um", "pixel_size": "1", "r_unit": "um",
+         "contact_points": "8", "dt": "1e-3", "t_end": "0.2"}
 #: refusals that are physical outcomes of several fields together: shown above the form
 UNPLACED = ("the margin ", "the texture self-locks", "wedge.stl gives no friction")
 #: words of a message that are neither the page's nor the user's: a key of the command line
@@ -58,6 +59,14 @@ texture = "wedge-asymmetric.toml"
 directions = 8
 [parameters]
 "texture.alpha_deg" = { values = [20.0, 30.0] }
+"""
+
+BODY = """name = "coin"
+[body]
+shape = "disc"
+radius = 0.01
+mass = 0.005
+contact_points = 8
 """
 
 
@@ -74,6 +83,7 @@ def examples(tmp) -> dict:
             "gauge": [("gauge.json", (tmp / "gauge.json").read_bytes())],
             "texture_file": [("wedge.stl", (SURFACES / "wedge-30-10.stl").read_bytes())],
             "study": [("tiny.toml", STUDY.encode())],
+            "body_file": [("coin.toml", BODY.encode())],
             "companions": [("wedge-asymmetric.toml",
                             (SURFACES / "wedge-asymmetric.toml").read_bytes())]}
 
@@ -333,6 +343,9 @@ def test_every_field_of_every_form_refuses_hostile_values(site):
     defects, accepted, resubmitted, bases = [], collections.defaultdict(list), set(), set()
     for form in forms:
         for target in form.fields:
+            if any(not allowed for _, allowed in target.when):
+                continue          # no choice on the page shows it (a law family's pressure
+                #                   with no family yet: test_web_law_family walks it)
             values = base_values(form, target)
             key = (form.key, tuple(sorted(values.items())))
             if key not in bases:                   # the valid submission is accepted

@@ -35,6 +35,22 @@ def family_jobs(web, laws_done: list[dict]) -> list[str]:
     return out
 
 
+def family_upload(web, kept) -> list[str]:
+    """``["upload"]`` when the form's kept gauge file is a law family (its pressure field
+    then shows for it; for a file chosen in the browser, app.js reads it), else ``[]``."""
+    meta = (kept or {}).get("gauge") if isinstance(kept, dict) else None
+    if not isinstance(meta, dict):
+        return []
+    from .. import read_gauge
+    from ..errors import AsperityError
+    from ..laws.family import GaugeFamily
+    try:
+        return ["upload"] if isinstance(read_gauge(web.store.upload_path(meta.get("id"))),
+                                        GaugeFamily) else []
+    except (AsperityError, OSError):
+        return []
+
+
 def family_pressure(form: Form, path, field: str, shown: str) -> dict:
     """``{"pressure": P}`` (the field ``law_pressure``) when the gauge file at ``path`` (shown
     as ``shown``) holds a law family, required there and within the family's pressures;
@@ -83,8 +99,9 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
         default_friction = f"job:{q['texture']}"
     elif q.get("law") and any(j["id"] == q["law"] for j in laws_done):
         default_friction = f"law:{q['law']}"
+    families = family_jobs(web, laws_done) + family_upload(web, ctx.get("kept"))
     return web.page(request, "motion.html", status, page="motion", laws=laws,
-                    default_law=default_law, family_laws=family_jobs(web, laws_done), frictions=frictions,
+                    default_law=default_law, family_laws=families, frictions=frictions,
                     default_friction=default_friction, jobs=jobs, bodies=BODIES, **ctx)
 
 

@@ -69,10 +69,39 @@
       var form = el.closest("form");
       var select = form && form.querySelector("[name='" + el.getAttribute("data-when") + "']");
       if (!select) { return; }
-      var wanted = el.getAttribute("data-values").split(" ");
-      function update() { el.hidden = wanted.indexOf(select.value) < 0; }
+      function update() {
+        el.hidden = el.getAttribute("data-values").split(" ").indexOf(select.value) < 0;
+      }
       select.addEventListener("change", update);
       update();
+    });
+  }
+
+  // the pressure of a law family shows for an uploaded gauge file only when the file
+  // chosen is a family (version 2): read in the browser, nothing sent
+  function familyUpload() {
+    var input = document.getElementById("f-slide-gauge");
+    var box = document.getElementById("law-family-pressure");
+    if (!input || !box || !window.FileReader) { return; }
+    input.addEventListener("change", function () {
+      var file = input.files[0];
+      var values = box.getAttribute("data-values").split(" ").filter(function (v) {
+        return v && v !== "upload";
+      });
+      function done(family) {
+        box.setAttribute("data-values", (family ? values.concat(["upload"]) : values).join(" "));
+        var select = input.form.querySelector("[name='law']");
+        if (select) { select.dispatchEvent(new Event("change")); }
+      }
+      if (!file || file.size > 64 * 1024 * 1024) { done(false); return; }
+      var reader = new FileReader();
+      reader.onload = function () {
+        var obj = null;
+        try { obj = JSON.parse(reader.result); } catch (e) { obj = null; }
+        done(!!obj && obj.format === "asperity-gauge" && obj.version === 2);
+      };
+      reader.onerror = function () { done(false); };
+      reader.readAsText(file);
     });
   }
 
@@ -100,6 +129,7 @@
     drawFigures();
     pollJob();
     dependentFields();
+    familyUpload();
     unitHint();
     busyButtons();
   });
