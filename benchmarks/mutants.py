@@ -78,6 +78,7 @@ REPORT = ("test_report.py",)
 FAMILY_AXES = ("test_family_axes.py",)
 WEB_FAMILY = ("test_web_law_family.py",)
 BODIES = ("test_bodies_closed_forms.py", "test_bodies_footprint.py")
+WEB_BODY = ("test_web_body.py",)
 
 
 @dataclass(frozen=True)
@@ -91,6 +92,42 @@ class Mutant:
 
 
 MUTANTS = [
+    # ---- the Motion page's body (issue 20, item 5)
+    Mutant("web-body-texture-angle-dropped", "web/tasks_body.py",
+           "texture_angle_deg=spec.get(\"texture_angle_deg\", 0.0),",
+           "texture_angle_deg=0.0,", WEB_BODY,
+           "the page's texture angle never reaches the solver"),
+    Mutant("web-body-inertia-of-a-ring", "web/tasks_body.py",
+           "inertia = mass * fp.inertia_per_mass", "inertia = mass * (fp.radius or 1.0) ** 2",
+           WEB_BODY, "a disc's inertia taken as m R^2 (a ring's) instead of m R^2 / 2"),
+    Mutant("web-body-spin-sign", "web/tasks_body.py",
+           "u0 * math.sin(a), spec.get(\"omega0\", 0.0))",
+           "u0 * math.sin(a), -spec.get(\"omega0\", 0.0))", WEB_BODY,
+           "the initial spin with the wrong sense"),
+    Mutant("web-body-csv-columns", "web/tasks_body.py",
+           "np.column_stack([res.t, res.q, res.u])", "np.column_stack([res.t, res.u, res.q])",
+           WEB_BODY, "the CSV's velocities under the position headers"),
+    Mutant("web-body-form-mass-for-a-file", "web/tasks_body.py",
+           "return body.footprint, body.mass, body.inertia, body.name",
+           "return body.footprint, mass, body.inertia, body.name", WEB_BODY,
+           "a body file's mass replaced by the form's"),
+    Mutant("web-body-wave-always-square", "web/tasks_body.py",
+           "return Force(amplitude=v, period=f[\"period\"], waveform=f[\"waveform\"])",
+           "return Force(amplitude=v, period=f[\"period\"], waveform=\"square\")", WEB_BODY,
+           "a sine force run as a square wave"),
+    Mutant("web-body-named-files-not-checked", "web/pages_body.py",
+           "        for key in NAMED_FILES:", "        for key in ():", WEB_BODY,
+           "a body file naming a mesh passes the form (the job refuses it late, a 422)"),
+    Mutant("web-body-orientation-arm-y", "web/figures_body.py",
+           "arms.append(_turned(np.array([[0.0, 0.0], [edge, 0.0]]), q[i]))",
+           "arms.append(_turned(np.array([[0.0, 0.0], [0.0, edge]]), q[i]))", WEB_BODY,
+           "the orientation drawn along the body's y axis, not its x"),
+    Mutant("web-body-stop-marks-joint", "web/figures_body.py",
+           "        ts = obj.get(key)", "        ts = obj.get(\"stop_time\")", WEB_BODY,
+           "the slide and spin stop marks both at the joint rest time"),
+    Mutant("web-body-pressure-for-any-upload", "web/pages_motion.py",
+           "GaugeFamily) else []", "GaugeFamily) else [\"upload\"]", WEB_BODY,
+           "the law family's pressure shown for a kept single-law gauge file"),
     # ---- bodies (issue 20): closed forms of the disc and ring, footprints
     Mutant("disc-f-constant", "bodies/closed_forms.py",
            "f = np.where(low, (4.0 / (3.0 * math.pi)) * e * (E + B),",
