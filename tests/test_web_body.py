@@ -226,6 +226,7 @@ def test_a_body_file_naming_another_file_is_refused_and_never_read(server, tmp_p
     ({"force_wave": "sine", "t_end": "1", "period": "0"}, "period", "period"),
     ({"force_wave": "constant", "t_end": "1", "torque": "1e13"}, "torque", "torque"),
     ({"body": "upload"}, "body_file", "body file"),
+    ({"radius": "1e-9", "mass": "1e-9"}, "radius", "inertia"),
 ])
 def test_a_bad_field_is_one_line_at_it(server, change, field, words):
     r = post(server, {**DISC, **change})
@@ -265,3 +266,23 @@ def test_the_pressure_field_shows_only_for_a_law_family(server, tmp_path):
         assert f"<b>{name}</b>" in r.text               # kept for the next submission
         shown[name] = "upload" in pressure_shows_for(r.text)
     assert shown == {"one.json": False, "family.json": True}
+
+
+def test_a_run_too_long_for_the_solver_is_one_line_at_the_time_step(server):
+    """Refused by simulate_body's work limit (in the job): the page's words, at dt."""
+    r = post(server, {**DISC, "dt": "1e-9"})
+    if r.status_code == 303:                   # not failed within the quick wait: its page
+        jid = r.headers["location"].rsplit("/", 1)[-1]
+        t0 = time.monotonic()
+        while httpx.get(f"{server.base}/api/jobs/{jid}").json()["status"] in ("queued",
+                                                                            "running"):
+            assert time.monotonic() - t0 < 60
+            time.sleep(0.1)
+        r = httpx.get(f"{server.base}/jobs/{jid}")
+    assert r.status_code == 422, (r.status_code, alerts(r))
+    page = Page(r.text)
+    f = [x for x in page.forms if x.id == "slide"][0]
+    assert len(f.errors) == 1 and len(page.page_errors) == 1, f.errors
+    assert [x.name for x in f.fields if x.label == f.errors[0][0]][:1] == ["dt"]
+    msg = f.errors[0][1]
+    assert "time step (s)" in msg and "t_end" not in msg and "steps" in msg, msg

@@ -53,7 +53,7 @@ def _length(form: Form, name: str, default) -> float:
     return _number(form, name, default, *LENGTH_RANGE)
 
 
-def body_params(web, form: Form, kept: dict, *, dt: float) -> dict | None:
+def body_params(web, form: Form, kept: dict, *, dt: float, mass: float) -> dict | None:
     """The ``body`` of a slide job (None: the point mass of ``asperity slide``), its
     footprint built once here so that a refusal is at its field."""
     shape = form.choice("body", [v for v, _ in BODIES], "point", label="body")
@@ -78,9 +78,16 @@ def body_params(web, form: Form, kept: dict, *, dt: float) -> dict | None:
                                           for k in ("cop_x", "cop_y")]
         from .tasks_body import footprint_of
         try:
-            footprint_of(spec)
+            fp = footprint_of(spec)
         except InputError as exc:
             raise FormError(_page_words(str(exc)), _field_of(str(exc), shape)) from None
+        from ..dynamics.moreau import LIMITS
+        lo, hi = LIMITS["inertia"]
+        inertia = mass * fp.inertia_per_mass
+        if not lo <= inertia <= hi:
+            raise FormError(f"the body's inertia (mass times {fp.inertia_per_mass:.3g} m^2) "
+                            f"is {inertia:.3g} kg m^2, outside {lo:g} to {hi:g}: change its "
+                            "size or the mass", "size_a" if shape == "rectangle" else "radius")
     spec["omega0"] = _number(form, "omega0", 0.0, -1e6, 1e6)
     spec["texture_angle_deg"] = _number(form, "texture_angle_deg", 0.0, -360.0, 360.0)
     spec.update(_force(form, dt, spec))

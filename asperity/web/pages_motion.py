@@ -141,7 +141,7 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
               "g": form.number("g", 9.81, label="g (m/s^2)"),
               "dt": form.number("dt", 1e-4, label="time step (s)"), "law_text": what}
     from .pages_body import body_params
-    body = body_params(web, form, kept, dt=params["dt"])
+    body = body_params(web, form, kept, dt=params["dt"], mass=params["mass"])
     if body is None:
         return params, f"slide on {what}"
     params["body"] = body

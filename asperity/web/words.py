@@ -103,7 +103,14 @@ def words_of(kind: str, params: dict) -> dict:
             out.update(ELASTIC)
         return out
     if kind == "slide":
-        return dict(SLIDE)
+        body = params.get("body") if isinstance(params.get("body"), dict) else None
+        if body is None:
+            return dict(SLIDE)
+        # the body solver's limit on the work names t_end (the run's length: the end
+        # time with a force, else until rest, set by the time step) and the contact points
+        return {**SLIDE, "t_end": ("t_end", "end time (s)") if body.get("force") else
+                ("dt", "the run's length"),
+                "contact_points": ("contact_points", "contact points")}
     if kind == "risk":
         out = {"cycles": ("cycles", "cycles"), "tolerance": ("tolerance", "tolerance (m)"),
                "slip_axis_deg": ("slip_axis_deg", "slip axis (deg)"),
