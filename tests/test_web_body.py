@@ -149,6 +149,8 @@ def test_a_disc_job_gives_the_librarys_figures(server):
     assert marks == pytest.approx(sorted([ref.slide_stop_time, ref.spin_stop_time]))
     omega = motion["data"][1]["y"]
     assert omega[0] == 20.0 and omega[-1] == 0.0
+    listed = html.unescape(httpx.get(server.base + "/motion").text)
+    assert "disc, R 50 mm, 16 points, omega0 20 rad/s, texture at 15 deg" in listed
 
 
 def test_a_body_file_upload_runs_as_read_body_reads_it(server, tmp_path):

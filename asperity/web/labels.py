@@ -137,6 +137,30 @@ def _slide(p: dict) -> list[str]:
     for key, default, unit in (("mass", 1.0, "kg"), ("g", 9.81, "m/s^2"), ("dt", 1e-4, "s")):
         if p.get(key) not in (None, default):
             out.append(f"{key} {_num(p[key])} {unit}")
+    b = p.get("body")
+    if isinstance(b, dict):
+        out += _body(b)
+    return out
+
+
+def _body(b: dict) -> list[str]:
+    """A body's settings that change its motion (the Motion page's body fields)."""
+    out = [str(b.get("name") or b.get("shape"))]
+    if b.get("radius") is not None:
+        out.append(f"R {_length(b['radius'])}")
+    if b.get("size"):
+        out.append(" x ".join(_length(v) for v in b["size"]))
+    if b.get("contact_points"):
+        out.append(f"{b['contact_points']} points")
+    if b.get("pressure_profile") not in (None, "uniform"):
+        out.append(f"{b['pressure_profile']} pressure")
+    out.append(f"omega0 {_num(b.get('omega0', 0))} rad/s")
+    if b.get("texture_angle_deg"):
+        out.append(f"texture at {_num(b['texture_angle_deg'])} deg")
+    f = b.get("force")
+    if isinstance(f, dict):
+        out.append(f"{'constant' if f.get('waveform') == 'none' else f.get('waveform')} "
+                   f"force until {_num(b.get('t_end', 0))} s")
     return out
 
 
