@@ -80,7 +80,7 @@ def body_params(web, form: Form, kept: dict, *, dt: float, mass: float) -> dict 
         try:
             fp = footprint_of(spec)
         except InputError as exc:
-            raise FormError(_page_words(str(exc)), _field_of(str(exc), shape)) from None
+            raise FormError(_page_words(str(exc)), _field_of(str(exc), spec)) from None
         from ..dynamics.moreau import LIMITS
         lo, hi = LIMITS["inertia"]
         inertia = mass * fp.inertia_per_mass
@@ -130,9 +130,15 @@ def _page_words(msg: str) -> str:
     return msg
 
 
-def _field_of(msg: str, shape: str) -> str:
-    """The form field a footprint's refusal is about."""
-    for key in ("centre_of_pressure", "contact_points", "pressure_profile"):
+def _field_of(msg: str, spec: dict) -> str:
+    """The form field a footprint's refusal is about (a centre of pressure outside the
+    core: the coordinate farther out for the footprint's extent along it)."""
+    shape = spec["shape"]
+    if "centre_of_pressure" in msg:
+        ax, ay = spec.get("size") or (spec.get("radius"), spec.get("radius"))
+        cx, cy = spec.get("centre_of_pressure", (0.0, 0.0))
+        return "cop_x" if abs(cx) / ax >= abs(cy) / ay else "cop_y"
+    for key in ("contact_points", "pressure_profile"):
         if key in msg:
             return WORDS[key][0]
     return "size_a" if shape == "rectangle" else "radius"
