@@ -11,7 +11,7 @@ import math
 
 from ..errors import InputError, check_range
 from .forms import Form, FormError, at
-from .store import UploadError, check_plain_name
+from .store import UploadError
 
 #: the body select: value -> what the page calls it
 BODIES = (("point", "a point mass"), ("disc", "a disc (radius below)"),
@@ -64,8 +64,15 @@ def body_params(web, form: Form, kept: dict, *, dt: float, mass: float) -> dict 
         spec["radius"] = _length(form, "radius", 0.05)
     elif shape == "rectangle":
         spec["size"] = [_length(form, "size_a", 0.08), _length(form, "size_b", 0.04)]
+    from ..dynamics.moreau import LIMITS
+    lo, hi = LIMITS["inertia"]
     if shape == "upload":
-        spec.update(_body_file(web, kept))
+        upload, body = _body_file(web, kept)
+        spec.update(upload)
+        fp = body.footprint
+        if not lo <= body.inertia <= hi:
+            raise FormError(f"{upload['name']}: the body's inertia {body.inertia:.3g} kg m^2 is "
+                            f"outside {lo:g} to {hi:g} (the solver's range)", "body_file")
     else:
         spec["contact_points"] = form.whole("contact_points", None, low=1, high=MAX_POINTS,
                                             label=LABELS["contact_points"])
@@ -81,8 +88,6 @@ def body_params(web, form: Form, kept: dict, *, dt: float, mass: float) -> dict 
             fp = footprint_of(spec)
         except InputError as exc:
             raise FormError(_page_words(str(exc)), _field_of(str(exc), spec)) from None
-        from ..dynamics.moreau import LIMITS
-        lo, hi = LIMITS["inertia"]
         inertia = mass * fp.inertia_per_mass
         if not lo <= inertia <= hi:
             raise FormError(f"the body's inertia (mass times {fp.inertia_per_mass:.3g} m^2) "
@@ -90,11 +95,11 @@ def body_params(web, form: Form, kept: dict, *, dt: float, mass: float) -> dict 
                             "size or the mass", "size_a" if shape == "rectangle" else "radius")
     spec["omega0"] = _number(form, "omega0", 0.0, -1e6, 1e6)
     spec["texture_angle_deg"] = _number(form, "texture_angle_deg", 0.0, -360.0, 360.0)
-    spec.update(_force(form, dt, spec))
+    spec.update(_force(form, dt, fp.n))
     return spec
 
 
-def _force(form: Form, dt: float, spec: dict) -> dict:
+def _force(form: Form, dt: float, n: int) -> dict:
     """``{"force": {...}, "t_end": s}`` of the external force fields, or ``{}`` (none)."""
     wave = form.choice("force_wave", WAVES, "", label=LABELS["force_wave"])
     if not wave:
@@ -107,7 +112,6 @@ def _force(form: Form, dt: float, spec: dict) -> dict:
         raise FormError(f"{LABELS['t_end']} must be from the time step ({dt:g} s) to 1e9 s "
                         f"with an external force, got {t_end:g}", "t_end")
     from ..dynamics.moreau import MAX_STEPS
-    n = spec.get("contact_points") or 1024
     work = t_end / dt * max(1.0, n / 16.0)
     if work > MAX_STEPS:
         raise FormError(f"{LABELS['t_end']}: {t_end / dt:.3g} time steps of {n} contact points "
@@ -144,13 +148,14 @@ def _field_of(msg: str, spec: dict) -> str:
     return "size_a" if shape == "rectangle" else "radius"
 
 
-def _body_file(web, kept: dict) -> dict:
-    """The uploaded body file (checked: read here by the library, named files refused)."""
+def _body_file(web, kept: dict):
+    """(``{"upload", "name"}``, its Body) of the uploaded body file: named files refused,
+    then read here by the library."""
     meta = kept.get("body")
     if meta is None:
         raise FormError("choose the body file (.toml) to upload, or another body", "body_file")
     with at("body_file"):
-        name = check_plain_name(meta["name"], "body file name")
+        name = str(meta["name"])
         if not name.lower().endswith(".toml"):
             raise UploadError(f"the body file must be a .toml file, got {name!r}")
         from ..io import parse_toml
@@ -168,5 +173,5 @@ def _body_file(web, kept: dict) -> dict:
             raise UploadError(f"{name}: body.contact_points = {n:g}: this page runs at most "
                               f"{MAX_POINTS} contact points")
         from .tasks_body import read_uploaded_body
-        read_uploaded_body(web.store.upload_path(meta["id"]), name)
-    return {"upload": meta["id"], "name": name}
+        body = read_uploaded_body(web.store.upload_path(meta["id"]), name)
+    return {"upload": meta["id"], "name": name}, body

@@ -7,8 +7,8 @@ from fastapi.responses import HTMLResponse
 from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
 from .forms import Form, FormError, at
 from .labels import label
-from .pages_body import BODIES
 from .pages import CONTACTS, UNITS
+from .pages_body import BODIES
 from .store import UploadError, check_plain_name
 from .words import STRIP, TWO_NODE
 

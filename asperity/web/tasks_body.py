@@ -91,7 +91,7 @@ def record_every(fp, law, mass: float, inertia: float, u0, g: float, dt: float,
         t_end = HORIZON_FACTOR * rest_horizon(fp.points, fp.weights, law, mass, inertia, u0,
                                               g) + 10 * dt
     steps = t_end / dt
-    return max(1, int(math.ceil(steps / MAX_RECORDS))) if math.isfinite(steps) else 1
+    return max(1, math.ceil(steps / MAX_RECORDS)) if math.isfinite(steps) else 1
 
 
 def simulate(spec: dict, law, *, u0: float, angle_deg: float, mass: float, g: float,
@@ -142,7 +142,7 @@ def _every(res) -> int:
     """Steps between recorded states (the first two records, else 1)."""
     if res.t.size < 2:
         return 1
-    return max(1, int(round((res.t[1] - res.t[0]) / res.dt)))
+    return max(1, round((res.t[1] - res.t[0]) / res.dt))
 
 
 def path_csv(res) -> str:

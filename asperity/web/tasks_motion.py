@@ -126,7 +126,7 @@ def _law_job_stem(ctx: dict, jid) -> str:
     """The stem of a Law result's download names (its source and law kind)."""
     import json
 
-    from .labels import stem
+    from .labels import clean, stem
     if not isinstance(jid, str) or not JOB_ID.match(jid):
         return "law"
     try:
