@@ -78,7 +78,7 @@ def done(server, r, timeout=180.0) -> str:
 
 def alerts(resp) -> list[str]:
     found = re.findall(r'<[^>]*(?:role="alert"|class="error[^"]*")[^>]*>(.*?)</',
-                       resp.text, re.S)
+                       resp.text, re.DOTALL)
     return [html.unescape(m).strip() for m in found]
 
 
@@ -88,7 +88,7 @@ def cell(page: str, key: str) -> str:
 
 def figure(page: str, name: str) -> dict:
     return json.loads(html.unescape(re.search(
-        rf'<script type="application/json" id="fig-{name}">(.*?)</script>', page, re.S).group(1)))
+        rf'<script type="application/json" id="fig-{name}">(.*?)</script>', page, re.DOTALL).group(1)))
 
 
 def files_of(server, jid):
@@ -292,3 +292,21 @@ def test_a_run_too_long_for_the_solver_is_one_line_at_the_time_step(server):
     assert [x.name for x in f.fields if x.label == f.errors[0][0]][:1] == ["dt"]
     msg = f.errors[0][1]
     assert "time step (s)" in msg and "t_end" not in msg and "steps" in msg, msg
+
+
+def test_a_body_file_the_solver_cannot_take_is_one_line_at_the_file(server):
+    """Read by read_body on the form (its own refusals), then the solver's ranges."""
+    for text, words in (('[body]\nshape = "disc"\nradius = 0.01\nmass = 1\ninertia = 1e-20\n',
+                         "inertia"),
+                        ('[body]\nshape = "disc"\nradius = -1\nmass = 1\n', "body.radius"),
+                        ('[body]\nshape = "disc"\nradius = 0.01\nmass = 1\n'
+                         'contact_points = 20000\n', "at most 10000 contact points"),
+                        ("[body\n", "not valid TOML")):
+        r = post(server, dict(DISC, body="upload"), {"body_file": ("part.toml", text.encode())})
+        assert r.status_code in (400, 422), (text, r.status_code, alerts(r))
+        page = Page(r.text)
+        f = next(x for x in page.forms if x.id == "slide")
+        assert len(f.errors) == 1 and len(page.page_errors) == 1, f.errors
+        assert [x.name for x in f.fields if x.label == f.errors[0][0]][0] == "body_file"
+        msg = f.errors[0][1]
+        assert msg.startswith("part.toml") and words in msg and "uploads" not in msg, msg
