@@ -356,6 +356,19 @@ def test_mesh_patch_keeps_the_underside_of_a_closed_mesh(meshes):
     assert fp.area == pytest.approx(8e-4, rel=1e-12) and fp.info["faces"] == 2
 
 
+def test_mesh_patch_leaves_out_a_ledge_facing_up():
+    """A sole (20 x 10 mm at z = 0, facing down) and a ledge beside it 1 mm up facing up
+    (30 x 10 mm): within a 1.5 mm tolerance both, but only the sole touches."""
+    from asperity.surface.topography import TriangleMesh
+    v = np.array([[0, 0, 0], [20, 0, 0], [20, 10, 0], [0, 10, 0],
+                  [20, 0, 1], [50, 0, 1], [50, 10, 1], [20, 10, 1]], dtype=float) * 1e-3
+    faces = np.array([[0, 2, 1], [0, 3, 2],            # clockwise from above: down
+                      [4, 5, 6], [4, 6, 7]])           # counter-clockwise: up
+    fp = fpm.mesh_patch(TriangleMesh(v, faces), tolerance=1.5e-3, contact_points=50)
+    assert fp.area == pytest.approx(2e-4, rel=1e-12)
+    assert fp.info["centroid_shift"] == pytest.approx([0.01, 0.005])
+
+
 def test_mesh_patch_refusals(meshes, tmp_path):
     with pytest.raises(InputError, match="unit"):
         fpm.mesh_patch(meshes / "box.stl")
