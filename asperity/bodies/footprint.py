@@ -351,63 +351,69 @@ def check_polygon(vertices) -> np.ndarray:
     return v if A > 0 else v[::-1].copy()
 
 
+def _green_cells(XL, XH, YL, YH, a, b):
+    """Area and first moments of the region bounded by the directed edges a -> b (e,)
+    within each cell [XL, XH] x [YL, YH] ((c, 1) arrays): Green's theorem with clamped
+    integrands (area = closed integral of (clamp(x) - XL) 1[y in cell] dy), each edge split
+    where it crosses the cell's lines and integrated exactly (Simpson on each piece, the
+    integrands being at most quadratic there)."""
+    ax, ay = a[None, :, 0], a[None, :, 1]
+    dx, dy = b[None, :, 0] - ax, b[None, :, 1] - ay
+    # parameters where the edge crosses the cell's lines, clamped to [0, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tx0 = np.where(dx != 0, (XL - ax) / dx, 0.0)
+        tx1 = np.where(dx != 0, (XH - ax) / dx, 0.0)
+        ty0 = np.where(dy != 0, (YL - ay) / dy, 0.0)
+        ty1 = np.where(dy != 0, (YH - ay) / dy, 0.0)
+    shape = np.broadcast_shapes(tx0.shape, ax.shape)
+    ts = np.stack([np.zeros(shape), np.clip(tx0, 0, 1), np.clip(tx1, 0, 1),
+                   np.clip(ty0, 0, 1), np.clip(ty1, 0, 1), np.ones(shape)], axis=-1)
+    ts.sort(axis=-1)
+    t0, t1 = ts[..., :-1], ts[..., 1:]
+    tm = 0.5 * (t0 + t1)
+    # the piece's midpoint decides whether the piece is inside the strip (its end points
+    # lie on the strip's lines)
+    ym = ay[..., None] + dy[..., None] * tm
+    inside = (ym >= YL[..., None]) & (ym <= YH[..., None])
+    a_ = mx_ = my_ = 0.0
+    for t, wgt in ((t0, 1.0), (tm, 4.0), (t1, 1.0)):
+        x = ax[..., None] + dx[..., None] * t
+        y = ay[..., None] + dy[..., None] * t
+        xc = np.clip(x, XL[..., None], XH[..., None])
+        F = np.where(inside, xc - XL[..., None], 0.0)
+        a_ = a_ + wgt * F
+        mx_ = mx_ + wgt * np.where(inside, 0.5 * (xc * xc - XL[..., None] ** 2), 0.0)
+        my_ = my_ + wgt * y * F
+    w = (t1 - t0) * dy[..., None] / 6.0
+    return (np.sum(a_ * w, axis=(-1, -2)), np.sum(mx_ * w, axis=(-1, -2)),
+            np.sum(my_ * w, axis=(-1, -2)))
+
+
 def _clip_cells(a: np.ndarray, b: np.ndarray, x0: float, y0: float, hx: float, hy: float,
                 nx: int, ny: int):
     """Area and centroid of the region bounded by the directed edges a -> b within each
-    cell [x0 + i hx, +hx] x [y0 + j hy, +hy]: Green's theorem with the clamped integrands
-    (area = closed integral of (clamp(x) - x_lo) 1[y in cell] dy), each edge split where
-    it enters or leaves the cell's strips and integrated exactly (Simpson on each piece,
-    the integrands being at most quadratic there).  Returns (area (nx, ny), cx, cy)."""
-    nc = nx * ny
-    A = np.zeros(nc)
-    Mx = np.zeros(nc)
-    My = np.zeros(nc)
-    ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
-    xl = (x0 + ii * hx).ravel()
-    yl = (y0 + jj * hy).ravel()
-    xh, yh = xl + hx, yl + hy
-    e = a.shape[0]
-    chunk = max(1, 200_000 // max(e, 1))
-    for c0 in range(0, nc, chunk):
-        sl = slice(c0, min(nc, c0 + chunk))
-        XL, XH = xl[sl, None], xh[sl, None]
-        YL, YH = yl[sl, None], yh[sl, None]
-        ax, ay = a[None, :, 0], a[None, :, 1]
-        dx, dy = b[None, :, 0] - ax, b[None, :, 1] - ay
-        # parameters where the edge crosses the cell's lines, clamped to [0, 1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            tx0 = np.where(dx != 0, (XL - ax) / dx, 0.0)
-            tx1 = np.where(dx != 0, (XH - ax) / dx, 0.0)
-            ty0 = np.where(dy != 0, (YL - ay) / dy, 0.0)
-            ty1 = np.where(dy != 0, (YH - ay) / dy, 0.0)
-        shape = np.broadcast_shapes(tx0.shape, ax.shape)
-        ts = np.stack([np.zeros(shape), np.clip(tx0, 0, 1), np.clip(tx1, 0, 1),
-                       np.clip(ty0, 0, 1), np.clip(ty1, 0, 1), np.ones(shape)], axis=-1)
-        ts.sort(axis=-1)
-        t0, t1 = ts[..., :-1], ts[..., 1:]
-        tm = 0.5 * (t0 + t1)
-        dt = t1 - t0
-        a_ = 0.0
-        mx_ = 0.0
-        my_ = 0.0
-        for t, wgt in ((t0, 1.0), (tm, 4.0), (t1, 1.0)):
-            x = ax[..., None] + dx[..., None] * t
-            y = ay[..., None] + dy[..., None] * t
-            # the piece's midpoint decides whether the piece is inside the strip (the
-            # end points lie on its lines)
-            ym = ay[..., None] + dy[..., None] * tm
-            inside = (ym >= YL[..., None]) & (ym <= YH[..., None])
-            xc = np.clip(x, XL[..., None], XH[..., None])
-            F = np.where(inside, xc - XL[..., None], 0.0)
-            G = np.where(inside, 0.5 * (xc * xc - XL[..., None] ** 2), 0.0)
-            H = np.where(inside, y * (xc - XL[..., None]), 0.0)
-            a_ = a_ + wgt * F
-            mx_ = mx_ + wgt * G
-            my_ = my_ + wgt * H
-        w = dt * dy[..., None] / 6.0
-        A[sl] = np.sum(a_ * w, axis=(-1, -2))
-        Mx[sl] = np.sum(mx_ * w, axis=(-1, -2))
-        My[sl] = np.sum(my_ * w, axis=(-1, -2))
+    cell [x0 + i hx, +hx] x [y0 + j hy, +hy] (:func:`_green_cells`), row by row with the
+    edges that reach into the row (the others add nothing).  Returns (area, cx, cy),
+    flat arrays of the nx x ny cells, index i ny + j."""
+    A = np.zeros((nx, ny))
+    Mx = np.zeros((nx, ny))
+    My = np.zeros((nx, ny))
+    ylo, yhi = np.minimum(a[:, 1], b[:, 1]), np.maximum(a[:, 1], b[:, 1])
+    slanted = yhi > ylo                               # horizontal edges add nothing
+    xl = x0 + np.arange(nx) * hx
+    for j in range(ny):
+        yl_ = y0 + j * hy
+        sel = slanted & (ylo < yl_ + hy) & (yhi > yl_)
+        if not np.any(sel):
+            continue
+        ea, eb = a[sel], b[sel]
+        chunk = max(1, 100_000 // ea.shape[0])
+        for c0 in range(0, nx, chunk):
+            XL = xl[c0:c0 + chunk, None]
+            YL = np.full_like(XL, yl_)
+            A[c0:c0 + chunk, j], Mx[c0:c0 + chunk, j], My[c0:c0 + chunk, j] = \
+                _green_cells(XL, XL + hx, YL, YL + hy, ea, eb)
+    A, Mx, My = A.ravel(), Mx.ravel(), My.ravel()
     with np.errstate(divide="ignore", invalid="ignore"):
         cx = Mx / A
         cy = My / A
