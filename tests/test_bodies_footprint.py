@@ -303,6 +303,36 @@ def test_pressure_on_a_shape_keeps_its_frame_and_refuses_points_outside():
         fpm.from_pressure([[0.0, 0.011]], [1.0], shape=fpm.disc(0.01))
 
 
+def test_pressure_points_merged_keep_load_and_centre():
+    rng = np.random.default_rng(3)
+    pts = rng.uniform(-0.01, 0.01, size=(20000, 2))
+    p = rng.uniform(0, 1e6, size=20000) * (1 + 50 * pts[:, 0])
+    full = fpm.from_pressure(pts, p)
+    fp = fpm.from_pressure(pts, p, contact_points=300)
+    assert 280 <= fp.n <= 320 and full.n == 20000
+    assert np.allclose(fp.centre_of_pressure, full.centre_of_pressure, atol=1e-15)
+    assert fp.inertia_per_mass == full.inertia_per_mass
+    # merging moves load inwards within a cell: the second moment drops by a cell's share
+    r2 = lambda f: f.weights @ (f.points**2).sum(axis=1)            # noqa: E731
+    assert 0 < r2(full) - r2(fp) < (0.02**2 / 300) / 6 * 1.5
+
+
+def test_contact_solution_of_a_sphere_gives_hertz():
+    """A sphere's bottom (R = 5 cm) pressed on a flat: the contact footprint's load-weighted
+    mean radius is Hertz's 3 pi a / 16 (a from the contact area), within the pixels' 3 %."""
+    from asperity.contact.solver import solve_contact
+    n, dx = 96, 1e-5
+    x = (np.arange(n) - n / 2) * dx
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    res = solve_contact(-(X**2 + Y**2) / (2 * 0.05), dx, 1e9, 4.5e5, boundary="free")
+    fp = fpm.from_contact(res, contact_points=200)
+    a = math.sqrt(fp.info["contact_area_m2"] / math.pi)
+    assert a > 20 * dx                                                  # resolved
+    assert 180 <= fp.n <= 220
+    assert fp.weights @ np.hypot(*fp.points.T) == pytest.approx(3 * math.pi * a / 16, rel=0.03)
+    assert np.abs(fp.centre_of_pressure).max() < 1e-8 * a        # symmetric to the solver's tol
+
+
 # ----------------------------------------------------------------------------- a mesh's patch
 
 @pytest.fixture(scope="module")

@@ -565,8 +565,33 @@ def _inside_polygon(pts: np.ndarray, v: np.ndarray, tol: float) -> np.ndarray:
     return inside | (near <= tol)
 
 
+def _bin_points(p: np.ndarray, w: np.ndarray, n: int):
+    """Points p (m, 2) with loads w merged into the cells of a square grid, about n of them
+    occupied: each cell's point at the load centroid of its points, its load their sum
+    (the total load and the centre of pressure are kept exactly)."""
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    span = float(np.max(hi - lo))
+    h = span / math.sqrt(n) if span > 0 else 1.0
+    best = None
+    for _ in range(8):
+        idx = np.floor((p - lo) / h).astype(np.int64)
+        key = idx[:, 0] * (int(idx[:, 1].max()) + 1) + idx[:, 1]
+        uniq, inv = np.unique(key, return_inverse=True)
+        if best is None or abs(uniq.size - n) < abs(best[0].size - n) or \
+                (best[0].size > n >= uniq.size):
+            best = (uniq, inv.ravel())
+        if uniq.size == n or (n < uniq.size <= 1.05 * n):
+            break
+        h *= math.sqrt(uniq.size / n)
+    uniq, inv = best
+    W = np.bincount(inv, weights=w, minlength=uniq.size)
+    X = np.bincount(inv, weights=w * p[:, 0], minlength=uniq.size) / W
+    Y = np.bincount(inv, weights=w * p[:, 1], minlength=uniq.size) / W
+    return np.column_stack([X, Y]), W
+
+
 def from_pressure(points, pressures, *, shape: Footprint | None = None,
-                  cell_areas=None) -> Footprint:
+                  cell_areas=None, contact_points: int | None = None) -> Footprint:
     """A footprint of given points (n, 2) m and their pressures (n,) Pa (>= 0, some > 0):
     a contact solution or a measured pressure film.  Each point carries pressure x area of
     its cell (``cell_areas`` (n,) m^2; None: equal cells, the points of a regular grid);
@@ -577,7 +602,11 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
     points are in its frame before it was centred, i.e. its ``info['centroid_shift']`` is
     subtracted; points outside it are refused).  None: the points' own (their convex hull
     as outline and area, the uniform lamina of the points for the inertia, centred on
-    their area-weighted mean)."""
+    their area-weighted mean).
+
+    ``contact_points``: None keeps every point of positive pressure; a number merges them
+    into about that many (the cells of a square grid, each at the load centroid of its
+    points: the load and the centre of pressure are kept) -- for a fine contact map."""
     p = check_array("points", points, shape=(None, 2), min_size=2)
     q = check_array("pressures", pressures, shape=(p.shape[0],))
     if p.shape[0] > MAX_CONTACT_POINTS:
@@ -615,11 +644,17 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
             k = int(np.flatnonzero(out)[0])
             raise InputError(f"points: point {k} ({points[k][0]:g}, {points[k][1]:g}) m lies "
                              f"outside the body's {shape.kind}")
+    nbin = None if contact_points is None else check_int("contact_points", contact_points, 1,
+                                                         MAX_CONTACT_POINTS)
     keep = q > 0
     w = q[keep] * cells[keep]
     w = w / w.sum()
+    pk = p[keep]
+    if nbin is not None and pk.shape[0] > nbin:
+        pk, w = _bin_points(pk, w, nbin)
+        w = w / w.sum()
     if shape is not None:
-        return Footprint(shape.kind, p[keep], w, shape.outline, shape.area, shape.radius,
+        return Footprint(shape.kind, pk, w, shape.outline, shape.area, shape.radius,
                          "file", shape.inertia_per_mass, dict(shape.info))
     c = cells @ p / cells.sum()
     p = p - c
@@ -634,8 +669,29 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
         except (QhullError, ValueError):        # all points on a line
             pass
     J = float(cells @ (p**2).sum(axis=1) / cells.sum())
-    return Footprint("pressure", p[keep], w, outline, area, None, "file", J,
+    return Footprint("pressure", pk - c, w, outline, area, None, "file", J,
                      {"centroid_shift": c.tolist()})
+
+
+def from_contact(result, *, contact_points: int | None = None) -> Footprint:
+    """The footprint of an elastic contact solution (:func:`asperity.solve_contact`: a
+    part's bottom, heights in m, pressed on a flat): the pixels in contact with their
+    pressure, merged into about ``contact_points`` points (default: the polygon's default;
+    see :func:`from_pressure`).  Pixel (i, j) is at (i dx, j dy)."""
+    from ..contact.solver import ContactResult
+    from ..errors import check_instance
+    check_instance("result", result, ContactResult)
+    pr = np.asarray(result.pressure, dtype=float)
+    dx, dy = result.pixel_size
+    i, j = np.nonzero(np.nan_to_num(pr) > 0)
+    if i.size == 0:
+        raise InputError(f"result: no pixel carries pressure: {NOT_CARRIED}")
+    pts = np.column_stack([i * dx, j * dy])
+    n = DEFAULT_CONTACT_POINTS["polygon"] if contact_points is None else contact_points
+    fp = from_pressure(pts, pr[i, j], cell_areas=np.full(i.size, dx * dy),
+                       contact_points=n)
+    fp.info["contact_area_m2"] = float(i.size * dx * dy)
+    return fp
 
 
 def read_pressure(path) -> tuple[np.ndarray, np.ndarray]:
