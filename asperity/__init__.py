@@ -73,6 +73,7 @@ _LAZY = {
     "polygon_footprint": "asperity.bodies.footprint",
     "mesh_patch": "asperity.bodies.footprint",
     "pressure_footprint": "asperity.bodies.footprint",
+    "contact_footprint": "asperity.bodies.footprint",
     "read_pressure": "asperity.bodies.footprint",
     "read_body": "asperity.bodies.body_file",
     "disc_f_m": "asperity.bodies.closed_forms",
@@ -90,7 +91,7 @@ __all__ = ["__version__", *_LAZY]
 _RENAMED = {"simulate_microslip": "simulate", "law_from_gauge": "from_gauge",
             "disc_footprint": "disc", "ring_footprint": "ring",
             "rectangle_footprint": "rectangle", "polygon_footprint": "polygon",
-            "pressure_footprint": "from_pressure"}
+            "pressure_footprint": "from_pressure", "contact_footprint": "from_contact"}
 
 
 def __getattr__(name: str):

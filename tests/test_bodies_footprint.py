@@ -303,6 +303,36 @@ def test_pressure_on_a_shape_keeps_its_frame_and_refuses_points_outside():
         fpm.from_pressure([[0.0, 0.011]], [1.0], shape=fpm.disc(0.01))
 
 
+def test_pressure_points_merged_keep_load_and_centre():
+    rng = np.random.default_rng(3)
+    pts = rng.uniform(-0.01, 0.01, size=(20000, 2))
+    p = rng.uniform(0, 1e6, size=20000) * (1 + 50 * pts[:, 0])
+    full = fpm.from_pressure(pts, p)
+    fp = fpm.from_pressure(pts, p, contact_points=300)
+    assert 280 <= fp.n <= 320 and full.n == 20000
+    assert np.allclose(fp.centre_of_pressure, full.centre_of_pressure, atol=1e-15)
+    assert fp.inertia_per_mass == full.inertia_per_mass
+    # merging moves load inwards within a cell: the second moment drops by a cell's share
+    r2 = lambda f: f.weights @ (f.points**2).sum(axis=1)            # noqa: E731
+    assert 0 < r2(full) - r2(fp) < (0.02**2 / 300) / 6 * 1.5
+
+
+def test_contact_solution_of_a_sphere_gives_hertz():
+    """A sphere's bottom (R = 5 cm) pressed on a flat: the contact footprint's load-weighted
+    mean radius is Hertz's 3 pi a / 16 (a from the contact area), within the pixels' 3 %."""
+    from asperity.contact.solver import solve_contact
+    n, dx = 96, 1e-5
+    x = (np.arange(n) - n / 2) * dx
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    res = solve_contact(-(X**2 + Y**2) / (2 * 0.05), dx, 1e9, 4.5e5, boundary="free")
+    fp = fpm.from_contact(res, contact_points=200)
+    a = math.sqrt(fp.info["contact_area_m2"] / math.pi)
+    assert a > 20 * dx                                                  # resolved
+    assert 180 <= fp.n <= 220
+    assert fp.weights @ np.hypot(*fp.points.T) == pytest.approx(3 * math.pi * a / 16, rel=0.03)
+    assert np.abs(fp.centre_of_pressure).max() < 1e-8 * a        # symmetric to the solver's tol
+
+
 # ----------------------------------------------------------------------------- a mesh's patch
 
 @pytest.fixture(scope="module")
@@ -354,6 +384,19 @@ def test_mesh_patch_keeps_the_underside_of_a_closed_mesh(meshes):
     second layer of contact: only the faces facing down count."""
     fp = fpm.mesh_patch(meshes / "box.stl", unit="mm", tolerance=0.011, contact_points=100)
     assert fp.area == pytest.approx(8e-4, rel=1e-12) and fp.info["faces"] == 2
+
+
+def test_mesh_patch_leaves_out_a_ledge_facing_up():
+    """A sole (20 x 10 mm at z = 0, facing down) and a ledge beside it 1 mm up facing up
+    (30 x 10 mm): within a 1.5 mm tolerance both, but only the sole touches."""
+    from asperity.surface.topography import TriangleMesh
+    v = np.array([[0, 0, 0], [20, 0, 0], [20, 10, 0], [0, 10, 0],
+                  [20, 0, 1], [50, 0, 1], [50, 10, 1], [20, 10, 1]], dtype=float) * 1e-3
+    faces = np.array([[0, 2, 1], [0, 3, 2],            # clockwise from above: down
+                      [4, 5, 6], [4, 6, 7]])           # counter-clockwise: up
+    fp = fpm.mesh_patch(TriangleMesh(v, faces), tolerance=1.5e-3, contact_points=50)
+    assert fp.area == pytest.approx(2e-4, rel=1e-12)
+    assert fp.info["centroid_shift"] == pytest.approx([0.01, 0.005])
 
 
 def test_mesh_patch_refusals(meshes, tmp_path):

@@ -146,10 +146,15 @@ def api_table(folder: Path) -> list[Row]:
                  tolerance=number(0.0, 1e3, none=True), **shape_kw), shape_words),
         Row("pressure_footprint", A.pressure_footprint,
             dict(points=[[0.0, 0.0], [0.001, 0.0]], pressures=[1e5, 2e5], shape=None,
-                 cell_areas=None),
+                 cell_areas=None, contact_points=None),
             dict(points=array(-1e3, 1e3, ndim=2), pressures=array(0.0, None, extra=[
                 ("range", "all zero", [0.0, 0.0])]), shape=instance(none=True),
-                 cell_areas=array(0.0, None, lo_open=True, none=True))),
+                 cell_areas=array(0.0, None, lo_open=True, none=True), contact_points=points)),
+        Row("contact_footprint", A.contact_footprint,
+            dict(result=A.solve_contact(-np.hypot(*np.meshgrid(np.arange(16), np.arange(16)))
+                                        * 1e-6, 1e-6, 1e9, 1e5, boundary="free"),
+                 contact_points=None),
+            dict(result=instance(), contact_points=points)),
         Row("read_pressure", A.read_pressure, dict(path=folder / "pressure.csv"),
             dict(path=infile(folder, ".csv")), {"path": ("pressure file",)}),
         Row("read_body", A.read_body, dict(path=SURF / "body-plate.toml"),

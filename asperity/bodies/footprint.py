@@ -351,63 +351,69 @@ def check_polygon(vertices) -> np.ndarray:
     return v if A > 0 else v[::-1].copy()
 
 
+def _green_cells(XL, XH, YL, YH, a, b):
+    """Area and first moments of the region bounded by the directed edges a -> b (e,)
+    within each cell [XL, XH] x [YL, YH] ((c, 1) arrays): Green's theorem with clamped
+    integrands (area = closed integral of (clamp(x) - XL) 1[y in cell] dy), each edge split
+    where it crosses the cell's lines and integrated exactly (Simpson on each piece, the
+    integrands being at most quadratic there)."""
+    ax, ay = a[None, :, 0], a[None, :, 1]
+    dx, dy = b[None, :, 0] - ax, b[None, :, 1] - ay
+    # parameters where the edge crosses the cell's lines, clamped to [0, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tx0 = np.where(dx != 0, (XL - ax) / dx, 0.0)
+        tx1 = np.where(dx != 0, (XH - ax) / dx, 0.0)
+        ty0 = np.where(dy != 0, (YL - ay) / dy, 0.0)
+        ty1 = np.where(dy != 0, (YH - ay) / dy, 0.0)
+    shape = np.broadcast_shapes(tx0.shape, ax.shape)
+    ts = np.stack([np.zeros(shape), np.clip(tx0, 0, 1), np.clip(tx1, 0, 1),
+                   np.clip(ty0, 0, 1), np.clip(ty1, 0, 1), np.ones(shape)], axis=-1)
+    ts.sort(axis=-1)
+    t0, t1 = ts[..., :-1], ts[..., 1:]
+    tm = 0.5 * (t0 + t1)
+    # the piece's midpoint decides whether the piece is inside the strip (its end points
+    # lie on the strip's lines)
+    ym = ay[..., None] + dy[..., None] * tm
+    inside = (ym >= YL[..., None]) & (ym <= YH[..., None])
+    a_ = mx_ = my_ = 0.0
+    for t, wgt in ((t0, 1.0), (tm, 4.0), (t1, 1.0)):
+        x = ax[..., None] + dx[..., None] * t
+        y = ay[..., None] + dy[..., None] * t
+        xc = np.clip(x, XL[..., None], XH[..., None])
+        F = np.where(inside, xc - XL[..., None], 0.0)
+        a_ = a_ + wgt * F
+        mx_ = mx_ + wgt * np.where(inside, 0.5 * (xc * xc - XL[..., None] ** 2), 0.0)
+        my_ = my_ + wgt * y * F
+    w = (t1 - t0) * dy[..., None] / 6.0
+    return (np.sum(a_ * w, axis=(-1, -2)), np.sum(mx_ * w, axis=(-1, -2)),
+            np.sum(my_ * w, axis=(-1, -2)))
+
+
 def _clip_cells(a: np.ndarray, b: np.ndarray, x0: float, y0: float, hx: float, hy: float,
                 nx: int, ny: int):
     """Area and centroid of the region bounded by the directed edges a -> b within each
-    cell [x0 + i hx, +hx] x [y0 + j hy, +hy]: Green's theorem with the clamped integrands
-    (area = closed integral of (clamp(x) - x_lo) 1[y in cell] dy), each edge split where
-    it enters or leaves the cell's strips and integrated exactly (Simpson on each piece,
-    the integrands being at most quadratic there).  Returns (area (nx, ny), cx, cy)."""
-    nc = nx * ny
-    A = np.zeros(nc)
-    Mx = np.zeros(nc)
-    My = np.zeros(nc)
-    ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
-    xl = (x0 + ii * hx).ravel()
-    yl = (y0 + jj * hy).ravel()
-    xh, yh = xl + hx, yl + hy
-    e = a.shape[0]
-    chunk = max(1, 200_000 // max(e, 1))
-    for c0 in range(0, nc, chunk):
-        sl = slice(c0, min(nc, c0 + chunk))
-        XL, XH = xl[sl, None], xh[sl, None]
-        YL, YH = yl[sl, None], yh[sl, None]
-        ax, ay = a[None, :, 0], a[None, :, 1]
-        dx, dy = b[None, :, 0] - ax, b[None, :, 1] - ay
-        # parameters where the edge crosses the cell's lines, clamped to [0, 1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            tx0 = np.where(dx != 0, (XL - ax) / dx, 0.0)
-            tx1 = np.where(dx != 0, (XH - ax) / dx, 0.0)
-            ty0 = np.where(dy != 0, (YL - ay) / dy, 0.0)
-            ty1 = np.where(dy != 0, (YH - ay) / dy, 0.0)
-        shape = np.broadcast_shapes(tx0.shape, ax.shape)
-        ts = np.stack([np.zeros(shape), np.clip(tx0, 0, 1), np.clip(tx1, 0, 1),
-                       np.clip(ty0, 0, 1), np.clip(ty1, 0, 1), np.ones(shape)], axis=-1)
-        ts.sort(axis=-1)
-        t0, t1 = ts[..., :-1], ts[..., 1:]
-        tm = 0.5 * (t0 + t1)
-        dt = t1 - t0
-        a_ = 0.0
-        mx_ = 0.0
-        my_ = 0.0
-        for t, wgt in ((t0, 1.0), (tm, 4.0), (t1, 1.0)):
-            x = ax[..., None] + dx[..., None] * t
-            y = ay[..., None] + dy[..., None] * t
-            # the piece's midpoint decides whether the piece is inside the strip (the
-            # end points lie on its lines)
-            ym = ay[..., None] + dy[..., None] * tm
-            inside = (ym >= YL[..., None]) & (ym <= YH[..., None])
-            xc = np.clip(x, XL[..., None], XH[..., None])
-            F = np.where(inside, xc - XL[..., None], 0.0)
-            G = np.where(inside, 0.5 * (xc * xc - XL[..., None] ** 2), 0.0)
-            H = np.where(inside, y * (xc - XL[..., None]), 0.0)
-            a_ = a_ + wgt * F
-            mx_ = mx_ + wgt * G
-            my_ = my_ + wgt * H
-        w = dt * dy[..., None] / 6.0
-        A[sl] = np.sum(a_ * w, axis=(-1, -2))
-        Mx[sl] = np.sum(mx_ * w, axis=(-1, -2))
-        My[sl] = np.sum(my_ * w, axis=(-1, -2))
+    cell [x0 + i hx, +hx] x [y0 + j hy, +hy] (:func:`_green_cells`), row by row with the
+    edges that reach into the row (the others add nothing).  Returns (area, cx, cy),
+    flat arrays of the nx x ny cells, index i ny + j."""
+    A = np.zeros((nx, ny))
+    Mx = np.zeros((nx, ny))
+    My = np.zeros((nx, ny))
+    ylo, yhi = np.minimum(a[:, 1], b[:, 1]), np.maximum(a[:, 1], b[:, 1])
+    slanted = yhi > ylo                               # horizontal edges add nothing
+    xl = x0 + np.arange(nx) * hx
+    for j in range(ny):
+        yl_ = y0 + j * hy
+        sel = slanted & (ylo < yl_ + hy) & (yhi > yl_)
+        if not np.any(sel):
+            continue
+        ea, eb = a[sel], b[sel]
+        chunk = max(1, 100_000 // ea.shape[0])
+        for c0 in range(0, nx, chunk):
+            XL = xl[c0:c0 + chunk, None]
+            YL = np.full_like(XL, yl_)
+            A[c0:c0 + chunk, j], Mx[c0:c0 + chunk, j], My[c0:c0 + chunk, j] = \
+                _green_cells(XL, XL + hx, YL, YL + hy, ea, eb)
+    A, Mx, My = A.ravel(), Mx.ravel(), My.ravel()
     with np.errstate(divide="ignore", invalid="ignore"):
         cx = Mx / A
         cy = My / A
@@ -559,8 +565,33 @@ def _inside_polygon(pts: np.ndarray, v: np.ndarray, tol: float) -> np.ndarray:
     return inside | (near <= tol)
 
 
+def _bin_points(p: np.ndarray, w: np.ndarray, n: int):
+    """Points p (m, 2) with loads w merged into the cells of a square grid, about n of them
+    occupied: each cell's point at the load centroid of its points, its load their sum
+    (the total load and the centre of pressure are kept exactly)."""
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    span = float(np.max(hi - lo))
+    h = span / math.sqrt(n) if span > 0 else 1.0
+    best = None
+    for _ in range(8):
+        idx = np.floor((p - lo) / h).astype(np.int64)
+        key = idx[:, 0] * (int(idx[:, 1].max()) + 1) + idx[:, 1]
+        uniq, inv = np.unique(key, return_inverse=True)
+        if best is None or abs(uniq.size - n) < abs(best[0].size - n) or \
+                (best[0].size > n >= uniq.size):
+            best = (uniq, inv.ravel())
+        if uniq.size == n or (n < uniq.size <= 1.05 * n):
+            break
+        h *= math.sqrt(uniq.size / n)
+    uniq, inv = best
+    W = np.bincount(inv, weights=w, minlength=uniq.size)
+    X = np.bincount(inv, weights=w * p[:, 0], minlength=uniq.size) / W
+    Y = np.bincount(inv, weights=w * p[:, 1], minlength=uniq.size) / W
+    return np.column_stack([X, Y]), W
+
+
 def from_pressure(points, pressures, *, shape: Footprint | None = None,
-                  cell_areas=None) -> Footprint:
+                  cell_areas=None, contact_points: int | None = None) -> Footprint:
     """A footprint of given points (n, 2) m and their pressures (n,) Pa (>= 0, some > 0):
     a contact solution or a measured pressure film.  Each point carries pressure x area of
     its cell (``cell_areas`` (n,) m^2; None: equal cells, the points of a regular grid);
@@ -571,7 +602,11 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
     points are in its frame before it was centred, i.e. its ``info['centroid_shift']`` is
     subtracted; points outside it are refused).  None: the points' own (their convex hull
     as outline and area, the uniform lamina of the points for the inertia, centred on
-    their area-weighted mean)."""
+    their area-weighted mean).
+
+    ``contact_points``: None keeps every point of positive pressure; a number merges them
+    into about that many (the cells of a square grid, each at the load centroid of its
+    points: the load and the centre of pressure are kept) -- for a fine contact map."""
     p = check_array("points", points, shape=(None, 2), min_size=2)
     q = check_array("pressures", pressures, shape=(p.shape[0],))
     if p.shape[0] > MAX_CONTACT_POINTS:
@@ -609,11 +644,17 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
             k = int(np.flatnonzero(out)[0])
             raise InputError(f"points: point {k} ({points[k][0]:g}, {points[k][1]:g}) m lies "
                              f"outside the body's {shape.kind}")
+    nbin = None if contact_points is None else check_int("contact_points", contact_points, 1,
+                                                         MAX_CONTACT_POINTS)
     keep = q > 0
     w = q[keep] * cells[keep]
     w = w / w.sum()
+    pk = p[keep]
+    if nbin is not None and pk.shape[0] > nbin:
+        pk, w = _bin_points(pk, w, nbin)
+        w = w / w.sum()
     if shape is not None:
-        return Footprint(shape.kind, p[keep], w, shape.outline, shape.area, shape.radius,
+        return Footprint(shape.kind, pk, w, shape.outline, shape.area, shape.radius,
                          "file", shape.inertia_per_mass, dict(shape.info))
     c = cells @ p / cells.sum()
     p = p - c
@@ -628,8 +669,29 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
         except (QhullError, ValueError):        # all points on a line
             pass
     J = float(cells @ (p**2).sum(axis=1) / cells.sum())
-    return Footprint("pressure", p[keep], w, outline, area, None, "file", J,
+    return Footprint("pressure", pk - c, w, outline, area, None, "file", J,
                      {"centroid_shift": c.tolist()})
+
+
+def from_contact(result, *, contact_points: int | None = None) -> Footprint:
+    """The footprint of an elastic contact solution (:func:`asperity.solve_contact`: a
+    part's bottom, heights in m, pressed on a flat): the pixels in contact with their
+    pressure, merged into about ``contact_points`` points (default: the polygon's default;
+    see :func:`from_pressure`).  Pixel (i, j) is at (i dx, j dy)."""
+    from ..contact.solver import ContactResult
+    from ..errors import check_instance
+    check_instance("result", result, ContactResult)
+    pr = np.asarray(result.pressure, dtype=float)
+    dx, dy = result.pixel_size
+    i, j = np.nonzero(np.nan_to_num(pr) > 0)
+    if i.size == 0:
+        raise InputError(f"result: no pixel carries pressure: {NOT_CARRIED}")
+    pts = np.column_stack([i * dx, j * dy])
+    n = DEFAULT_CONTACT_POINTS["polygon"] if contact_points is None else contact_points
+    fp = from_pressure(pts, pr[i, j], cell_areas=np.full(i.size, dx * dy),
+                       contact_points=n)
+    fp.info["contact_area_m2"] = float(i.size * dx * dy)
+    return fp
 
 
 def read_pressure(path) -> tuple[np.ndarray, np.ndarray]:
