@@ -22,7 +22,11 @@ def add_parser(sub) -> None:
                     "are the rigid surface, its highest points touch first; P is the mean "
                     "over the map's projected area (pixel count x pixel area), so the load "
                     "is P times that area.  The surface flags of derive (units, pixel size, "
-                    "detrend, despike, max slope) apply unchanged.  Full contact (every "
+                    "detrend, despike, max slope) apply unchanged.  A mesh (.stl .obj .ply) "
+                    "is pressed as its upper envelope sampled on a regular grid "
+                    "(--grid-step).  --window W --windows K solves K windows of a height "
+                    "map on their own and reports their spread (an estimate, not the whole "
+                    "scan's contact).  Full contact (every "
                     "defined pixel in contact) is a result; a solve that reaches its "
                     "iteration limit exits with status 3 and writes nothing.")
     add_source_arguments(p, friction=False)
@@ -38,12 +42,16 @@ def add_parser(sub) -> None:
                    help="nominal mean pressure over the map's projected area, Pa (> 0)")
     e.add_argument("--boundary", choices=["periodic", "free"], default=None,
                    help="periodic: the map is one period; free: a non-periodic scan (Love's "
-                        "coefficients, zero padding); default: free for files, periodic "
-                        "for wedge textures (periodic by construction)")
+                        "coefficients, zero padding); default: free for files and meshes, "
+                        "periodic for wedge textures (periodic by construction)")
     e.add_argument("--hardness", type=float, metavar="H_PA",
                    help="perfectly plastic cap of the pressure, Pa (above the mean pressure "
                         "over the defined pixels): pressures clipped at H, the load carried "
                         "by more contact")
+    e.add_argument("--grid-step", type=float, metavar="M",
+                   help="a mesh: the step (m) of the height grid its upper envelope is "
+                        "sampled on (default: its median projected edge length / 4, at most "
+                        "4194304 nodes); nodes no triangle covers are undefined")
     e.add_argument("--tol", type=float, default=1e-8, metavar="X",
                    help="relative tolerance of the iteration: the change of the pressure "
                         "field over the load (1e-15 to 0.1; default 1e-8)")
@@ -98,14 +106,13 @@ def _core(res) -> dict:
 
 
 def _map(args, ec):
-    import numpy as np
-
     from ..contact.elastic import BYTES_PER_PIXEL
-    from ..errors import InputError
+    from ..errors import InputError, check_range
     from ..surface.contact_facets import contact_solutions
-    from ..surface.facets import facet_bytes, heightmap_facets
+    from ..surface.facets import facet_bytes, heightmap_facets, mesh_facets
+    from ..surface.mesh_grid import face_forces, mesh_heightmap
     from ..surface.prepare import check_surface_options, prepare_surface
-    from ..surface.topography import HeightMap
+    from ..surface.topography import TriangleMesh
     o = surface_options(args)
     boundary = ec.boundary_or("free")
     periodic = boundary == "periodic"
@@ -113,35 +120,57 @@ def _map(args, ec):
         despike, max_slope = check_surface_options(
             detrend=o["detrend"], mu=None, despike=o["despike"],
             despike_window=o["despike_window"], max_slope=o["max_slope"])
+        if args.grid_step is not None:
+            check_range("--grid-step", args.grid_step, 0.0, None, low_open=True, unit="m")
         per_point = BYTES_PER_PIXEL[boundary] + 16 + (0 if max_slope is None
                                                       else facet_bytes(False, True))
         prep = prepare_surface(args.texture, unit=o["unit"], pixel_size=o["pixel_size"],
                                height_scale=o["height_scale"], detrend=o["detrend"],
                                friction_map=None, despike=despike, point_bytes=per_point)
-        hm = prep.surface
-        if not isinstance(hm, HeightMap):
-            raise InputError(f"{args.texture}: asperity contact needs a height map (a grid "
-                             "of heights) or a wedge texture; a mesh has none yet (resample "
-                             "it to a height map)")
+        mesh = prep.surface if isinstance(prep.surface, TriangleMesh) else None
+        mg = None
+        if mesh is not None:
+            if periodic:
+                raise InputError("--boundary of a mesh must be free (its height grid is no "
+                                 "period of a texture), got periodic")
+            mg = mesh_heightmap(mesh, args.grid_step, per_point)
+            hm = mg.heightmap
+        elif args.grid_step is not None:
+            raise InputError(f"--grid-step applies to meshes; {args.texture} is a height map "
+                             "(its own grid)")
+        else:
+            hm = prep.surface
         res = next(contact_solutions(hm, ec, boundary, prep.level_slope))
     nx, ny = hm.heights.shape
     dx, dy = float(hm.dx), float(hm.dy)
-    desc = {**prep.info, "kind": "heightmap", "source": hm.source, "grid": [nx, ny],
-            "pixel_size_m": [dx, dy], "physical_size_m": [dx * nx, dy * ny],
-            "n_undefined": int(hm.n_undefined), **({"periodic": True} if periodic else {})}
+    if mesh is None:
+        desc = {**prep.info, "kind": "heightmap", "source": hm.source, "grid": [nx, ny],
+                "pixel_size_m": [dx, dy], "physical_size_m": [dx * nx, dy * ny],
+                "n_undefined": int(hm.n_undefined), **({"periodic": True} if periodic else {})}
+    else:
+        desc = {**prep.info, "kind": "mesh", "source": mesh.source,
+                "n_triangles": mesh.n_faces, **mg.to_dict(), "pixel_size_m": [dx, dy],
+                "physical_size_m": [dx * nx, dy * ny], "n_undefined": int(hm.n_undefined)}
     q = {"pixels": nx * ny, "undefined_pixels": int(hm.n_undefined),
          "undefined_share": hm.n_undefined / (nx * ny), **prep.quality}
     if max_slope is not None:                  # the steep facets' share of the contact load
         with flag_names():
-            fs = heightmap_facets(hm, info=dict(prep.info), level_slope=prep.level_slope
-                                  and not periodic, max_slope=max_slope,
-                                  pressure=res.pressure, periodic=periodic)
+            if mesh is None:
+                fs = heightmap_facets(hm, info=dict(prep.info), level_slope=prep.level_slope
+                                      and not periodic, max_slope=max_slope,
+                                      pressure=res.pressure, periodic=periodic)
+            else:
+                fs = mesh_facets(mesh, info=dict(prep.info), level_slope=prep.level_slope,
+                                 max_slope=max_slope,
+                                 force=face_forces(mesh, mg, res.pressure))
         q.update({k: fs.quality[k] for k in ("max_slope_deg", "facets_dropped_by_slope",
                                              "dropped_load_share", "steepest_facet_deg")})
         del fs
     obj = {"texture": desc, **_core(res), "data_quality": q}
+    title = f"{hm.source} ({nx} x {ny} pixels)" if mesh is None else \
+        f"{mesh.source}: {mesh.n_faces} triangles on a {nx} x {ny} grid of {dx:.3g} m"
     return obj, res, {"profile": False, "heights": None, "save": res.pressure,
-                      "title": f"{hm.source} ({nx} x {ny} pixels)"}
+                      "title": title}
 
 
 def _texture(args, ec):
@@ -154,6 +183,8 @@ def _texture(args, ec):
     if kind not in WEDGE_KINDS:
         raise InputError(f"asperity contact takes a height map or a wedge texture, got a "
                          f"{kind or type(tex).__name__} texture")
+    if args.grid_step is not None:
+        raise InputError("--grid-step applies to meshes, not to wedge textures")
     if ec.boundary_or("periodic") != "periodic":
         raise InputError("--boundary of a wedge texture must be periodic (the texture "
                          "repeats by construction), got free")
@@ -175,6 +206,12 @@ def text(obj: dict, res) -> str:
         (nx, ny), (dx, dy) = t["grid"], t["pixel_size_m"]
         head = (f"surface: {t['source']} ({nx} x {ny} pixels of {dx:.4g} x {dy:.4g} m, "
                 f"{t['n_undefined']} undefined)")
+    elif t["kind"] == "mesh":
+        (nx, ny), h = t["grid"], t["grid_step_m"]
+        head = (f"mesh: {t['source']} ({t['n_triangles']} triangles), pressed as its upper "
+                f"envelope on {nx} x {ny} nodes of {h:.4g} m"
+                + (" (the default step)" if t["grid_step_default"] else "")
+                + f"; {t['n_undefined']} nodes under no triangle (undefined)")
     else:
         head = (f"texture: {t['kind']}, profile of {t['profile_nodes']} nodes over its period "
                 f"{t['period_m']:.4g} m (plane strain)")

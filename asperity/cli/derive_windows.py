@@ -35,6 +35,9 @@ def derive_windows_args(args) -> dict:
     if args.texture is None or is_texture_file(args.texture):
         raise InputError("--window applies to height-map files, not to wedge textures (a "
                          "texture is one period: derive it whole)")
+    if getattr(args, "grid_step", None) is not None:
+        raise InputError("--window takes windows of a height map; --grid-step applies to "
+                         "meshes")
     if getattr(args, "tile_rows", None) is not None:
         raise InputError("--window solves windows; not with --tile-rows")
     elastic = elastic_from_args(args, several=True)
