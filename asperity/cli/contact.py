@@ -1,8 +1,11 @@
 """``asperity contact``: the elastic contact of a surface under a nominal pressure (the
 area in contact, the pressures, the gap) -- the solution that ``derive --elastic`` weights
-the facets with, on its own."""
+the facets with, on its own.  A mesh is pressed as its upper envelope on a grid
+(:mod:`asperity.surface.mesh_grid`); ``--window`` estimates a scan's contact from windows
+(:func:`asperity.friction.elastic_windows.contact_windows`)."""
 from __future__ import annotations
 
+from ..errors import InputError
 from . import emit, whole_flag
 from .sources import add_source_arguments, contact_failed, flag_names, surface_options
 
@@ -57,6 +60,10 @@ def add_parser(sub) -> None:
                         "field over the load (1e-15 to 0.1; default 1e-8)")
     e.add_argument("--max-iterations", metavar="N", default=None,
                    help="iteration limit (1 to 1e7; default 10000); reached: exit status 3")
+    from .derive_windows import add_window_arguments
+    add_window_arguments(p, "and reports each window's contact figures and their spread "
+                            "(mean, sd, min, max of the area fraction, the largest pressure "
+                            "and the mean gap)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the "
                                                        "summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the contact map and the pressure")
@@ -86,14 +93,23 @@ def modulus(args) -> float:
 
 
 def run(args) -> tuple[dict, object, dict]:
-    """(the JSON object, the ContactResult, what the picture needs)."""
+    """(the JSON object, the ContactResult, what the picture needs); with --window (the
+    JSON object, None, None)."""
     from ..friction.sources import is_texture_file
     from ..surface.contact_facets import ElasticContact
+    from .derive_windows import contact_windows_args, windowed
+    win = windowed(args)
     E = modulus(args)
     with flag_names():
         ec = ElasticContact(E, args.pressure, boundary=args.boundary, hardness=args.hardness,
                             tol=args.tol, max_iterations=whole_flag(
                                 "--max-iterations", args.max_iterations, 1, 10 ** 7))
+    if win:
+        return contact_windows_args(args, ec), None, None
+    for flag, given in (("--workers", args.workers), ("--scheduler", args.scheduler)):
+        if given is not None:
+            raise InputError(f"{flag} runs windows (--window W); one contact is solved in "
+                             "this process")
     if args.texture is not None and not is_texture_file(args.texture):
         return _map(args, ec)
     return _texture(args, ec)
@@ -243,6 +259,12 @@ def main(args) -> int:
         obj, res, pic = run(args)
     except ContactNotConverged as exc:
         return contact_failed("contact", exc)
+    if res is None:                             # --window: an estimate from windows
+        from ..friction.window_summary import contact_window_text, plot_contact_windows
+        if args.plot:
+            plot_contact_windows(obj, args.plot)
+        emit(args, obj, contact_window_text(obj))
+        return 0
     written = []
     if args.save_pressure:
         with atomic_path(args.save_pressure) as tmp, open(tmp, "wb") as f:
