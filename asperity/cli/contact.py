@@ -53,8 +53,8 @@ def add_parser(sub) -> None:
                         "by more contact")
     e.add_argument("--grid-step", type=float, metavar="M",
                    help="a mesh: the step (m) of the height grid its upper envelope is "
-                        "sampled on (default: its median projected edge length / 4, at most "
-                        "4194304 nodes); nodes no triangle covers are undefined")
+                        "sampled on (default: its median projected edge length / 4, with "
+                        "65536 to 4194304 nodes); nodes no triangle covers are undefined")
     e.add_argument("--tol", type=float, default=1e-8, metavar="X",
                    help="relative tolerance of the iteration: the change of the pressure "
                         "field over the load (1e-15 to 0.1; default 1e-8)")

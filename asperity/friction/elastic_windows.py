@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_int
+from ..errors import InputError, check_choice, check_instance, check_int
 from ..progress import report
 from .window_summary import MIN_DEFINED_SHARE, summarise
 
@@ -286,6 +286,12 @@ def _run(path, elastic, derive, window, windows, placement, seed, unit, pixel_si
         raise InputError("give mu or a friction map, not both")
     check_contact(contact)
     n_dir = check_int("directions", n_directions, 8, 100_000)
+    if client is not None:
+        from distributed import Client
+        check_instance("client", client, Client, "dask.distributed Client")
+    if source is not None:
+        from ..surface.readers._lines import LineSource
+        check_instance("source", source, LineSource, "scan opened by open_scan")
     src = source if source is not None else open_scan(
         path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
     w, n = check_window_request(src.shape, window, windows, placement, seed)

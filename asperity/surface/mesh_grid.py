@@ -10,9 +10,10 @@ carries no load.  Overhangs are hidden below the envelope, as they are from a co
 coming from above.
 
 The default step is the mesh's median projected edge length over
-:data:`NODES_PER_EDGE`, made coarser when the grid would have more than
-:data:`DEFAULT_MAX_NODES` nodes (it is a default; ``grid_step`` sets any step memory
-allows).
+:data:`NODES_PER_EDGE`, made finer when the grid would have fewer than
+:data:`DEFAULT_MIN_NODES` nodes (a mesh of a few large triangles still gets a contact
+resolved on some 256 x 256 nodes) and coarser when it would have more than
+:data:`DEFAULT_MAX_NODES` (it is a default; ``grid_step`` sets any step memory allows).
 
 :func:`face_forces` maps a pressure on that grid back to the mesh's own triangles: each
 node carries ``p h^2`` (its pixel's force) and shares it equally between the triangles on
@@ -36,7 +37,9 @@ from .topography import HeightMap, TriangleMesh
 
 #: default grid step: the median projected edge length over this
 NODES_PER_EDGE = 4
-#: the default step is made coarser so that the grid holds at most this many nodes
+#: the default step is made finer so that the grid holds at least this many nodes, and
+#: coarser so that it holds at most DEFAULT_MAX_NODES
+DEFAULT_MIN_NODES = 1 << 16
 DEFAULT_MAX_NODES = 1 << 22
 #: barycentric tolerance: a node on an edge or a vertex belongs to each triangle there
 EDGE_EPS = 1e-9
@@ -79,14 +82,17 @@ def _projected(mesh: TriangleMesh):
 
 
 def default_step(mesh: TriangleMesh) -> float:
-    """The median projected edge length over :data:`NODES_PER_EDGE`, coarsened so that
-    the grid has at most :data:`DEFAULT_MAX_NODES` nodes."""
+    """The median projected edge length over :data:`NODES_PER_EDGE`, refined so that the
+    grid has at least :data:`DEFAULT_MIN_NODES` nodes and coarsened so that it has at
+    most :data:`DEFAULT_MAX_NODES`."""
     v, f, lo, hi, name = _projected(mesh)
     e = np.concatenate([np.hypot(*(v[f[:, b], :2] - v[f[:, a], :2]).T)
                         for a, b in ((0, 1), (1, 2), (2, 0))])
     e = e[e > 0]
-    step = float(np.median(e)) / NODES_PER_EDGE if e.size else 0.0
     lx, ly = hi[0] - lo[0], hi[1] - lo[1]
+    step = math.sqrt(lx * ly / DEFAULT_MIN_NODES)
+    if e.size:
+        step = min(step, float(np.median(e)) / NODES_PER_EDGE)
     return max(step, math.sqrt(lx * ly / DEFAULT_MAX_NODES))
 
 
