@@ -211,3 +211,40 @@ def test_mesh_without_triangles_and_grid_step_of_a_height_map(files, capsys):
     assert code != 0 and "--grid-step needs --elastic" in err
     with pytest.raises(InputError, match="no triangle"):
         mesh_heightmap(TriangleMesh(np.zeros((3, 3)), np.zeros((0, 3), dtype=int)))
+
+
+def test_closed_mesh_is_pressed_on_its_upper_envelope():
+    """A closed sphere (both hemispheres over each node): the grid takes the upper one,
+    z = +sqrt(R^2 - r^2) less the triangles' sag; nodes outside the disc are undefined."""
+    trimesh = pytest.importorskip("trimesh")
+    R = 1e-3
+    m = trimesh.creation.icosphere(subdivisions=4, radius=R)
+    mg = mesh_heightmap(TriangleMesh(np.asarray(m.vertices), np.asarray(m.faces)), R / 20)
+    z = mg.heightmap.heights
+    x = mg.origin[0] + np.arange(z.shape[0]) * mg.step
+    y = mg.origin[1] + np.arange(z.shape[1]) * mg.step
+    r2 = x[:, None] ** 2 + y[None, :] ** 2
+    inner = r2 < (0.9 * R) ** 2
+    assert np.isfinite(z[inner]).all() and np.isnan(z[r2 > (1.01 * R) ** 2]).all()
+    # the flat triangles lie inside the sphere by their sag (edges ~ 1.1 R / 16: < 0.3 % R);
+    # the lower hemisphere would be 2 sqrt(R^2 - r^2) > 0.87 R away
+    d = np.sqrt(R * R - r2[inner]) - z[inner]
+    assert d.min() > -1e-12 * R and d.max() < 0.003 * R
+
+
+def test_default_grid_step():
+    """Median projected edge / 4, refined to at least 65536 nodes, coarsened to at most
+    4194304."""
+    from asperity.surface.mesh_grid import default_step
+    for n, want in ((48, lambda L: math.sqrt(L * L / 65536)), (300, lambda L: 1e-6 / 4),
+                    (600, lambda L: math.sqrt(L * L / 4194304))):
+        z = np.zeros((n, n))
+        v, f = grid_mesh(z, 1e-6)
+        L = (n - 1) * 1e-6
+        assert default_step(TriangleMesh(v, f)) == pytest.approx(want(L), rel=1e-12)
+    v, f = grid_mesh(np.zeros((2, 2)), 1.0)        # two triangles of a metre
+    v[:, :2] *= 1e-3                               # 1 mm: 65536 nodes, not 16
+    assert default_step(TriangleMesh(v, f)) == pytest.approx(1e-3 / 256, rel=1e-12)
+    v[:, 0] *= 1e4                                 # 10 m x 1 mm: still >= 65536 nodes
+    s = default_step(TriangleMesh(v, f))
+    assert s == pytest.approx(math.sqrt(10 * 1e-3 / 65536), rel=1e-12)
