@@ -806,7 +806,8 @@ MUTANTS = [
            "(hi[k] - lo[k]) / step * (1 + 1e-12))) + 1", "(hi[k] - lo[k]) / step * (1 + 1e-12)))",
            MESH_CONTACT, "the grid stops one node short of the mesh's far edges"),
     Mutant("mesh-force-edge-node-to-each", "surface/_mesh_grid_kernels.py",
-           "out[t] += p[i, j] / count[i, j]", "out[t] += p[i, j]", MESH_CONTACT,
+           "                            out[t] += p[i, j] / count[i, j]",
+           "                            out[t] += p[i, j]", MESH_CONTACT,
            "a node on an edge gives its whole force to each triangle there (the load counted "
            "twice or six times)"),
     Mutant("mesh-force-area-weighted", "surface/facets.py", "fpc = F[facing] / area",
