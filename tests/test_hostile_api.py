@@ -212,8 +212,9 @@ def api_table(folder: Path) -> list[Row]:
         Row("load_elastic", A.load_elastic,
             dict({k: v for k, v in scan_args.items() if "_level" not in k
                   and k != "bearing_fraction"}, elastic=A.ElasticContact(1e9, 1e6),
-                 observe=None),
+                 observe=None, grid_step=None),
             dict(path=npy, elastic=instance(), observe=callback(),
+                 grid_step=number(0.0, None, lo_open=True, none=True),
                  **{k: v for k, v in scan.items() if k not in ("rest_level",
                                                                "bearing_fraction")}),
             {"path": ("surface file",), "friction_map": ("friction map",)}),

@@ -220,7 +220,9 @@ def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
     from ..contact.elastic import BYTES_PER_PIXEL
     elastic = check_elastic(elastic)
     if grid_step is not None:
-        check_range("grid_step", grid_step, 0.0, None, low_open=True, unit="m")
+        g = check_range("grid_step", grid_step, 0.0, None, low_open=True, unit="m")
+        if not np.isfinite(g):
+            raise InputError(f"grid_step must be a finite length in m, got {g}")
     if observe is not None and not callable(observe):
         raise InputError(f"observe must be a callable or None, got "
                          f"{type(observe).__name__}")
