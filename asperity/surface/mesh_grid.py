@@ -74,7 +74,10 @@ def _projected(mesh: TriangleMesh):
     name = mesh.source or "mesh"
     if f.shape[0] == 0:
         raise InputError(f"{name}: the mesh has no triangle (nothing to press)")
-    lo, hi = v[np.unique(f)].min(axis=0), v[np.unique(f)].max(axis=0)
+    used = np.zeros(v.shape[0], dtype=bool)
+    used[f.ravel()] = True
+    vu = v[used]
+    lo, hi = vu.min(axis=0), vu.max(axis=0)
     if not (hi[0] > lo[0] and hi[1] > lo[1]):
         raise InputError(f"{name}: the mesh has no projected area in x-y (it is a "
                          "vertical sheet or a line): no height grid")
