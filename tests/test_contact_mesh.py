@@ -7,6 +7,7 @@ map (its nodes, the facets' own diagonals) gives the height map's pressure and, 
 ``derive --elastic``, friction close to the height map's (the triangles' forces converge
 to the height map's facet forces as the grid is refined); the forces sum to the load;
 ``asperity contact`` and ``derive --elastic`` on mesh files; bad input in one line."""
+import json
 import math
 import sys
 from pathlib import Path
@@ -165,7 +166,7 @@ def test_contact_of_a_mesh_file_is_the_height_maps(files, capsys, tmp_path):
     assert "upper envelope" in text and "(the default step)" in text
 
 
-def test_derive_fit_of_a_mesh_with_elastic(files, capsys):
+def test_derive_fit_risk_of_a_mesh_with_elastic(files, capsys):
     d = run_json(capsys, "derive", files / "z.obj", "--unit", "m", "--mu", "0.15",
                  "--elastic", "1e9", "--pressure", "5e6", "--grid-step", "1e-6",
                  "--directions", "24")
@@ -176,6 +177,18 @@ def test_derive_fit_of_a_mesh_with_elastic(files, capsys):
                    "--directions", "24")
     for k in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"):
         assert d[k] == pytest.approx(ref[k], rel=0.003), k
+    gauge = files / "g.json"
+    run_json(capsys, "fit", files / "z.obj", "--unit", "m", "--elastic", "1e9", "--pressure",
+             "5e6", "--grid-step", "1e-6", "-o", gauge)
+    src = json.loads(gauge.read_text())["source"]
+    assert src["elastic_contact"]["grid_step_m"] == 1e-6
+    r = run_json(capsys, "risk", files / "z.obj", ROOT / "surfaces" / "two-node-spec.toml",
+                 "--unit", "m", "--elastic", "1e9", "--pressure", "5e6")
+    assert r["friction"]["elastic_contact"]["grid_step_default"] is True
+    for cmd in ("derive", "contact"):
+        code, _, err = run(capsys, cmd, files / "z.obj", "--unit", "m", "--elastic", "1e9",
+                           "--pressure", "5e6", "--window", "16")
+        assert code == 1 and "--window takes windows of a height map" in err, err
     fam = run_json(capsys, "derive", files / "z.obj", "--unit", "m", "--elastic", "1e9",
                    "--pressure", "1e6", "1e7", "--directions", "24")
     assert [m["elastic_contact"]["pressure_Pa"] for m in fam["members"]] == pytest.approx([1e6, 1e7], rel=1e-12)

@@ -121,8 +121,14 @@ def on_cluster(args, elastic, flags, opts, run) -> dict:
     from ..surface.tiles import open_scan
     workers = whole_flag("--workers", args.workers, 0, 4096)
     with flag_names():
-        src = open_scan(args.texture, unit=opts["unit"], pixel_size=opts["pixel_size"],
-                        height_scale=opts["height_scale"])
+        try:
+            src = open_scan(args.texture, unit=opts["unit"], pixel_size=opts["pixel_size"],
+                            height_scale=opts["height_scale"])
+        except InputError as exc:
+            if "a mesh is derived whole" not in str(exc):
+                raise
+            raise InputError(f"{args.texture}: --window takes windows of a height map; a "
+                             "mesh is pressed whole (on its height grid, --grid-step)") from None
 
     def go(client):
         with flag_names(), progress_bar("windows"):

@@ -13,7 +13,9 @@ tractions, ploughing, the sliding-induced tilt of the contact are left out).
 * :class:`ElasticContact` -- the options: E*, one pressure or several (a load curve: each
   solution starts the next), the boundary (``periodic``: the map is one period and its
   cells across the edges are facets too; ``free``: a non-periodic scan), the hardness;
-* :func:`elastic_facets` -- the facets of a HeightMap at each pressure;
+* :func:`elastic_facets` -- the facets of a HeightMap at each pressure; or of a
+  TriangleMesh, pressed as its upper envelope on a height grid, each triangle weighing the
+  force of the grid nodes it holds (:mod:`.mesh_grid`);
 * :func:`load_elastic` -- the same from a surface file with :func:`load_surface`'s options.
 
 Slope removal (``detrend="slope"``): on a ``free`` map the mean facet gradient is removed
