@@ -20,7 +20,7 @@ from asperity.contact import solve_contact
 from asperity.errors import InputError
 from asperity.surface.contact_facets import ElasticContact, elastic_facets
 from asperity.surface.mesh_grid import face_forces, mesh_heightmap
-from asperity.surface.topography import HeightMap, TriangleMesh
+from asperity.surface.topography import TriangleMesh
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
