@@ -40,7 +40,7 @@ import numpy as np
 
 from ..errors import InputError, check_choice, check_instance, check_int
 from ..progress import report
-from .window_summary import MIN_DEFINED_SHARE, summarise
+from .window_summary import MAX_REDRAWS, MIN_DEFINED_SHARE, summarise
 
 #: smallest window side (pixels): a smaller patch cannot resolve a contact spot
 MIN_WINDOW = 16
@@ -49,8 +49,6 @@ MAX_WINDOWS = 10_000
 PLACEMENTS = ("grid", "random")
 #: values read at a time when a window is cut from a file's lines
 _READ_VALUES = 1 << 22
-#: most redraws of one skipped window (random placement)
-MAX_REDRAWS = 16
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,8 @@ from .axes import AXES, aligned, axial_spread
 
 #: a window needs at least this share of its pixels defined
 MIN_DEFINED_SHARE = 0.8
+#: most redraws of one skipped window (random placement, :mod:`.elastic_windows`)
+MAX_REDRAWS = 16
 _LABELS = {"area_fraction": "contact fraction", "mu_a_plus": "mu_a+", "mu_a_minus": "mu_a-",
            "mu_b_plus": "mu_b+", "mu_b_minus": "mu_b-"}
 
@@ -65,7 +67,6 @@ def summarise(plan, results: list, placement: str, seed: int) -> dict:
 
 def windows_block(plan, results: list, placement: str, seed: int) -> dict:
     """The ``windows`` object: the windows asked, used, skipped and redrawn."""
-    from .elastic_windows import MAX_REDRAWS
     src, w = plan.heights, plan.window
     used = [r for r in results if "skipped" not in r]
     redrawn = [r for r in results if r.get("redrawn_from")]
