@@ -33,6 +33,7 @@ _LAZY = {
     "compute_facet_reservoir": "asperity.friction.facet_reservoir",
     "derive": "asperity.friction.derive",
     "derive_scan": "asperity.friction.tiled",
+    "derive_windows": "asperity.friction.elastic_windows",
     "fit_derivation": "asperity.laws.fitting",
     "WalkerLeineLaw": "asperity.laws.walker_leine",
     "TruncatedEllipse": "asperity.laws.sets",

@@ -72,6 +72,8 @@ CONTACT_SOLVER = ("test_contact_solver.py",)
 CONTACT_CLI = ("test_contact_cli.py",)
 FAMILY = ("test_law_family.py", "test_law_family_cli.py")
 WINDOWS = ("test_contact_windows.py",)
+MESH_CONTACT = ("test_contact_mesh.py",)
+WINDOWS_MORE = ("test_contact_windows_more.py",)
 STUDY_CONTACT = ("test_study_contact.py",)
 WEB_CONTACT = ("test_web_contact.py",)
 REPORT = ("test_report.py",)
@@ -840,6 +842,45 @@ MUTANTS = [
            "texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)",
            "texture = load_source(source, ctx)[0]", WEB_CONTACT,
            "the web risk of an elastic Surface result uses its area-weighted surface"),
+    # ---- issue 19: meshes pressed on their height grid, windows of contact, redraws
+    Mutant("mesh-grid-last-triangle-wins", "surface/_mesh_grid_kernels.py",
+           "                        if zz > z[i, j]:\n", "                        if True:\n",
+           MESH_CONTACT, "a node takes the last triangle over it, not the highest (no upper "
+           "envelope: a closed mesh shows its underside)"),
+    Mutant("mesh-grid-edges-excluded", "surface/mesh_grid.py", "EDGE_EPS = 1e-9",
+           "EDGE_EPS = -1e-9", MESH_CONTACT,
+           "nodes on a triangle's edge or vertex belong to none (holes along every edge)"),
+    Mutant("mesh-grid-one-node-short", "surface/mesh_grid.py",
+           "(hi[k] - lo[k]) / step * (1 + 1e-12))) + 1", "(hi[k] - lo[k]) / step * (1 + 1e-12)))",
+           MESH_CONTACT, "the grid stops one node short of the mesh's far edges"),
+    Mutant("mesh-force-edge-node-to-each", "surface/_mesh_grid_kernels.py",
+           "                            out[t] += p[i, j] / count[i, j]",
+           "                            out[t] += p[i, j]", MESH_CONTACT,
+           "a node on an edge gives its whole force to each triangle there (the load counted "
+           "twice or six times)"),
+    Mutant("mesh-force-area-weighted", "surface/facets.py", "fpc = F[facing] / area",
+           "fpc = np.full_like(area, total / area.sum())", MESH_CONTACT,
+           "a mesh's triangles weighted by their area, not by the contact force"),
+    Mutant("mesh-default-step-coarsest", "surface/mesh_grid.py",
+           "step = min(step, float(np.median(e)) / NODES_PER_EDGE)",
+           "step = max(step, float(np.median(e)) / NODES_PER_EDGE)", MESH_CONTACT,
+           "the default grid step the coarser of the two rules, not the finer"),
+    Mutant("window-redraw-same-origin", "friction/elastic_windows.py",
+           "origin = _draw(plan.strata[k], src.shape, w, rng)", "origin = plan.origins[k]",
+           WINDOWS_MORE, "a skipped random window 'redrawn' at the same place"),
+    Mutant("window-grid-redrawn", "friction/elastic_windows.py",
+           'if placement == "random" else None, seed=seed)', "if placement else None, seed=seed)",
+           WINDOWS_MORE, "grid windows moved when they have too few defined pixels"),
+    Mutant("window-family-first-member", "friction/window_summary.py",
+           '**r["members"][i]}', '**r["members"][0]}', WINDOWS_MORE,
+           "every pressure's spread computed from the first pressure's windows"),
+    Mutant("window-redraws-miscounted", "friction/window_summary.py",
+           '"redraws": sum(len(r["redrawn_from"]) for r in redrawn)',
+           '"redraws": len(redrawn)', WINDOWS_MORE,
+           "the redraws counted as the windows redrawn"),
+    Mutant("window-contact-derives", "friction/elastic_windows.py",
+           "    if not plan.derive:", "    if False:", WINDOWS_MORE,
+           "contact --window derives friction it does not report (and its cost)"),
 ]
 
 

@@ -53,6 +53,7 @@ class Row:
 
 def _files(folder: Path) -> dict:
     np.save(folder / "z.npy", Z)
+    np.save(folder / "w.npy", 1e-6 * np.random.default_rng(3).normal(size=(20, 18)))
     gl = A.fit_derivation(A.derive(TEX, n_directions=72), "star")
     A.write_gauge(folder / "g.json", gl)
     chain = A.two_node_chain(1e6, 0.1, 1.2e-5, 5e5, 100.0, 0.2, 0.1)
@@ -275,8 +276,9 @@ def api_table(folder: Path) -> list[Row]:
         Row("load_elastic", A.load_elastic,
             dict({k: v for k, v in scan_args.items() if "_level" not in k
                   and k != "bearing_fraction"}, elastic=A.ElasticContact(1e9, 1e6),
-                 observe=None),
+                 observe=None, grid_step=None),
             dict(path=npy, elastic=instance(), observe=callback(),
+                 grid_step=number(0.0, None, lo_open=True, none=True),
                  **{k: v for k, v in scan.items() if k not in ("rest_level",
                                                                "bearing_fraction")}),
             {"path": ("surface file",), "friction_map": ("friction map",)}),
@@ -294,6 +296,20 @@ def api_table(folder: Path) -> list[Row]:
                  other_contact=choice(none=True), source=instance(none=True)),
             {"path": ("surface file",), "n_directions": ("directions",),
              "friction_map": ("friction map",)}),
+        Row("derive_windows", A.derive_windows,
+            dict({k: v for k, v in scan_args.items() if "_level" not in k
+                  and k != "bearing_fraction"}, path=folder / "w.npy",
+                 elastic=A.ElasticContact(1e9, 1e6), window=16, windows=2, placement="grid",
+                 seed=0, contact="all-faces", n_directions=8, client=None, source=None),
+            dict(path=npy, elastic=instance(), window=whole(16, 18), windows=whole(1, 10_000),
+                 placement=choice(), seed=whole(0, 2 ** 63 - 1), contact=contact,
+                 n_directions=whole(8, 100_000), client=instance(none=True),
+                 source=instance(none=True),
+                 **{k: v for k, v in scan.items() if k not in ("rest_level",
+                                                               "bearing_fraction")}),
+            {"path": ("surface file",), "friction_map": ("friction map",),
+             "n_directions": ("directions",), "placement": ("window_placement",),
+             "seed": ("window_seed",)}),
         Row("fit_derivation", A.fit_derivation, dict(d=f["d"], kind="star", holdout=True),
             dict(d=instance(), kind=choice(), holdout=flag()), {"d": ("derivation",)}),
         Row("WalkerLeineLaw", A.WalkerLeineLaw, dict(C=f["gl"].law.C, D=f["gl"].law.D),
