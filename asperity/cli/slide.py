@@ -326,7 +326,9 @@ def _say_body(say, obj) -> None:
             f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m, angle "
             f"{th:.6g} rad ({math.degrees(th):.4g} deg)")
     ts, tw = obj["slide_stop_time"], obj["spin_stop_time"]
-    words = [f"sliding stopped at {ts:.6g} s" if ts is not None else "still sliding",
+    words = ["did not slide" if ts == 0 and obj["u0"] == 0 else
+             f"sliding stopped at {ts:.6g} s" if ts is not None else "still sliding",
+             "did not spin" if tw == 0 and obj["omega0"] == 0 else
              f"spinning at {tw:.6g} s" if tw is not None else "still spinning"]
     if obj["together"] is not None:
         words.append("together" if obj["together"] else "not together")

@@ -60,7 +60,7 @@ class BodySlide:
 
 _CLI_NAMES = {"radius": "--radius", "contact_points": "--contact-points",
               "pressure_profile": "--pressure-profile", "profile": "--pressure-profile",
-              "centre_of_pressure": "--centre-of-pressure", "a": "--size", "b": "--size"}
+              "centre_of_pressure": "--centre-of-pressure"}
 
 
 def _renamed(exc: InputError, names: dict) -> InputError:
@@ -99,7 +99,7 @@ def make_body(kind, *, radius=None, size=None, contact_points=None, pressure_pro
                           centre_of_pressure, mass, inertia, cli)
     if kind in ("disc", "ring"):
         if size is not None:
-            raise InputError(f"{nm('size') if cli else 'size'} does not apply to a {kind} "
+            raise InputError(f"{'--size' if cli else 'size'} does not apply to a {kind} "
                              f"(give {nm('radius')})")
         if radius is None:
             raise InputError(f"a {kind} needs {nm('radius')} (m, in [{F.LENGTH_RANGE[0]:g}, "
