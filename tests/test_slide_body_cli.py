@@ -28,9 +28,10 @@ def slide_json(capsys, *argv):
 @pytest.fixture(scope="module")
 def spinning(request):
     """The JSON of a disc launched at 1 m/s spinning at 20 rad/s (eps0 = v/(R omega) = 1)."""
-    from asperity.cli.main import main
-    import io
     import contextlib
+    import io
+
+    from asperity.cli.main import main
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
         code = main([str(a) for a in ("slide", *DISC, "--u0", 1.0, "--angle", 30, "--omega0", 20,
@@ -111,7 +112,7 @@ def test_text_says_the_body_rest_stops_and_ratio(capsys):
 
 def test_csv_columns_rows_and_plot(tmp_path, capsys):
     c, p = tmp_path / "path.csv", tmp_path / "path.png"
-    code, out, err = run(capsys, "slide", *DISC, "--u0", 1.0, "--angle", 30, "--omega0", 20,
+    code, _, err = run(capsys, "slide", *DISC, "--u0", 1.0, "--angle", 30, "--omega0", 20,
                          "--csv", c, "--plot", p)
     assert code == 0, err
     rows = list(csv.reader(c.read_text().splitlines()))
@@ -256,13 +257,13 @@ def test_bad_input_is_one_line_and_writes_nothing(argv, msg, tmp_path, capsys):
     files = _bad_files(tmp_path)
     argv = [files.get(a, a) if isinstance(a, str) else a for a in argv]
     c, p = tmp_path / "out.csv", tmp_path / "out.png"
-    code, out, err = run(capsys, "slide", *BASE, *argv, "--csv", c, "--plot", p)
+    code, _, err = run(capsys, "slide", *BASE, *argv, "--csv", c, "--plot", p)
     assert code == 1 and msg in err and len(err.strip().splitlines()) == 1, err
     assert not c.exists() and not p.exists()
 
 
 def test_not_converged_exits_3(capsys):
-    code, out, err = run(capsys, "slide", *DISC, "--u0", 1.0, "--angle", 30, "--omega0", 20,
+    code, _, err = run(capsys, "slide", *DISC, "--u0", 1.0, "--angle", 30, "--omega0", 20,
                          "--max-iterations", 2)
     assert code == 3 and "did not converge" in err
 

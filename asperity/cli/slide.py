@@ -130,8 +130,8 @@ def _build(args):
             raise InputError("--mu1/--mu2 do not apply with a gauge file (the file holds the law)")
         if args.law == "coulomb":
             raise InputError("--law coulomb takes --mu1, not a gauge file")
-        from ..laws.gauge_file import read_gauge
         from ..laws.family import GaugeFamily, law_at
+        from ..laws.gauge_file import read_gauge
         gl = read_gauge(args.gauge)
         if args.pressure is not None and not isinstance(gl, GaugeFamily):
             raise InputError(f"--pressure applies to a law family; {args.gauge} holds one law "

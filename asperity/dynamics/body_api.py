@@ -261,7 +261,7 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
                       + 10 * dt, LIMITS["t_end"][1])
     else:
         horizon = t_end = check_range("t_end", t_end, *LIMITS["t_end"], unit="s")
-    n = int(round(horizon / dt))
+    n = round(horizon / dt)
     if n > MAX_STEPS:
         raise InputError(f"t_end / dt gives {n:.3g} steps, at most {MAX_STEPS:.0e}: raise dt "
                          "or lower t_end")
@@ -312,7 +312,7 @@ def load_figures(res, force, t_end: float) -> dict:
         out["rotation_rate"] = float((qe[2] - q0[2]) / t_last)
     if force.waveform != "none":
         T = force.period
-        cycles = int(math.floor(t_last / T * (1 + 1e-12)))
+        cycles = math.floor(t_last / T * (1 + 1e-12))
         out["cycles"] = cycles
         if cycles >= 1:
             first = 1 if cycles >= 2 else 0

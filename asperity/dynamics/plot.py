@@ -38,6 +38,7 @@ def plot_body_path(path, res, outline, law, angle_deg: float, title: str = "") -
     the motion, and an orientation mark (a line from the centre along the body's x axis to
     its outline); the launch direction dashed."""
     import numpy as np
+
     from ..io import pyplot, save_figure_atomic
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 5.4))
