@@ -190,6 +190,7 @@ def test_eccentric_bracket_turns_without_spin(capsys):
     p = slide_json(capsys, "--mu1", MU, "--body", SURF / "body-plate.toml",
                    "--contact-points", 48, "--u0", 0.5, "--angle", 90, "--dt", DT)
     assert abs(b["final_angle_rad"]) > 1e-3 and abs(p["final_angle_rad"]) < 1e-12
+    assert b["together"] is True and p["together"] is None and p["spin_stop_time"] == 0.0
 
 
 def _bad_files(folder: Path) -> dict:

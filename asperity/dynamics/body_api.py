@@ -277,11 +277,16 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
 
 # ----------------------------------------------------------------------------- numbers
 
-def terminal_ratio(res, radius: float, dt: float, u0: float, omega0: float) -> float | None:
+def _moved(res) -> bool:
+    """Whether the body both slid and spun (neither stop time is 0)."""
+    return res.slide_stop_time not in (None, 0.0) and res.spin_stop_time not in (None, 0.0)
+
+
+def terminal_ratio(res, radius: float, dt: float) -> float | None:
     """v / (R omega) as the motion ends: of the last recorded state at least
-    :data:`TERMINAL_STEPS` steps before the rest (None if the body still moves, or one of
-    v0 and omega0 was zero: a pure slide or a pure spin has no ratio)."""
-    if res.stop_time is None or u0 == 0.0 or omega0 == 0.0:
+    :data:`TERMINAL_STEPS` steps before the rest (None if the body still moves, or it never
+    slid or never spun: a pure slide or a pure spin has no ratio)."""
+    if res.stop_time is None or not _moved(res):
         return None
     t_at = res.stop_time - TERMINAL_STEPS * dt
     k = int(np.searchsorted(res.t, t_at + 0.5 * dt, side="right")) - 1
@@ -332,11 +337,11 @@ def body_summary(law, body, res, *, u0, angle_deg, omega0, g, dt, t_end, force,
     stopped = res.stop_time is not None
     ts, tw = res.slide_stop_time, res.spin_stop_time
     together = None
-    if ts is not None and tw is not None and u0 > 0 and omega0 != 0:
+    if _moved(res):
         together = abs(ts - tw) <= TOGETHER_STEPS * dt * record_every * (1 + 1e-9)
     ratio = None
     if fp.kind in ("disc", "ring"):
-        ratio = terminal_ratio(res, fp.radius, dt, u0, omega0)
+        ratio = terminal_ratio(res, fp.radius, dt)
     obj = {
         "law": law.name, "description": law.description,
         "u0": u0, "angle_deg": angle_deg, "omega0": omega0, "mass": body.mass,
