@@ -288,3 +288,42 @@ def test_terminal_ratio_is_taken_before_the_last_steps():
     k = round(res.stop_time / DT) - TERMINAL_STEPS
     u = res.u[k]
     assert lib.terminal_ratio == math.hypot(u[0], u[1]) / (R * abs(u[2]))
+
+
+def test_mass_scales_the_inertia_and_cancels(spinning, capsys):
+    """--mass 2: the lamina's inertia is 2 (R^2 / 2) and the motion is the same (friction and
+    inertia both scale with the mass)."""
+    d = slide_json(capsys, *DISC, "--u0", 1.0, "--angle", 30, "--omega0", 20, "--mass", 2)
+    assert d["inertia"] == pytest.approx(2 * 0.5 * R * R, rel=1e-12)
+    assert d["body"]["mass"] == 2.0
+    assert d["stop_time"] == spinning["stop_time"]
+    np.testing.assert_allclose(d["rest"], spinning["rest"], rtol=1e-6)
+
+
+def test_torque_spins_a_disc_as_the_pure_spin_closed_form_says(capsys):
+    """A disc at rest under a torque twice the pure-spin friction torque (2/3) mu m g R: it
+    spins up at alpha = (T - (2/3) mu m g R) / I without moving (the disc rule's pure-spin
+    torque is exact), theta(t) = alpha t^2 / 2."""
+    T_end = 0.1
+    Tf = 2.0 / 3.0 * MU * G * R
+    d = slide_json(capsys, *DISC, "--u0", 0, "--angle", 0, "--torque", 2 * Tf,
+                   "--t-end", T_end)
+    alpha = Tf / (0.5 * R * R)
+    assert d["final_velocity"][2] == pytest.approx(alpha * T_end, rel=1e-9)
+    assert d["final_angle_rad"] == pytest.approx(0.5 * alpha * T_end ** 2, rel=1e-9)
+    assert np.hypot(*d["final_position"]) < 1e-12
+    assert d["load"]["rotation_rate"] == pytest.approx(0.5 * alpha * T_end, rel=1e-9)
+
+
+def test_texture_angle_turns_the_law_with_the_support(capsys):
+    """A non-spinning disc on an ellipse law turned by 30 deg, launched at 30 deg + 50 deg,
+    rests where it rests on the unturned law launched at 50 deg, turned by 30 deg."""
+    law = ("--mu1", 0.4, "--mu2", 0.2)
+    base = ("--body", "disc", "--radius", R, "--contact-points", 16, "--dt", DT, "--u0", 1)
+    a = slide_json(capsys, *law, *base, "--angle", 50)
+    b = slide_json(capsys, *law, *base, "--angle", 80, "--texture-angle", 30)
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    x, y = a["rest"]
+    np.testing.assert_allclose(b["rest"], [c * x - s * y, s * x + c * y], rtol=1e-9)
+    assert abs(a["deflection_deg"]) > 1.0                    # the ellipse does deflect it
+    assert b["texture_angle_deg"] == 30.0
