@@ -76,7 +76,9 @@ def plot_body_path(path, res, outline, law, angle_deg: float, title: str = "") -
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(title or law.description, fontsize=8)
+    import textwrap
+    lines = (title or law.description).splitlines()
+    ax.set_title("\n".join(w for line in lines for w in textwrap.wrap(line, 95)), fontsize=8)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=120)
     plt.close(fig)
