@@ -13,6 +13,16 @@ MAX_ROWS = 20000
 EXIT_NOT_CONVERGED = 3
 
 
+class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Defaults in the help, but not "(default: None)": those options say in words what
+    leaving them out means."""
+
+    def _get_help_string(self, action):
+        if action.default is None:
+            return action.help
+        return super()._get_help_string(action)
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser(
         "slide", help="slide a body on a friction law until it sticks (Moreau time-stepping)",
@@ -39,7 +49,7 @@ def add_parser(sub) -> None:
                     "or torque, constant or periodic (--force, --torque, --force-amplitude, "
                     "--waveform, --period), needs --t-end and reports the drift and rotation "
                     "per cycle.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=_HelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
     p.add_argument("--law", choices=LAWS, default=None,
                    help="law (default: the gauge file's; without one coulomb if only --mu1 "
