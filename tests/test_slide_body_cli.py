@@ -67,6 +67,11 @@ def test_spinning_disc_against_the_closed_forms(spinning):
     assert d["stop_time"] == pytest.approx(ref.stop_time, rel=0.02)
     assert d["distance"] == pytest.approx(ref.distance, rel=0.02)
     assert d["final_angle_rad"] == pytest.approx(ref.turned, rel=0.02)
+    # the ratio TERMINAL_STEPS steps before the rest is the ODE's eps at that time before its
+    # stop (0.670 here; eps reaches 0.653 only as the time left goes to 0: 0.656 at 1 ms)
+    left = ref.stop_time - TERMINAL_STEPS * DT
+    eps_ref = np.interp(left, ref.t, ref.v / (R * ref.omega))
+    assert abs(d["terminal_ratio"] - eps_ref) < 0.01
     assert abs(d["terminal_ratio"] - TERMINAL_RATIO["disc"]) < 0.03
     assert abs(d["slide_stop_time"] - d["spin_stop_time"]) <= 3 * DT
     assert d["together"] is True
