@@ -332,3 +332,18 @@ def test_texture_angle_turns_the_law_with_the_support(capsys):
     np.testing.assert_allclose(b["rest"], [c * x - s * y, s * x + c * y], rtol=1e-9)
     assert abs(a["deflection_deg"]) > 1.0                    # the ellipse does deflect it
     assert b["texture_angle_deg"] == 30.0
+
+
+def test_python_api_takes_a_body_file_s_body():
+    """slide_body with a Body (its own mass and inertia; mass= refused) and with a Footprint
+    (mass and inertia settable): the inertia given is the one used."""
+    body = A.read_body(SURF / "body-plate.toml")
+    law = A.coulomb_law(MU)
+    with pytest.raises(A.InputError, match="mass does not apply to a Body"):
+        A.slide_body(law, body, 0.5, 0.0, mass=1.0)
+    fp = A.rectangle_footprint(0.08, 0.03, contact_points=16)
+    run = A.slide_body(law, fp, 0.0, 0.0, 10.0, mass=0.5, inertia=1e-3, dt=DT)
+    assert run.summary["inertia"] == 1e-3 and run.summary["mass"] == 0.5
+    assert run.summary["body"]["kind"] == "rectangle" and run.summary["rest"] is not None
+    # a pure spin on Coulomb: the centre stays put, no terminal ratio (not a disc)
+    assert np.hypot(*run.summary["rest"]) < 1e-12 and run.terminal_ratio is None
