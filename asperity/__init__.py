@@ -81,6 +81,7 @@ _LAZY = {
     "ring_f_m": "asperity.bodies.closed_forms",
     "spin_drift_force": "asperity.bodies.closed_forms",
     "disc_reference": "asperity.bodies.closed_forms",
+    "slide_body": "asperity.dynamics.body_api",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }

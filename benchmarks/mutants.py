@@ -80,6 +80,7 @@ REPORT = ("test_report.py",)
 FAMILY_AXES = ("test_family_axes.py",)
 WEB_FAMILY = ("test_web_law_family.py",)
 BODIES = ("test_bodies_closed_forms.py", "test_bodies_footprint.py")
+BODY_CLI = ("test_slide_body_cli.py",)
 
 
 @dataclass(frozen=True)
@@ -140,6 +141,38 @@ MUTANTS = [
     Mutant("mesh-patch-upside", "bodies/pressure.py",
            "sel, s = sel[s < 0], s[s < 0]", "sel, s = sel[s > 0], s[s > 0]", BODIES,
            "a closed mesh's patch from the faces facing up"),
+    # ---- slide --body and slide_body (issue 20, item 4)
+    Mutant("body-launch-angle-in-degrees", "dynamics/body_api.py",
+           "a = math.radians(angle)", "a = angle", BODY_CLI,
+           "slide_body: the launch direction's degrees taken as radians"),
+    Mutant("terminal-ratio-at-the-last-step", "dynamics/body_api.py",
+           "t_at = res.stop_time - TERMINAL_STEPS * dt", "t_at = res.stop_time", BODY_CLI,
+           "terminal ratio of the last moving step (the step's noise) instead of 10 before"),
+    Mutant("terminal-ratio-diameter", "dynamics/body_api.py",
+           "return math.hypot(vx, vy) / (radius * abs(w))",
+           "return math.hypot(vx, vy) / (2 * radius * abs(w))", BODY_CLI,
+           "terminal ratio v / (D omega) with the diameter"),
+    Mutant("body-inertia-per-unit-mass", "dynamics/body_api.py",
+           "inertia = mass * fp.inertia_per_mass", "inertia = fp.inertia_per_mass", BODY_CLI,
+           "the lamina's inertia of a 1 kg body whatever --mass"),
+    Mutant("drift-per-cycle-off-by-one", "dynamics/body_api.py",
+           "k = cycles - first", "k = cycles - first + 1", BODY_CLI,
+           "drift per cycle divided by one cycle too many"),
+    Mutant("drift-from-the-first-cycle", "dynamics/body_api.py",
+           "first = 1 if cycles >= 2 else 0", "first = 0", BODY_CLI,
+           "drift per cycle with the first (transient) cycle in it"),
+    Mutant("body-csv-theta-omega-swapped", "dynamics/body_api.py",
+           "(res.t[i], q[0], q[1], q[2], u[0], u[1],", "(res.t[i], q[0], q[1], u[2], u[0], u[1],",
+           BODY_CLI, "CSV: omega written in the theta column"),
+    Mutant("torque-on-fy", "cli/slide.py",
+           "const[2] = check_range(\"--torque\"", "const[1] = check_range(\"--torque\"",
+           BODY_CLI, "--torque applied as a force along y"),
+    Mutant("texture-angle-dropped", "cli/slide.py",
+           "texture_angle_deg=tex,\n", "texture_angle_deg=0.0,\n", BODY_CLI,
+           "--texture-angle read but not passed to the solver"),
+    Mutant("together-any-gap", "dynamics/body_api.py",
+           "together = abs(ts - tw) <= TOGETHER_STEPS", "together = abs(ts - tw) >= TOGETHER_STEPS",
+           BODY_CLI, "slide and spin 'together' when their stops are apart"),
     # ---- the five that the suite missed in issue 11
     Mutant("admissibility-hard-wired", "friction/diagnostics.py",
            "return Admissibility(dmin >= -ADMISSIBILITY_TOL, dmin,",

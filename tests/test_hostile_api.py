@@ -24,6 +24,7 @@ from api_walk import (BIG_INT as BIG, NAN, Kind, address, array, callback, choic
 from hostile import SURF
 
 import asperity as A
+from asperity.dynamics.moreau import Force
 from asperity.errors import InputError
 
 #: public names that are not callables of the API (the version, the error classes)
@@ -169,6 +170,20 @@ def api_table(folder: Path) -> list[Row]:
             dict(v0=number(0.0, 1e4), omega0=number(0.0, 1e6), mu=number(1e-6, 100.0),
                  g=number(1e-6, 1e4), R=number(1e-9, 1e3), kind=choice(),
                  rtol=number(1e-14, 1e-3))),
+        Row("slide_body", A.slide_body,
+            dict(law=f["law"], body=A.disc_footprint(0.05, contact_points=16), u0=0.2,
+                 angle_deg=30.0, omega0=5.0, mass=None, inertia=None, g=9.81, dt=1e-3,
+                 t_end=None, force=None, texture_angle_deg=0.0, settings=None),
+            dict(law=instance(), body=instance(extra=[
+                ("range", "a point", A.Footprint("point", np.zeros((1, 2)), np.ones(1),
+                                                 np.zeros((1, 2)), 0.0))]),
+                 u0=number(0.0, 1e4), angle_deg=number(-360.0, 360.0),
+                 omega0=number(-1e6, 1e6), mass=number(1e-9, 1e9, none=True),
+                 inertia=number(1e-15, 1e12, none=True), g=number(1e-6, 1e4),
+                 dt=number(1e-9, 1.0), t_end=number(0.0, 1e9, none=True),
+                 force=instance(none=True, extra=[
+                     ("range", "a load without t_end", Force(constant=(1.0, 0.0, 0.0)))]),
+                 texture_angle_deg=number(-360.0, 360.0), settings=instance(none=True))),
         Row("WedgeTexture", A.WedgeTexture,
             dict(alpha_deg=30, beta_deg=10, mu_alpha=0.1, mu_beta=0.2, height=1e-6),
             dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,
