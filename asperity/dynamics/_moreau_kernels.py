@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..laws._law_kernels import law_alpha, law_point
+from ..laws._law_kernels import law_alpha_warm, law_point_warm
 from ..laws._set_kernels import TWO_PI
 
 STATUS_OK = 0
@@ -70,7 +70,7 @@ def _end_velocity(ue, uf, minv, P, ow, nc, ndof):
 
 
 @njit(cache=True)
-def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
+def integrate(q, u, P, warm, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
               fpar, ftab, t0, dt, n_steps, step0, n_chunk, r, tol, max_iter, full_rank,
               halt_at_rest, record_every, rec_t, rec_q, rec_u, info):
     """Moreau midpoint time-stepping of a body on a plane (SPEC.md section 4), steps
@@ -80,6 +80,8 @@ def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
 
     q, u   : (ndof,) state, updated in place; ndof = 2 (point mass x, y) or 3 (rigid body)
     P      : (nc, 2) contact impulses of the last step (zeros before the first), in place
+    warm   : (nc, WARM_SIZE) each contact's warm start of the law's kernels
+             (laws._law_kernels.new_warm before the first step), carried like P
     minv   : (ndof,) inverse mass matrix diagonal
     offsets: (nc, 2) contact points in the body frame (rotated by theta at q_M)
     lam_n  : (nc,) normal impulse per step of each contact (share * m g dt)
@@ -157,13 +159,15 @@ def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
                 ln = lam_n[i]
                 p0 = P[i, 0] / ln
                 p1 = P[i, 1] / ln
-                al = law_alpha(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0], ns[i, 0],
-                               kinds[i, 1], pars[i, 1], tabs, offs[i, 1], ns[i, 1], p0, p1)
+                wk = warm[i]
+                al = law_alpha_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
+                                    ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
+                                    ns[i, 1], p0, p1, wk)
                 z0 = al * (p0 + r * g0 / ln)
                 z1 = al * (p1 + r * g1 / ln)
-                a, b, ins = law_point(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
-                                      ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
-                                      ns[i, 1], z0, z1)
+                a, b, ins = law_point_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs,
+                                           offs[i, 0], ns[i, 0], kinds[i, 1], pars[i, 1],
+                                           tabs, offs[i, 1], ns[i, 1], z0, z1, wk)
                 stick[i] = ins
                 e = math.hypot(a - p0, b - p1)
                 if e > res:

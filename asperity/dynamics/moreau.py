@@ -321,13 +321,15 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
     info = np.zeros(K.INFO_SIZE)
     qf, uf = q0.copy(), u0.copy()
     P = np.zeros((nc, 2))
+    from ..laws._law_kernels import new_warm
+    warm = new_warm(nc)
     contacts = np.ascontiguousarray(body.contacts)
     full_rank = body.full_rank()
     # pieces of STEPS_PER_PIECE steps (~0.1 s for the slowest law): Ctrl-C between them
     pieces = chunks(n_steps, max(1, STEPS_PER_PIECE // nc), "Moreau steps") if n_steps else \
         [(0, 0)]
     for start, stop in pieces:
-        K.integrate(qf, uf, P, body.minv, contacts, lam_n, assoc, kinds, pars, tabs, offs, ns,
+        K.integrate(qf, uf, P, warm, body.minv, contacts, lam_n, assoc, kinds, pars, tabs, offs, ns,
                     fpar, ftab, 0.0, dt, n_steps, start, stop - start, r, settings.tol,
                     settings.max_iterations, full_rank, bool(halt_at_rest), record_every,
                     rec_t, rec_q, rec_u, info)

@@ -9,7 +9,10 @@ import math
 import numpy as np
 from numba import njit
 
-from ._set_kernels import set_project, set_radial
+from ._set_kernels import SET_SUPPORT, set_project, set_radial, support_project_warm
+
+#: columns of a contact's warm-start row (see :func:`law_point_warm`)
+WARM_K, WARM_T, WARM_RC, WARM_RD, WARM_VALID, WARM_SIZE = 0, 1, 2, 3, 4, 5
 
 
 @njit(cache=True)
@@ -46,6 +49,62 @@ def law_alpha(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1):
     rc = set_radial(ck, cp, ctab, coff, cn, phi)
     rd = set_radial(dk, dp, dtab, doff, dn, phi)
     return 1.0 / (r / rd - r / rc + 1.0)
+
+
+@njit(cache=True)
+def new_warm(nc):
+    """(nc, WARM_SIZE) warm-start rows of nc contacts before their first step."""
+    wk = np.zeros((nc, WARM_SIZE))
+    for i in range(nc):
+        wk[i, WARM_K] = -1.0
+    return wk
+
+
+@njit(cache=True)
+def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1, wk):
+    """:func:`law_point` for a solver that calls it again and again with nearby arguments
+    (a fixed-point iteration, time steps).  ``wk`` (WARM_SIZE,) is the contact's row: the
+    sample interval and offset of the last projection onto a support set D (the next one
+    starts there: :func:`support_project_warm`), and rho_C, rho_D on the ray of the returned
+    point, so that :func:`law_alpha_warm` of it needs no search.  Same result as
+    :func:`law_point` up to rounding."""
+    if assoc:
+        wk[WARM_VALID] = 0.0
+        return set_project(dk, dp, dtab, doff, dn, x0, x1)
+    if dk == SET_SUPPORT:
+        y0, y1, inside, ka, tk, phi, rd = support_project_warm(dtab, doff, dn, x0, x1,
+                                                               int(wk[WARM_K]), wk[WARM_T])
+        wk[WARM_K] = ka
+        wk[WARM_T] = tk
+    else:
+        y0, y1, inside = set_project(dk, dp, dtab, doff, dn, x0, x1)
+        phi = math.atan2(y1, y0)
+        rd = set_radial(dk, dp, dtab, doff, dn, phi)
+    r = math.hypot(y0, y1)
+    if r == 0.0:
+        wk[WARM_VALID] = 0.0
+        return 0.0, 0.0, inside
+    rc = set_radial(ck, cp, ctab, coff, cn, phi)
+    k = r / rd
+    if k > 1.0:
+        k = 1.0
+    t = k * rd / (1.0 - k + k * rd / rc)
+    wk[WARM_RC] = rc
+    wk[WARM_RD] = rd
+    wk[WARM_VALID] = 1.0
+    return t * y0 / r, t * y1 / r, inside
+
+
+@njit(cache=True)
+def law_alpha_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1, wk):
+    """:func:`law_alpha` of the point last returned by :func:`law_point_warm` with the same
+    row ``wk`` (its radial functions kept there), else of any P."""
+    if assoc:
+        return 1.0
+    if wk[WARM_VALID] == 0.0:
+        return law_alpha(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1)
+    r = math.hypot(P0, P1)
+    return 1.0 / (r / wk[WARM_RD] - r / wk[WARM_RC] + 1.0)
 
 
 @njit(cache=True)

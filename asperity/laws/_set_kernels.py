@@ -179,8 +179,101 @@ def _visible_pred(tab, row, psi, x0, x1, psr):
 
 
 @njit(cache=True)
-def support_project(tab, off, n, x0, x1):
-    """Euclidean projection of x onto the convex set; (y0, y1, inside).
+def _project_interval(tab, off, n, x0, x1, ka, psr, t0, quick):
+    """The projection of an outside point x whose normal lies in the sample interval
+    [psi_ka, psi_ka+1] (a flat edge if they are equal): (y0, y1, t, phi, rr) with t the
+    normal's offset psi - psi_ka, phi the polar angle of y and rr = |y| (the radial function
+    of the set at phi).  Safeguarded Newton iteration on F(psi) = x.s_perp - h' from t0 if it
+    lies inside the interval (else from the linear interpolation of F); ``quick``: stop once a
+    Newton step is below 1e-8 rad (quadratic convergence: the next one would be ~1e-16)."""
+    kb = ka + 1
+    ra = off + _row(ka, n)
+    rb = off + _row(kb, n)
+    a = _psi_k(tab, off, n, ka)
+    d = _psi_k(tab, off, n, kb) - a
+    if d <= 0.0:                                        # flat edge with normal psi_a
+        c = tab[ra, 5]
+        s = tab[ra, 6]
+        v = x0 * c + x1 * s - tab[ra, 3]
+        y0 = x0 - v * c
+        y1 = x1 - v * s
+        return y0, y1, 0.0, math.atan2(y1, y0), math.hypot(y0, y1)
+    d0 = tab[ra, 2]
+    d1 = tab[rb, 2]
+    dd = (d1 - d0) / d
+    lnh0 = tab[ra, 1]
+    # initial guess: linear interpolation of F between the ends when both are visible
+    ca, sa, cb, sb = tab[ra, 5], tab[ra, 6], tab[rb, 5], tab[rb, 6]
+    Fa = -x0 * sa + x1 * ca - tab[ra, 4]
+    Fb = -x0 * sb + x1 * cb - tab[rb, 4]
+    t = 0.5 * d
+    if 0.0 < t0 < d:
+        t = t0
+    elif x0 * ca + x1 * sa > tab[ra, 3] and x0 * cb + x1 * sb > tab[rb, 3] and Fa > Fb:
+        t = d * Fa / (Fa - Fb)
+    tlo = 0.0
+    thi = d
+    h = 0.0
+    de = d0
+    psi = a
+    for _ in range(100):
+        psi = a + t
+        de = d0 + dd * t
+        h = math.exp(lnh0 + tan_integral(d0, d1, d, t))
+        c = math.cos(psi)
+        s = math.sin(psi)
+        xs = x0 * c + x1 * s
+        tde = math.tan(de)
+        F = -x0 * s + x1 * c - h * tde
+        vis = xs > h
+        if (F <= 0.0) if vis else (psi > psr):
+            thi = t
+        else:
+            tlo = t
+        tn = 0.5 * (tlo + thi)
+        newton = False
+        if vis:
+            t2 = tde * tde
+            dF = -xs - h * (t2 + (1.0 + t2) * dd)
+            if dF < 0.0:
+                if quick:                   # Halley: F'' from the same pieces
+                    d2F = -(F + h * tde) - h * tde * (t2 + (1.0 + t2) * dd * (3.0 + 2.0 * dd))
+                    den = 2.0 * dF * dF - F * d2F
+                    cand = t - 2.0 * F * dF / den if den > 0.0 else t - F / dF
+                else:
+                    cand = t - F / dF
+                if tlo < cand < thi:
+                    tn = cand
+                    newton = True
+        if quick and newton and abs(tn - t) <= 2e-6:
+            # Halley's error ~ step^3 (< 1e-17); h' = h tan(delta): h(tn) to third order
+            st = tn - t
+            t2 = tde * tde
+            h2 = t2 + (1.0 + t2) * dd
+            h3 = tde * (t2 + (1.0 + t2) * dd * (3.0 + 2.0 * dd))
+            h *= 1.0 + st * (tde + st * (0.5 * h2 + st * h3 / 6.0))
+            t = tn
+            psi = a + t
+            de = d0 + dd * t
+            break
+        if abs(tn - t) <= 4e-16 * (1.0 + abs(psi)) or thi - tlo <= 4e-16 * (1.0 + abs(psi)):
+            t = tn
+            psi = a + t
+            de = d0 + dd * t
+            h = math.exp(lnh0 + tan_integral(d0, d1, d, t))
+            break
+        t = tn
+    rr = h / math.cos(de)
+    phi = psi + de
+    return rr * math.cos(phi), rr * math.sin(phi), t, phi, rr
+
+
+@njit(cache=True)
+def support_project_full(tab, off, n, x0, x1):
+    """Euclidean projection of x onto the convex set with what the law needs beside it:
+    (y0, y1, inside, ka, t, phi, rr) -- ka the row of the sample interval of the normal
+    (-1 inside or on the boundary), t the normal's offset in it, phi the polar angle of y,
+    rr = |y| on the boundary (the radial function at phi; inside: rho(phi)).
 
     The projection of an outside point is the boundary point y(psi) = h s + h' s_perp whose
     normal psi solves F(psi) = x.s_perp(psi) - h'(psi) = 0 with x.s(psi) > h(psi).  On the
@@ -191,14 +284,15 @@ def support_project(tab, off, n, x0, x1):
     Newton iteration finishes inside it."""
     r = math.hypot(x0, x1)
     if r == 0.0:
-        return x0, x1, True
-    rho, psr = support_radial(tab, off, n, math.atan2(x1, x0))
+        return x0, x1, True, -1, 0.0, 0.0, support_radial(tab, off, n, 0.0)[0]
+    phi = math.atan2(x1, x0)
+    rho, psr = support_radial(tab, off, n, phi)
     if r <= rho:
-        return x0, x1, True
+        return x0, x1, True, -1, 0.0, phi, rho
     if r <= rho * (1.0 + 1e-14):
         # outside by rounding only: x is its own projection (on a flat edge the search
         # below would see x.s - h <= 0 at the edge's normal and jump to the edge's end)
-        return x0, x1, False
+        return x0, x1, False, -1, 0.0, phi, rho
     # window of samples with psi in (psr - pi, psr + pi): K in [klo, khi]
     base = 0
     while _psi_k(tab, off, n, base) > psr:
@@ -231,63 +325,56 @@ def support_project(tab, off, n, x0, x1):
             hi = mid
         else:
             lo = mid + 1
-    kb = lo
-    ka = kb - 1
+    ka = lo - 1
+    y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, psr, -1.0, False)
+    return y0, y1, False, _row(ka, n), t, phi, rr
+
+
+@njit(cache=True)
+def support_project(tab, off, n, x0, x1):
+    """Euclidean projection of x onto the convex set; (y0, y1, inside)
+    (see :func:`support_project_full`)."""
+    y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
+    return y0, y1, inside
+
+
+@njit(cache=True)
+def _bracket(tab, off, n, ka, x0, x1):
+    """Where the projection's normal lies against the sample interval ka (both ends
+    visible with a margin): 0 inside it, -1 before, +1 after, 2 unknown (an end not
+    clearly visible)."""
     ra = off + _row(ka, n)
-    rb = off + _row(kb, n)
-    a = _psi_k(tab, off, n, ka)
-    d = _psi_k(tab, off, n, kb) - a
-    if d <= 0.0:                                        # flat edge with normal psi_a
-        c = tab[ra, 5]
-        s = tab[ra, 6]
-        v = x0 * c + x1 * s - tab[ra, 3]
-        return x0 - v * c, x1 - v * s, False
-    d0 = tab[ra, 2]
-    d1 = tab[rb, 2]
-    dd = (d1 - d0) / d
-    lnh0 = tab[ra, 1]
-    # initial guess: linear interpolation of F between the ends when both are visible
-    ca, sa, cb, sb = tab[ra, 5], tab[ra, 6], tab[rb, 5], tab[rb, 6]
-    Fa = -x0 * sa + x1 * ca - tab[ra, 4]
-    Fb = -x0 * sb + x1 * cb - tab[rb, 4]
-    t = 0.5 * d
-    if x0 * ca + x1 * sa > tab[ra, 3] and x0 * cb + x1 * sb > tab[rb, 3] and Fa > Fb:
-        t = d * Fa / (Fa - Fb)
-    tlo = 0.0
-    thi = d
-    h = 0.0
-    de = d0
-    psi = a
-    for _ in range(100):
-        psi = a + t
-        de = d0 + dd * t
-        h = math.exp(lnh0 + tan_integral(d0, d1, d, t))
-        c = math.cos(psi)
-        s = math.sin(psi)
-        xs = x0 * c + x1 * s
-        tde = math.tan(de)
-        F = -x0 * s + x1 * c - h * tde
-        vis = xs > h
-        if (F <= 0.0) if vis else (psi > psr):
-            thi = t
-        else:
-            tlo = t
-        tn = 0.5 * (tlo + thi)
-        if vis:
-            dF = -xs - h * (tde * tde + (1.0 + tde * tde) * dd)
-            if dF < 0.0:
-                cand = t - F / dF
-                if tlo < cand < thi:
-                    tn = cand
-        if abs(tn - t) <= 4e-16 * (1.0 + abs(psi)) or thi - tlo <= 4e-16 * (1.0 + abs(psi)):
-            t = tn
-            psi = a + t
-            de = d0 + dd * t
-            h = math.exp(lnh0 + tan_integral(d0, d1, d, t))
-            break
-        t = tn
-    rr = h / math.cos(de)
-    return rr * math.cos(psi + de), rr * math.sin(psi + de), False
+    rb = off + _row(ka + 1, n)
+    va = x0 * tab[ra, 5] + x1 * tab[ra, 6] - tab[ra, 3]
+    vb = x0 * tab[rb, 5] + x1 * tab[rb, 6] - tab[rb, 3]
+    if va <= 1e-12 * tab[ra, 3] or vb <= 1e-12 * tab[rb, 3]:
+        return 2
+    if -x0 * tab[ra, 6] + x1 * tab[ra, 5] - tab[ra, 4] <= 0.0:
+        return -1
+    if -x0 * tab[rb, 6] + x1 * tab[rb, 5] - tab[rb, 4] > 0.0:
+        return 1
+    return 0
+
+
+@njit(cache=True)
+def support_project_warm(tab, off, n, x0, x1, k0, t0):
+    """:func:`support_project_full` started from the sample interval k0 and offset t0 of a
+    nearby earlier projection (a time step's): when x lies outside and the normal of its
+    projection is in interval k0 or up to 3 intervals away (told by the signs of F at the
+    ends, both clearly visible -- then x is outside and every normal in between is visible),
+    the searches are skipped and Newton starts from t0; otherwise the full search."""
+    if 0 <= k0 < n:
+        ka = k0
+        for _ in range(4):
+            w = _bracket(tab, off, n, ka, x0, x1)
+            if w == 2:
+                break
+            if w == 0:
+                tt = t0 if ka == k0 else -1.0
+                y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, 0.0, tt, True)
+                return y0, y1, False, ka, t, phi, rr
+            ka = _row(ka + w, n)
+    return support_project_full(tab, off, n, x0, x1)
 
 
 @njit(cache=True)
