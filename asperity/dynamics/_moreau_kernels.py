@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..laws._law_kernels import law_alpha_warm, law_point_warm
+from ..laws._law_kernels import WARM_A1, WARM_A2, WARM_NA, law_alpha_warm, law_point_warm
 from ..laws._set_kernels import TWO_PI
 
 STATUS_OK = 0
@@ -160,9 +160,15 @@ def integrate(q, u, P, warm, minv, offsets, lam_n, assoc, kinds, pars, tabs, off
                 p0 = P[i, 0] / ln
                 p1 = P[i, 1] / ln
                 wk = warm[i]
-                al = law_alpha_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
-                                    ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
-                                    ns[i, 1], p0, p1, wk)
+                al = -1.0
+                if it == 1 and wk[WARM_NA] >= 2.0:
+                    # first guess of alpha: extrapolated from the last two steps' (the
+                    # fixed point is the same; the guess saves an iteration as it turns)
+                    al = 2.0 * wk[WARM_A1] - wk[WARM_A2]
+                if not 0.0 < al <= 1.0:
+                    al = law_alpha_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
+                                        ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
+                                        ns[i, 1], p0, p1, wk)
                 z0 = al * (p0 + r * g0 / ln)
                 z1 = al * (p1 + r * g1 / ln)
                 a, b, ins = law_point_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs,
@@ -180,6 +186,15 @@ def integrate(q, u, P, warm, minv, offsets, lam_n, assoc, kinds, pars, tabs, off
             if res <= tol:
                 break
         it_total += it
+        for i in range(nc):
+            wk = warm[i]
+            ln = lam_n[i]
+            wk[WARM_A2] = wk[WARM_A1]
+            wk[WARM_A1] = law_alpha_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
+                                         ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
+                                         ns[i, 1], P[i, 0] / ln, P[i, 1] / ln, wk)
+            if wk[WARM_NA] < 2.0:
+                wk[WARM_NA] += 1.0
         if it > max_it:
             max_it = it
         if res > info[INFO_MAX_RESIDUAL]:

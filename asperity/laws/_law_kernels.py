@@ -12,7 +12,9 @@ from numba import njit
 from ._set_kernels import SET_SUPPORT, set_project, set_radial, support_project_warm
 
 #: columns of a contact's warm-start row (see :func:`law_point_warm`)
-WARM_K, WARM_T, WARM_RC, WARM_RD, WARM_VALID, WARM_SIZE = 0, 1, 2, 3, 4, 5
+WARM_K, WARM_T, WARM_RC, WARM_RD, WARM_VALID = 0, 1, 2, 3, 4
+#: a solver's own columns: alpha at the end of the last two steps and how many are kept
+WARM_A1, WARM_A2, WARM_NA, WARM_SIZE = 5, 6, 7, 8
 
 
 @njit(cache=True)
