@@ -9,12 +9,15 @@ import math
 import numpy as np
 from numba import njit
 
-from ._set_kernels import SET_SUPPORT, set_project, set_radial, support_project_warm
+from ._set_kernels import (PW_K, PW_SIZE, SET_STAR, SET_SUPPORT, set_project, set_radial,
+                           star_radial_dir, support_project_warm)
 
-#: columns of a contact's warm-start row (see :func:`law_point_warm`)
-WARM_K, WARM_T, WARM_RC, WARM_RD, WARM_VALID = 0, 1, 2, 3, 4
+#: columns of a contact's warm-start row (see :func:`law_point_warm`): the projection's
+#: (PW_*), rho_C and rho_D on the ray of the last point, whether they are valid, the star
+#: polygon's edge last hit
+WARM_RC, WARM_RD, WARM_VALID, WARM_EDGE = PW_SIZE, PW_SIZE + 1, PW_SIZE + 2, PW_SIZE + 3
 #: a solver's own columns: alpha at the end of the last two steps and how many are kept
-WARM_A1, WARM_A2, WARM_NA, WARM_SIZE = 5, 6, 7, 8
+WARM_A1, WARM_A2, WARM_NA, WARM_SIZE = PW_SIZE + 4, PW_SIZE + 5, PW_SIZE + 6, PW_SIZE + 7
 
 
 @njit(cache=True)
@@ -58,7 +61,8 @@ def new_warm(nc):
     """(nc, WARM_SIZE) warm-start rows of nc contacts before their first step."""
     wk = np.zeros((nc, WARM_SIZE))
     for i in range(nc):
-        wk[i, WARM_K] = -1.0
+        wk[i, PW_K] = -1.0
+        wk[i, WARM_EDGE] = -1.0
     return wk
 
 
@@ -66,27 +70,33 @@ def new_warm(nc):
 def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1, wk):
     """:func:`law_point` for a solver that calls it again and again with nearby arguments
     (a fixed-point iteration, time steps).  ``wk`` (WARM_SIZE,) is the contact's row: the
-    sample interval and offset of the last projection onto a support set D (the next one
-    starts there: :func:`support_project_warm`), and rho_C, rho_D on the ray of the returned
-    point, so that :func:`law_alpha_warm` of it needs no search.  Same result as
-    :func:`law_point` up to rounding."""
+    warm start of the projection onto a support set D (:func:`support_project_warm`) and of
+    the star polygon's edge (:func:`star_radial_dir`), and rho_C, rho_D on the ray of the
+    returned point, so that :func:`law_alpha_warm` of it needs no search.  Same result as
+    :func:`law_point` to ~1e-15."""
     if assoc:
         wk[WARM_VALID] = 0.0
         return set_project(dk, dp, dtab, doff, dn, x0, x1)
     if dk == SET_SUPPORT:
-        y0, y1, inside, ka, tk, phi, rd = support_project_warm(dtab, doff, dn, x0, x1,
-                                                               int(wk[WARM_K]), wk[WARM_T])
-        wk[WARM_K] = ka
-        wk[WARM_T] = tk
+        y0, y1, inside, rd, ux, uy = support_project_warm(dtab, doff, dn, x0, x1, wk)
+        r = math.hypot(y0, y1)
+        if r == 0.0:
+            wk[WARM_VALID] = 0.0
+            return 0.0, 0.0, inside
     else:
         y0, y1, inside = set_project(dk, dp, dtab, doff, dn, x0, x1)
-        phi = math.atan2(y1, y0)
-        rd = set_radial(dk, dp, dtab, doff, dn, phi)
-    r = math.hypot(y0, y1)
-    if r == 0.0:
-        wk[WARM_VALID] = 0.0
-        return 0.0, 0.0, inside
-    rc = set_radial(ck, cp, ctab, coff, cn, phi)
+        r = math.hypot(y0, y1)
+        if r == 0.0:
+            wk[WARM_VALID] = 0.0
+            return 0.0, 0.0, inside
+        ux = y0 / r
+        uy = y1 / r
+        rd = set_radial(dk, dp, dtab, doff, dn, math.atan2(y1, y0))
+    if ck == SET_STAR:
+        rc, edge = star_radial_dir(ctab, coff, cn, ux, uy, int(wk[WARM_EDGE]))
+        wk[WARM_EDGE] = edge
+    else:
+        rc = set_radial(ck, cp, ctab, coff, cn, math.atan2(uy, ux))
     k = r / rd
     if k > 1.0:
         k = 1.0
@@ -94,7 +104,7 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
     wk[WARM_RC] = rc
     wk[WARM_RD] = rd
     wk[WARM_VALID] = 1.0
-    return t * y0 / r, t * y1 / r, inside
+    return t * ux, t * uy, inside
 
 
 @njit(cache=True)

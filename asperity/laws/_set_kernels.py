@@ -179,13 +179,12 @@ def _visible_pred(tab, row, psi, x0, x1, psr):
 
 
 @njit(cache=True)
-def _project_interval(tab, off, n, x0, x1, ka, psr, t0, quick):
+def _project_interval(tab, off, n, x0, x1, ka, psr):
     """The projection of an outside point x whose normal lies in the sample interval
     [psi_ka, psi_ka+1] (a flat edge if they are equal): (y0, y1, t, phi, rr) with t the
     normal's offset psi - psi_ka, phi the polar angle of y and rr = |y| (the radial function
-    of the set at phi).  Safeguarded Newton iteration on F(psi) = x.s_perp - h' from t0 if it
-    lies inside the interval (else from the linear interpolation of F); ``quick``: stop once a
-    Newton step is below 1e-8 rad (quadratic convergence: the next one would be ~1e-16)."""
+    of the set at phi).  Safeguarded Newton iteration on F(psi) = x.s_perp - h' from the
+    linear interpolation of F."""
     kb = ka + 1
     ra = off + _row(ka, n)
     rb = off + _row(kb, n)
@@ -207,9 +206,7 @@ def _project_interval(tab, off, n, x0, x1, ka, psr, t0, quick):
     Fa = -x0 * sa + x1 * ca - tab[ra, 4]
     Fb = -x0 * sb + x1 * cb - tab[rb, 4]
     t = 0.5 * d
-    if 0.0 < t0 < d:
-        t = t0
-    elif x0 * ca + x1 * sa > tab[ra, 3] and x0 * cb + x1 * sb > tab[rb, 3] and Fa > Fb:
+    if x0 * ca + x1 * sa > tab[ra, 3] and x0 * cb + x1 * sb > tab[rb, 3] and Fa > Fb:
         t = d * Fa / (Fa - Fb)
     tlo = 0.0
     thi = d
@@ -231,31 +228,12 @@ def _project_interval(tab, off, n, x0, x1, ka, psr, t0, quick):
         else:
             tlo = t
         tn = 0.5 * (tlo + thi)
-        newton = False
         if vis:
-            t2 = tde * tde
-            dF = -xs - h * (t2 + (1.0 + t2) * dd)
+            dF = -xs - h * (tde * tde + (1.0 + tde * tde) * dd)
             if dF < 0.0:
-                if quick:                   # Halley: F'' from the same pieces
-                    d2F = -(F + h * tde) - h * tde * (t2 + (1.0 + t2) * dd * (3.0 + 2.0 * dd))
-                    den = 2.0 * dF * dF - F * d2F
-                    cand = t - 2.0 * F * dF / den if den > 0.0 else t - F / dF
-                else:
-                    cand = t - F / dF
+                cand = t - F / dF
                 if tlo < cand < thi:
                     tn = cand
-                    newton = True
-        if quick and newton and abs(tn - t) <= 2e-6:
-            # Halley's error ~ step^3 (< 1e-17); h' = h tan(delta): h(tn) to third order
-            st = tn - t
-            t2 = tde * tde
-            h2 = t2 + (1.0 + t2) * dd
-            h3 = tde * (t2 + (1.0 + t2) * dd * (3.0 + 2.0 * dd))
-            h *= 1.0 + st * (tde + st * (0.5 * h2 + st * h3 / 6.0))
-            t = tn
-            psi = a + t
-            de = d0 + dd * t
-            break
         if abs(tn - t) <= 4e-16 * (1.0 + abs(psi)) or thi - tlo <= 4e-16 * (1.0 + abs(psi)):
             t = tn
             psi = a + t
@@ -326,7 +304,7 @@ def support_project_full(tab, off, n, x0, x1):
         else:
             lo = mid + 1
     ka = lo - 1
-    y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, psr, -1.0, False)
+    y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, psr)
     return y0, y1, False, _row(ka, n), t, phi, rr
 
 
@@ -336,6 +314,105 @@ def support_project(tab, off, n, x0, x1):
     (see :func:`support_project_full`)."""
     y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
     return y0, y1, inside
+
+
+#: a warm start of the projection onto a support set (columns of a caller's row): the sample
+#: interval, and the offset t in it with cos psi, sin psi, h, tan delta evaluated there
+#: (h = 0: nothing evaluated yet)
+PW_K, PW_T, PW_C, PW_S, PW_H, PW_TDE, PW_SIZE = 0, 1, 2, 3, 4, 5, 6
+#: largest Halley step finished by Taylor series from the kept point (its error ~ step^3)
+PW_STEP = 1e-5
+
+
+@njit(cache=True)
+def _eval_point(tab, off, n, ka, t, wk):
+    """Exact boundary data at offset t of the sample interval ka, kept in wk."""
+    ra = off + _row(ka, n)
+    rb = off + _row(ka + 1, n)
+    a = _psi_k(tab, off, n, ka)
+    d = _psi_k(tab, off, n, ka + 1) - a
+    d0 = tab[ra, 2]
+    d1 = tab[rb, 2]
+    psi = a + t
+    wk[PW_K] = _row(ka, n)
+    wk[PW_T] = t
+    wk[PW_C] = math.cos(psi)
+    wk[PW_S] = math.sin(psi)
+    wk[PW_H] = math.exp(tab[ra, 1] + tan_integral(d0, d1, d, t))
+    wk[PW_TDE] = math.tan(d0 + (d1 - d0) * (t / d))
+
+
+@njit(cache=True)
+def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
+    """The projection of x when its normal lies in the smooth sample interval ka and x sees
+    the whole interval (both ends visible): Halley's iteration on F(psi) = x.s_perp - h'
+    from the point kept in wk (if in this interval; else from the linear interpolation of F),
+    each new point evaluated exactly and kept; a step below PW_STEP is finished by Taylor
+    series from the kept point (h, tan delta, cos psi, sin psi to third order: errors
+    ~1e-16), so a projection near the last costs no transcendental function.
+    Returns (y0, y1, rr, ux, uy): y, |y| and y / |y|."""
+    ra = off + _row(ka, n)
+    rb = off + _row(ka + 1, n)
+    a = _psi_k(tab, off, n, ka)
+    d = _psi_k(tab, off, n, ka + 1) - a
+    dd = (tab[rb, 2] - tab[ra, 2]) / d
+    tlo = 0.0
+    thi = d
+    if not (int(wk[PW_K]) == _row(ka, n) and wk[PW_H] > 0.0 and 0.0 < wk[PW_T] < d):
+        ca, sa, cb, sb = tab[ra, 5], tab[ra, 6], tab[rb, 5], tab[rb, 6]
+        Fa = -x0 * sa + x1 * ca - tab[ra, 4]
+        Fb = -x0 * sb + x1 * cb - tab[rb, 4]
+        t = d * Fa / (Fa - Fb) if Fa > Fb else 0.5 * d
+        if not 0.0 < t < d:
+            t = 0.5 * d
+        _eval_point(tab, off, n, ka, t, wk)
+    t = wk[PW_T]
+    c = wk[PW_C]
+    s = wk[PW_S]
+    h = wk[PW_H]
+    T = wk[PW_TDE]
+    for _ in range(100):
+        xs = x0 * c + x1 * s
+        F = -x0 * s + x1 * c - h * T
+        if F <= 0.0:
+            thi = t
+        else:
+            tlo = t
+        T2 = T * T
+        h2 = T2 + (1.0 + T2) * dd                              # h'' / h
+        h3 = T * (T2 + (1.0 + T2) * dd * (3.0 + 2.0 * dd))     # third derivative / h
+        dF = -xs - h * h2
+        tn = 0.5 * (tlo + thi)
+        halley = False
+        if dF < 0.0:
+            d2F = -(F + h * T) - h * h3
+            den = 2.0 * dF * dF - F * d2F
+            cand = t - 2.0 * F * dF / den if den > 0.0 else t - F / dF
+            if tlo < cand < thi:
+                tn = cand
+                halley = True
+        st = tn - t
+        dT = dd * st
+        if halley and abs(st) <= PW_STEP and abs(dT) <= 1e-4:
+            h = h * (1.0 + st * (T + st * (0.5 * h2 + st * h3 / 6.0)))
+            T = T + (1.0 + T2) * dT * (1.0 + T * dT + (1.0 + 3.0 * T2) * dT * dT / 3.0)
+            q = st * st
+            cs = 1.0 - 0.5 * q * (1.0 - q / 12.0)
+            sn = st * (1.0 - q / 6.0)
+            c, s = c * cs - s * sn, s * cs + c * sn
+            break
+        if abs(st) <= 4e-16 * (1.0 + abs(a + t)) or thi - tlo <= 4e-16 * (1.0 + abs(a + t)):
+            _eval_point(tab, off, n, ka, tn, wk)
+            c, s, h, T = wk[PW_C], wk[PW_S], wk[PW_H], wk[PW_TDE]
+            break
+        t = tn
+        _eval_point(tab, off, n, ka, t, wk)
+        c, s, h, T = wk[PW_C], wk[PW_S], wk[PW_H], wk[PW_TDE]
+    hp = h * T
+    y0 = h * c - hp * s
+    y1 = h * s + hp * c
+    rr = h * math.sqrt(1.0 + T * T)
+    return y0, y1, rr, y0 / rr, y1 / rr
 
 
 @njit(cache=True)
@@ -357,12 +434,16 @@ def _bracket(tab, off, n, ka, x0, x1):
 
 
 @njit(cache=True)
-def support_project_warm(tab, off, n, x0, x1, k0, t0):
-    """:func:`support_project_full` started from the sample interval k0 and offset t0 of a
-    nearby earlier projection (a time step's): when x lies outside and the normal of its
-    projection is in interval k0 or up to 3 intervals away (told by the signs of F at the
-    ends, both clearly visible -- then x is outside and every normal in between is visible),
-    the searches are skipped and Newton starts from t0; otherwise the full search."""
+def support_project_warm(tab, off, n, x0, x1, wk):
+    """:func:`support_project` for arguments near the last one (time steps, iterations):
+    (y0, y1, inside, rr, ux, uy) with rr = |y| on the boundary (inside: rho at x's angle)
+    and u = y / |y|.  ``wk`` (at least PW_SIZE,) keeps the warm start (PW_* columns; PW_K
+    = -1 before the first call).  When x lies outside and the normal of its projection is
+    in the kept interval or up to 3 intervals away (told by the signs of F at the ends, both
+    clearly visible -- then x is outside and every normal in between is visible), the
+    searches are skipped (:func:`_project_interval_warm`); otherwise the full search.
+    Same projection as :func:`support_project` to ~1e-15."""
+    k0 = int(wk[PW_K])
     if 0 <= k0 < n:
         ka = k0
         for _ in range(4):
@@ -370,11 +451,54 @@ def support_project_warm(tab, off, n, x0, x1, k0, t0):
             if w == 2:
                 break
             if w == 0:
-                tt = t0 if ka == k0 else -1.0
-                y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, 0.0, tt, True)
-                return y0, y1, False, ka, t, phi, rr
+                if _psi_k(tab, off, n, ka + 1) <= _psi_k(tab, off, n, ka):
+                    break                               # a flat edge: the full path
+                y0, y1, rr, ux, uy = _project_interval_warm(tab, off, n, x0, x1, ka, wk)
+                return y0, y1, False, rr, ux, uy
             ka = _row(ka + w, n)
-    return support_project_full(tab, off, n, x0, x1)
+    y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
+    wk[PW_K] = ka
+    wk[PW_T] = t
+    wk[PW_H] = 0.0
+    r = math.hypot(y0, y1)
+    if r == 0.0:
+        return y0, y1, inside, rr, 1.0, 0.0
+    return y0, y1, inside, rr, y0 / r, y1 / r
+
+
+@njit(cache=True)
+def star_radial_dir(tab, off, n, ux, uy, k0):
+    """(rho, k): radial function of the star-shaped polygon along the unit vector u and the
+    edge k (from vertex k to k + 1) hit, found from edge k0 by a walk of up to 3 edges
+    (cross products, no angle) or by :func:`star_radial`'s search."""
+    k = k0
+    if 0 <= k < n:
+        for _ in range(4):
+            k1 = k + 1 if k + 1 < n else 0
+            v0x = tab[off + k, 0]
+            v0y = tab[off + k, 1]
+            v1x = tab[off + k1, 0]
+            v1y = tab[off + k1, 1]
+            if v0x * uy - v0y * ux < 0.0:             # u before vertex k
+                k = k - 1 if k > 0 else n - 1
+            elif ux * v1y - uy * v1x <= 0.0:          # u at or after vertex k + 1
+                k = k1
+            else:
+                dx = v1x - v0x
+                dy = v1y - v0y
+                return (v0x * dy - v0y * dx) / (ux * dy - uy * dx), k
+    phi = math.atan2(uy, ux)
+    a0 = tab[off, 2]
+    pm = a0 + (phi - a0) % TWO_PI
+    lo = 0
+    hi = n - 1
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if tab[off + mid, 2] <= pm:
+            lo = mid
+        else:
+            hi = mid - 1
+    return star_radial(tab, off, n, phi), lo
 
 
 @njit(cache=True)
