@@ -66,7 +66,7 @@ def new_warm(nc):
     return wk
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1, wk):
     """:func:`law_point` for a solver that calls it again and again with nearby arguments
     (a fixed-point iteration, time steps).  ``wk`` (WARM_SIZE,) is the contact's row: the
@@ -107,7 +107,7 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
     return t * ux, t * uy, inside
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def law_alpha_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1, wk):
     """:func:`law_alpha` of the point last returned by :func:`law_point_warm` with the same
     row ``wk`` (its radial functions kept there), else of any P."""

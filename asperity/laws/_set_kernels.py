@@ -324,7 +324,7 @@ PW_K, PW_T, PW_C, PW_S, PW_H, PW_TDE, PW_SIZE = 0, 1, 2, 3, 4, 5, 6
 PW_STEP = 1e-5
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _eval_point(tab, off, n, ka, t, wk):
     """Exact boundary data at offset t of the sample interval ka, kept in wk."""
     ra = off + _row(ka, n)
@@ -342,7 +342,7 @@ def _eval_point(tab, off, n, ka, t, wk):
     wk[PW_TDE] = math.tan(d0 + (d1 - d0) * (t / d))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
     """The projection of x when its normal lies in the smooth sample interval ka and x sees
     the whole interval (both ends visible): Halley's iteration on F(psi) = x.s_perp - h'
@@ -415,7 +415,7 @@ def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
     return y0, y1, rr, y0 / rr, y1 / rr
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _bracket(tab, off, n, ka, x0, x1):
     """Where the projection's normal lies against the sample interval ka (both ends
     visible with a margin): 0 inside it, -1 before, +1 after, 2 unknown (an end not
@@ -433,7 +433,7 @@ def _bracket(tab, off, n, ka, x0, x1):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def support_project_warm(tab, off, n, x0, x1, wk):
     """:func:`support_project` for arguments near the last one (time steps, iterations):
     (y0, y1, inside, rr, ux, uy) with rr = |y| on the boundary (inside: rho at x's angle)
@@ -466,7 +466,7 @@ def support_project_warm(tab, off, n, x0, x1, wk):
     return y0, y1, inside, rr, y0 / r, y1 / r
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def star_radial_dir(tab, off, n, ux, uy, k0):
     """(rho, k): radial function of the star-shaped polygon along the unit vector u and the
     edge k (from vertex k to k + 1) hit, found from edge k0 by a walk of up to 3 edges
