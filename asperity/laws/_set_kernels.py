@@ -318,23 +318,31 @@ def support_project(tab, off, n, x0, x1):
 
 #: a warm start of the projection onto a support set (columns of a caller's row): the sample
 #: interval, and the offset t in it with cos psi, sin psi, h, tan delta evaluated there
-#: (h = 0: nothing evaluated yet)
-PW_K, PW_T, PW_C, PW_S, PW_H, PW_TDE, PW_SIZE = 0, 1, 2, 3, 4, 5, 6
-#: largest Halley step finished by Taylor series from the kept point (its error ~ step^3)
-PW_STEP = 1e-5
+#: (h = 0: nothing evaluated yet), and the offset of the last root
+PW_K, PW_T, PW_C, PW_S, PW_H, PW_TDE, PW_R, PW_SIZE = 0, 1, 2, 3, 4, 5, 6, 7
+_SIXTH, _THIRD, _12TH, _20TH, _24TH = 1.0 / 6.0, 1.0 / 3.0, 1.0 / 12.0, 1.0 / 20.0, 1.0 / 24.0
+#: how far from the kept point (rad) the boundary data come from Taylor series
+PW_STEP = 1e-4
+
+
+@njit(cache=True, inline="always")
+def _ends(tab, off, n, ka):
+    """Rows and psi of both ends of the sample interval ka in [0, n) (no division)."""
+    kb = ka + 1
+    if kb < n:
+        return off + ka, off + kb, tab[off + ka, 0], tab[off + kb, 0]
+    return off + ka, off, tab[off + ka, 0], tab[off, 0] + TWO_PI
 
 
 @njit(cache=True, error_model="numpy")
 def _eval_point(tab, off, n, ka, t, wk):
     """Exact boundary data at offset t of the sample interval ka, kept in wk."""
-    ra = off + _row(ka, n)
-    rb = off + _row(ka + 1, n)
-    a = _psi_k(tab, off, n, ka)
-    d = _psi_k(tab, off, n, ka + 1) - a
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    d = b - a
     d0 = tab[ra, 2]
     d1 = tab[rb, 2]
     psi = a + t
-    wk[PW_K] = _row(ka, n)
+    wk[PW_K] = ka
     wk[PW_T] = t
     wk[PW_C] = math.cos(psi)
     wk[PW_S] = math.sin(psi)
@@ -342,23 +350,48 @@ def _eval_point(tab, off, n, ka, t, wk):
     wk[PW_TDE] = math.tan(d0 + (d1 - d0) * (t / d))
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _taylor(wk, dd, st):
+    """(cos psi, sin psi, h, tan delta) at offset st from the anchor kept in wk, by their
+    Taylor series there (h to fourth order, tan delta to third, cos and sin to fifth)."""
+    Ta = wk[PW_TDE]
+    T2 = Ta * Ta
+    k = dd * (3.0 + 2.0 * dd)
+    h2 = T2 + (1.0 + T2) * dd                               # h'' / h at the anchor
+    h3 = Ta * (T2 + (1.0 + T2) * k)                         # h''' / h
+    h4 = Ta * h3 + (1.0 + T2) * dd * (3.0 * T2 + k * (1.0 + 3.0 * T2))
+    h = wk[PW_H] * (1.0 + st * (Ta + st * (0.5 * h2 + st * (_SIXTH * h3
+                                                            + st * _24TH * h4))))
+    dT = dd * st
+    T = Ta + (1.0 + T2) * dT * (1.0 + Ta * dT + (1.0 + 3.0 * T2) * dT * dT * _THIRD)
+    q = st * st
+    cs = 1.0 - 0.5 * q * (1.0 - q * _12TH)
+    sn = st * (1.0 - q * _SIXTH * (1.0 - q * _20TH))
+    return wk[PW_C] * cs - wk[PW_S] * sn, wk[PW_S] * cs + wk[PW_C] * sn, h, T
+
+
 @njit(cache=True, error_model="numpy")
 def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
     """The projection of x when its normal lies in the smooth sample interval ka and x sees
     the whole interval (both ends visible): Halley's iteration on F(psi) = x.s_perp - h'
-    from the point kept in wk (if in this interval; else from the linear interpolation of F),
-    each new point evaluated exactly and kept; a step below PW_STEP is finished by Taylor
-    series from the kept point (h, tan delta, cos psi, sin psi to third order: errors
-    ~1e-16), so a projection near the last costs no transcendental function.
-    Returns (y0, y1, rr, ux, uy): y, |y| and y / |y|."""
-    ra = off + _row(ka, n)
-    rb = off + _row(ka + 1, n)
-    a = _psi_k(tab, off, n, ka)
-    d = _psi_k(tab, off, n, ka + 1) - a
+    from the last root kept in wk (if in this interval; else from the linear interpolation
+    of F).  Within PW_STEP of the anchor kept in wk (an exactly evaluated point; and with the
+    change of delta below PW_STEP) h, tan delta, cos psi and sin psi come from their Taylor
+    series at the anchor (relative errors ~1e-16), farther away from an exact evaluation that
+    becomes the anchor; so a projection near the last costs no transcendental function.
+    Halley's error is ~K step^3 (K ~ 1 + (d delta / d psi)^2): a step with K step^3 < 1e-17
+    is the last.  Returns (y0, y1, rr, ux, uy): y, |y| and y / |y|."""
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    d = b - a
     dd = (tab[rb, 2] - tab[ra, 2]) / d
+    kk = 1.0 + dd * dd
     tlo = 0.0
     thi = d
-    if not (int(wk[PW_K]) == _row(ka, n) and wk[PW_H] > 0.0 and 0.0 < wk[PW_T] < d):
+    if int(wk[PW_K]) == ka and wk[PW_H] > 0.0 and 0.0 < wk[PW_T] < d:
+        t = wk[PW_R]
+        if not 0.0 < t < d:
+            t = wk[PW_T]
+    else:
         ca, sa, cb, sb = tab[ra, 5], tab[ra, 6], tab[rb, 5], tab[rb, 6]
         Fa = -x0 * sa + x1 * ca - tab[ra, 4]
         Fb = -x0 * sb + x1 * cb - tab[rb, 4]
@@ -366,12 +399,20 @@ def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
         if not 0.0 < t < d:
             t = 0.5 * d
         _eval_point(tab, off, n, ka, t, wk)
-    t = wk[PW_T]
-    c = wk[PW_C]
-    s = wk[PW_S]
-    h = wk[PW_H]
-    T = wk[PW_TDE]
+    ta = wk[PW_T]
+    c = s = h = T = 0.0
+    last = False
     for _ in range(100):
+        # the boundary data at t: Taylor series at the anchor, or exact (a new anchor)
+        st = t - ta
+        if abs(st) <= PW_STEP and abs(dd * st) <= PW_STEP:
+            c, s, h, T = _taylor(wk, dd, st)
+        else:
+            _eval_point(tab, off, n, ka, t, wk)
+            ta = t
+            c, s, h, T = wk[PW_C], wk[PW_S], wk[PW_H], wk[PW_TDE]
+        if last:
+            break
         xs = x0 * c + x1 * s
         F = -x0 * s + x1 * c - h * T
         if F <= 0.0:
@@ -379,35 +420,23 @@ def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
         else:
             tlo = t
         T2 = T * T
-        h2 = T2 + (1.0 + T2) * dd                              # h'' / h
-        h3 = T * (T2 + (1.0 + T2) * dd * (3.0 + 2.0 * dd))     # third derivative / h
-        dF = -xs - h * h2
+        dF = -xs - h * (T2 + (1.0 + T2) * dd)
         tn = 0.5 * (tlo + thi)
         halley = False
         if dF < 0.0:
-            d2F = -(F + h * T) - h * h3
+            d2F = -(F + h * T) - h * T * (T2 + (1.0 + T2) * dd * (3.0 + 2.0 * dd))
             den = 2.0 * dF * dF - F * d2F
             cand = t - 2.0 * F * dF / den if den > 0.0 else t - F / dF
             if tlo < cand < thi:
                 tn = cand
-                halley = True
+                halley = den > 0.0
         st = tn - t
-        dT = dd * st
-        if halley and abs(st) <= PW_STEP and abs(dT) <= 1e-4:
-            h = h * (1.0 + st * (T + st * (0.5 * h2 + st * h3 / 6.0)))
-            T = T + (1.0 + T2) * dT * (1.0 + T * dT + (1.0 + 3.0 * T2) * dT * dT / 3.0)
-            q = st * st
-            cs = 1.0 - 0.5 * q * (1.0 - q / 12.0)
-            sn = st * (1.0 - q / 6.0)
-            c, s = c * cs - s * sn, s * cs + c * sn
-            break
         if abs(st) <= 4e-16 * (1.0 + abs(a + t)) or thi - tlo <= 4e-16 * (1.0 + abs(a + t)):
-            _eval_point(tab, off, n, ka, tn, wk)
-            c, s, h, T = wk[PW_C], wk[PW_S], wk[PW_H], wk[PW_TDE]
             break
+        if halley and kk * st * st * abs(st) <= 1e-17:
+            last = True                      # tn is the root: its boundary data, then stop
         t = tn
-        _eval_point(tab, off, n, ka, t, wk)
-        c, s, h, T = wk[PW_C], wk[PW_S], wk[PW_H], wk[PW_TDE]
+    wk[PW_R] = t
     hp = h * T
     y0 = h * c - hp * s
     y1 = h * s + hp * c
@@ -420,8 +449,7 @@ def _bracket(tab, off, n, ka, x0, x1):
     """Where the projection's normal lies against the sample interval ka (both ends
     visible with a margin): 0 inside it, -1 before, +1 after, 2 unknown (an end not
     clearly visible)."""
-    ra = off + _row(ka, n)
-    rb = off + _row(ka + 1, n)
+    ra, rb, a, b = _ends(tab, off, n, ka)
     va = x0 * tab[ra, 5] + x1 * tab[ra, 6] - tab[ra, 3]
     vb = x0 * tab[rb, 5] + x1 * tab[rb, 6] - tab[rb, 3]
     if va <= 1e-12 * tab[ra, 3] or vb <= 1e-12 * tab[rb, 3]:
@@ -451,11 +479,16 @@ def support_project_warm(tab, off, n, x0, x1, wk):
             if w == 2:
                 break
             if w == 0:
-                if _psi_k(tab, off, n, ka + 1) <= _psi_k(tab, off, n, ka):
+                ra, rb, a, b = _ends(tab, off, n, ka)
+                if b <= a:
                     break                               # a flat edge: the full path
                 y0, y1, rr, ux, uy = _project_interval_warm(tab, off, n, x0, x1, ka, wk)
                 return y0, y1, False, rr, ux, uy
-            ka = _row(ka + w, n)
+            ka += w
+            if ka < 0:
+                ka = n - 1
+            elif ka >= n:
+                ka = 0
     y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
     wk[PW_K] = ka
     wk[PW_T] = t
