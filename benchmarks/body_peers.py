@@ -82,20 +82,24 @@ def box(spec: dict) -> dict:
         n += nstep
         el = time.perf_counter() - t0
     out["python_loop_steps_per_second"] = n / el
-    # MuJoCo's own C loop (rollout): one call of nstep steps from the launch, repeated
+    # MuJoCo's own C loop (rollout): one call of nstep steps from the launch, repeated;
+    # wall and CPU time (the machine may be shared)
     try:
         from mujoco import rollout
         rollout.rollout(m, d, state0[None, :], nstep=min(nstep, 100))    # warm up
         n, el = 0, 0.0
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         while el < seconds:
             rollout.rollout(m, d, state0[None, :], nstep=nstep)
             n += nstep
             el = time.perf_counter() - t0
+        cpu = time.process_time() - c0
         out["steps_per_second"] = n / el
+        out["cpu_steps_per_second"] = n / cpu if cpu > 0 else None
         out["loop"] = "mujoco.rollout (C loop)"
     except Exception as exc:                  # pragma: no cover - depends on the version
         out["steps_per_second"] = out["python_loop_steps_per_second"]
+        out["cpu_steps_per_second"] = None
         out["loop"] = f"Python mj_step loop (rollout failed: {type(exc).__name__}: {exc})"
     out["steps"] = n
     return out
