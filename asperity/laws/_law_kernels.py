@@ -20,6 +20,17 @@ WARM_RC, WARM_RD, WARM_VALID, WARM_EDGE = PW_SIZE, PW_SIZE + 1, PW_SIZE + 2, PW_
 WARM_A1, WARM_A2, WARM_NA, WARM_SIZE = PW_SIZE + 4, PW_SIZE + 5, PW_SIZE + 6, PW_SIZE + 7
 
 
+@njit(cache=True, inline="always")
+def reservoir_radius(r, rc, rd):
+    """|P| of the reservoir point on the ray of y = alpha(P) P, |y| = r, with the radial
+    functions rc of C and rd of D on that ray: k = k_D(y) (at most 1),
+    |P| = k rho_D / (1 - k + k rho_D / rho_C)."""
+    k = r / rd
+    if k > 1.0:
+        k = 1.0
+    return k * rd / (1.0 - k + k * rd / rc)
+
+
 @njit(cache=True)
 def law_point(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1):
     """The Walker-Leine law at the prox argument x (per unit normal impulse, already scaled
@@ -35,10 +46,7 @@ def law_point(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1):
     phi = math.atan2(y1, y0)
     rc = set_radial(ck, cp, ctab, coff, cn, phi)
     rd = set_radial(dk, dp, dtab, doff, dn, phi)
-    k = r / rd
-    if k > 1.0:
-        k = 1.0
-    t = k * rd / (1.0 - k + k * rd / rc)
+    t = reservoir_radius(r, rc, rd)
     return t * y0 / r, t * y1 / r, inside
 
 
@@ -97,10 +105,7 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
         wk[WARM_EDGE] = edge
     else:
         rc = set_radial(ck, cp, ctab, coff, cn, math.atan2(uy, ux))
-    k = r / rd
-    if k > 1.0:
-        k = 1.0
-    t = k * rd / (1.0 - k + k * rd / rc)
+    t = reservoir_radius(r, rc, rd)
     wk[WARM_RC] = rc
     wk[WARM_RD] = rd
     wk[WARM_VALID] = 1.0
