@@ -135,9 +135,11 @@ def _point_iterate(uf, minv, P, wk, ln, assoc, ck, cp, dk, dp, tabs, coff, cn, d
     res = 0.0
     it = 0
     ins = False
+    iln = 1.0 / ln
+    rl = r * iln
     for it in range(1, max_iter + 1):
-        p0 = P[0, 0] / ln
-        p1 = P[0, 1] / ln
+        p0 = P[0, 0] * iln
+        p1 = P[0, 1] * iln
         g0 = uf[0] - minv[0] * P[0, 0]
         g1 = uf[1] - minv[1] * P[0, 1]
         al = -1.0
@@ -146,8 +148,8 @@ def _point_iterate(uf, minv, P, wk, ln, assoc, ck, cp, dk, dp, tabs, coff, cn, d
         if not 0.0 < al <= 1.0:
             al = law_alpha_warm(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn, p0, p1,
                                 wk)
-        z0 = al * (p0 + r * g0 / ln)
-        z1 = al * (p1 + r * g1 / ln)
+        z0 = al * (p0 + rl * g0)
+        z1 = al * (p1 + rl * g1)
         a, b, ins = law_point_warm(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn,
                                    z0, z1, wk)
         res = math.hypot(a - p0, b - p1)
@@ -157,7 +159,7 @@ def _point_iterate(uf, minv, P, wk, ln, assoc, ck, cp, dk, dp, tabs, coff, cn, d
             break
     wk[WARM_A2] = wk[WARM_A1]
     wk[WARM_A1] = law_alpha_warm(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn,
-                                 P[0, 0] / ln, P[0, 1] / ln, wk)
+                                 P[0, 0] * iln, P[0, 1] * iln, wk)
     if wk[WARM_NA] < 2.0:
         wk[WARM_NA] += 1.0
     return it, res, ins

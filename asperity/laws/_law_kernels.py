@@ -87,7 +87,7 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
         return set_project(dk, dp, dtab, doff, dn, x0, x1)
     if dk == SET_SUPPORT:
         y0, y1, inside, rd, ux, uy = support_project_warm(dtab, doff, dn, x0, x1, wk)
-        r = math.hypot(y0, y1)
+        r = rd if not inside else math.hypot(y0, y1)      # outside: y on D's boundary
         if r == 0.0:
             wk[WARM_VALID] = 0.0
             return 0.0, 0.0, inside
@@ -105,7 +105,7 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
         wk[WARM_EDGE] = edge
     else:
         rc = set_radial(ck, cp, ctab, coff, cn, math.atan2(uy, ux))
-    t = reservoir_radius(r, rc, rd)
+    t = reservoir_radius(r, rc, rd) if inside or r != rd else rc     # on D: P on C
     wk[WARM_RC] = rc
     wk[WARM_RD] = rd
     wk[WARM_VALID] = 1.0
