@@ -36,6 +36,9 @@ BOX_XML = """
 </mujoco>
 """
 
+#: v / (R omega) is also given when v + R omega first falls below these fractions of its start
+FRACTIONS = (0.5, 0.2, 0.1, 0.05, 0.02)
+
 DISC_XML = """
 <mujoco>
   <option timestep="{dt}" cone="elliptic" gravity="0 0 -{g}"/>
@@ -126,6 +129,7 @@ def disc(spec: dict) -> dict:
     ncon = 0
     t0 = d.time
     rows = []
+    ratios = {}
     steps = int(spec["t_max"] / dt)
     for k in range(steps):
         mujoco.mj_step(m, d)
@@ -138,6 +142,9 @@ def disc(spec: dict) -> dict:
         if end_ratio is None and v + w < spec["end_fraction"] * start:
             end_ratio = v / w if w > 0 else math.inf
             end_t = t
+        for f in FRACTIONS:
+            if f not in ratios and v + w < f * start:
+                ratios[f] = v / w if w > 0 else math.inf
         if slide_stop is None and v < stop_speed:
             slide_stop = t
         if spin_stop is None and w < stop_speed:
@@ -150,6 +157,7 @@ def disc(spec: dict) -> dict:
             "spin_stops_before_slide_by": (None if slide_stop is None or spin_stop is None
                                            else slide_stop - spin_stop),
             "terminal_ratio": end_ratio, "terminal_ratio_time": end_t,
+            "ratio_when_below": {f"{f:g}": ratios.get(f) for f in FRACTIONS},
             "stop_speed": stop_speed, "end_fraction": spec["end_fraction"],
             "path": rows}
 

@@ -40,6 +40,8 @@ def check_body(b: dict) -> None:
         assert disc["spin_stops_before_slide_by"] == pytest.approx(
             disc["slide_stop_time"] - disc["spin_stop_time"])
         assert 0 < disc["terminal_ratio"] < 1e6
+        assert set(disc["ratio_when_below"]) == {"0.5", "0.2", "0.1", "0.05", "0.02"}
+        assert disc["ratio_when_below"]["0.02"] == disc["terminal_ratio"]
     assert b["disc_terminal_ratio_expected"] == 0.653
     for name in ("ellipse", "star"):
         d = b["disc_256"][name]

@@ -217,6 +217,12 @@ def format_body(out: dict) -> str:
                      + ("n/a" if tr is None else f"{tr:.3g}")
                      + f"; a uniformly loaded disc: {out['disc_terminal_ratio_expected']:g}, "
                      "stopping together")
+        rw = d.get("ratio_when_below") or {}
+        if rw:
+            lines.append("body, MuJoCo disc v / (R omega) when v + R omega falls below "
+                         + ", ".join(f"{k} of its start: "
+                                     + ("n/a" if x is None else f"{x:.3g}")
+                                     for k, x in rw.items()))
     else:
         lines.append(f"body, MuJoCo disc: left out: {d.get('skipped') or d.get('error')}")
     for name, v in out["disc_256"].items():
