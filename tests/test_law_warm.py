@@ -18,8 +18,8 @@ import pytest
 
 from asperity.dynamics import moreau as M
 from asperity.laws import planar as L
-from asperity.laws._law_kernels import (law_alpha, law_alpha_warm, law_point, law_point_warm,
-                                        new_warm)
+from asperity.laws._law_kernels import (WARM_P1, law_alpha, law_alpha_warm, law_point,
+                                        law_point_warm, new_warm)
 from asperity.laws._set_kernels import (PW_H, PW_K, SET_STAR, SET_SUPPORT, star_radial,
                                         star_radial_dir, support_project,
                                         support_project_warm)
@@ -162,3 +162,39 @@ def test_slide_agrees_with_the_plain_kernels(law, angle, dt):
     np.testing.assert_allclose(r.q, qs, rtol=0, atol=1e-9)
     np.testing.assert_allclose(r.u, us, rtol=0, atol=1e-9)
     assert r.stop_step == stop
+
+
+def test_alpha_near_the_last_point_is_the_plain_alpha(law):
+    """law_alpha_near (D's radial function by Newton from the last projection's root, the
+    star polygon's from the last edge) at points turned and stretched a little from the last
+    law point, and far away (the searches), against law_alpha."""
+    from asperity.laws._law_kernels import law_alpha_near
+    assoc, ck, cp, ct, dk, dp, dt = law.kernel_sets
+    nc, nd = ct.shape[0], dt.shape[0]
+    rng = np.random.default_rng(4)
+    wk = new_warm(1)[0]
+    rho = float(np.max(dt[:, 3]))
+    worst = 0.0
+    for x0, x1 in _paths(rng, rho, 1500):
+        a, b, ins = law_point_warm(assoc, ck, cp, ct, 0, nc, dk, dp, dt, 0, nd, x0, x1, wk)
+        wk[WARM_P1], wk[WARM_P1 + 1] = a, b      # the solver keeps its last force
+        turn = rng.choice([1e-7, 1e-5, 1e-4, 1e-2, 1.0]) * rng.choice([-1, 1])
+        c, s = math.cos(turn), math.sin(turn)
+        f = 1.0 + 1e-3 * rng.standard_normal()
+        q0, q1 = f * (c * a - s * b), f * (s * a + c * b)
+        kept = wk.copy()
+        got = law_alpha_near(assoc, ck, cp, ct, 0, nc, dk, dp, dt, 0, nd, q0, q1, wk)
+        want = law_alpha(assoc, ck, cp, ct, 0, nc, dk, dp, dt, 0, nd, q0, q1)
+        worst = max(worst, abs(got - want) / want)
+        np.testing.assert_array_equal(wk, kept)          # the kept values are left alone
+    assert worst < 1e-13, worst
+
+
+def test_point_mass_converges_in_one_iteration_when_it_extrapolates():
+    """With the force extrapolated from the last three steps, a steady slide needs one
+    iteration a step (the residual of the first is already below tol) and gives the same
+    path as the plain stepping (test above); a slide to rest restarts the history."""
+    law = L.star_law(0.6, 0.3)
+    u0 = 10 * np.array([math.cos(0.5), math.sin(0.5)])
+    r = M.simulate(M.point_mass(law), u0, dt=1e-4, t_end=0.5, record_every=5000)
+    assert r.ok and r.max_iterations_used <= 3 and r.mean_iterations < 1.01

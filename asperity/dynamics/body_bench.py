@@ -184,7 +184,8 @@ def format_body(out: dict) -> str:
     box = out["mujoco_box"]
     if "steps_per_second" in box:
         lines.append(f"body, MuJoCo {box['version']} box on a plane (elliptic cone): "
-                     f"{box['steps_per_second']:.3e} steps/s ({box['loop']}; Python loop "
+                     f"{box['steps_per_second']:.3e} steps/s ({box['loop']}; rollout "
+                     f"{box.get('rollout_steps_per_second', float('nan')):.3e}, Python loop "
                      f"{box['python_loop_steps_per_second']:.3e}), "
                      f"{box['mean_contacts']:.2f} contacts/step")
     else:

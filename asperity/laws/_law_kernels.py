@@ -10,14 +10,18 @@ import numpy as np
 from numba import njit
 
 from ._set_kernels import (PW_K, PW_SIZE, SET_STAR, SET_SUPPORT, set_project, set_radial,
-                           star_radial_dir, support_project_warm)
+                           star_radial_dir, support_project_warm, support_radial,
+                           support_radial_warm)
 
 #: columns of a contact's warm-start row (see :func:`law_point_warm`): the projection's
 #: (PW_*), rho_C and rho_D on the ray of the last point, whether they are valid, the star
 #: polygon's edge last hit
 WARM_RC, WARM_RD, WARM_VALID, WARM_EDGE = PW_SIZE, PW_SIZE + 1, PW_SIZE + 2, PW_SIZE + 3
 #: a solver's own columns: alpha at the end of the last two steps and how many are kept
-WARM_A1, WARM_A2, WARM_NA, WARM_SIZE = PW_SIZE + 4, PW_SIZE + 5, PW_SIZE + 6, PW_SIZE + 7
+WARM_A1, WARM_A2, WARM_NA = PW_SIZE + 4, PW_SIZE + 5, PW_SIZE + 6
+#: and the force per unit normal impulse of the last three steps (x, y each) and how many
+WARM_P1, WARM_P2, WARM_P3, WARM_NP = PW_SIZE + 7, PW_SIZE + 9, PW_SIZE + 11, PW_SIZE + 13
+WARM_SIZE = PW_SIZE + 14
 
 
 @njit(cache=True, inline="always")
@@ -110,6 +114,41 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
     wk[WARM_RD] = rd
     wk[WARM_VALID] = 1.0
     return t * ux, t * uy, inside
+
+
+@njit(cache=True, error_model="numpy")
+def law_alpha_near(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1, wk):
+    """:func:`law_alpha` of a point P near the last one of :func:`law_point_warm` with the row
+    ``wk``: the radial functions from its warm starts (D's by :func:`support_radial_warm`,
+    the star polygon's from its last edge), else by the searches; wk's kept values of the
+    last point are left as they are."""
+    if assoc:
+        return 1.0
+    r = math.hypot(P0, P1)
+    if r == 0.0:
+        return 1.0
+    ux = P0 / r
+    uy = P1 / r
+    ok = False
+    rd = 0.0
+    if dk == SET_SUPPORT:
+        dphi = 0.0                                # from the ray of the last point
+        if wk[WARM_VALID] != 0.0:
+            q0 = wk[WARM_P1]
+            q1 = wk[WARM_P1 + 1]
+            rq = math.hypot(q0, q1)
+            if rq > 0.0:
+                dphi = (q0 * uy - q1 * ux) / rq
+        rd, ok = support_radial_warm(dtab, doff, dn, ux, uy, wk, dphi)
+        if not ok:
+            rd = support_radial(dtab, doff, dn, math.atan2(uy, ux))[0]
+    else:
+        rd = set_radial(dk, dp, dtab, doff, dn, math.atan2(uy, ux))
+    if ck == SET_STAR:
+        rc, edge = star_radial_dir(ctab, coff, cn, ux, uy, int(wk[WARM_EDGE]))
+    else:
+        rc = set_radial(ck, cp, ctab, coff, cn, math.atan2(uy, ux))
+    return 1.0 / (r / rd - r / rc + 1.0)
 
 
 @njit(cache=True, inline="always", error_model="numpy")

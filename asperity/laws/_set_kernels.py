@@ -500,6 +500,54 @@ def support_project_warm(tab, off, n, x0, x1, wk):
 
 
 @njit(cache=True, error_model="numpy")
+def support_radial_warm(tab, off, n, ux, uy, wk, dphi):
+    """(rho, ok): the radial function of the convex set along the unit vector u from the
+    warm start of the last projection (:func:`support_project_warm`): Newton on
+    cross(y(psi), u) = 0 from the last root, the boundary data from the Taylor series at the
+    kept anchor, started dphi / (1 + delta') away (dphi: the angle from the ray of the last
+    root to u); the last step once below 1e-8 rad (quadratic convergence); ok False (rho 0)
+    when that is not possible (no kept point, a flat edge, the ray outside the kept
+    interval or beyond the series' reach): then ask :func:`support_radial`."""
+    ka = int(wk[PW_K])
+    if not (0 <= ka < n and wk[PW_H] > 0.0):
+        return 0.0, False
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    d = b - a
+    if d <= 0.0:
+        return 0.0, False
+    dd = (tab[rb, 2] - tab[ra, 2]) / d
+    ta = wk[PW_T]
+    t = wk[PW_R] + dphi / (1.0 + dd)
+    if not 0.0 <= t <= d:
+        t = ta
+    last = False
+    for _ in range(8):
+        st = t - ta
+        if not (abs(st) <= PW_STEP and abs(dd * st) <= PW_STEP):
+            return 0.0, False
+        c, s, h, T = _taylor(wk, dd, st)
+        T2 = T * T
+        if last:
+            return h * math.sqrt(1.0 + T2), True
+        hp = h * T
+        y0 = h * c - hp * s
+        y1 = h * s + hp * c
+        f = y0 * uy - y1 * ux                       # cross(y, u)
+        g = h * (1.0 + T2 + (1.0 + T2) * dd)        # h + h'': dy/dpsi = g s_perp
+        df = g * (-s * uy - c * ux)
+        if df == 0.0 or y0 * ux + y1 * uy <= 0.0:
+            return 0.0, False
+        tn = t - f / df
+        if not 0.0 <= tn <= d:
+            return 0.0, False
+        if abs(tn - t) <= 1e-15 * (1.0 + abs(a + t)):
+            return h * math.sqrt(1.0 + T2), True
+        last = abs(tn - t) <= 1e-8
+        t = tn
+    return 0.0, False
+
+
+@njit(cache=True, error_model="numpy")
 def star_radial_dir(tab, off, n, ux, uy, k0):
     """(rho, k): radial function of the star-shaped polygon along the unit vector u and the
     edge k (from vertex k to k + 1) hit, found from edge k0 by a walk of up to 3 edges
