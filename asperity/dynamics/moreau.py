@@ -22,6 +22,12 @@ y_i = alpha_i P_i on its ray.  r = relax / max eig(W^T M^-1 W), relax in (0, 2) 
 which for a point mass gives r = m: the associated law is then solved by one projection).
 The iteration stops when max_i |P_i^(k+1) - P_i^k| / Lambda_N,i <= tol; if the limit is
 reached first the result's status says so (first step and residual) -- never silently.
+Each step starts from the last step's P_i with alpha_i extrapolated from the last two steps
+(a point mass: from P extrapolated from the last three sliding steps, with its own alpha, so
+that a steady slide converges in one iteration), and the law's kernels start from their last
+evaluation (laws._law_kernels.law_point_warm: the projection onto D from the last sample
+interval and root, the star polygon from the last edge); a guess changes the iterations,
+not the fixed point.
 
 Exact stick: when every contact's prox argument lies inside its set (all contacts stick) and
 W^T has full column rank (point mass; rigid body with two or more distinct contacts), the
