@@ -157,12 +157,16 @@ class Body:
 
     def delassus_max_eig(self) -> float:
         """max eig(W^T M^-1 W) (independent of theta: rotating the body rotates G's blocks)."""
+        if self.inertia is None:            # a point mass: W = identity (no LAPACK call)
+            return 1.0 / self.mass
         W = self.W()
         G = W.T @ (self.minv[:, None] * W)
         return float(np.linalg.eigvalsh(G).max())
 
     def full_rank(self) -> bool:
         """W^T has full column rank: all contacts sticking forces u = 0."""
+        if self.inertia is None:            # a point mass: W = identity
+            return True
         return bool(np.linalg.matrix_rank(self.W()) == self.ndof)
 
 
