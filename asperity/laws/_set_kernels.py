@@ -179,60 +179,13 @@ def _visible_pred(tab, row, psi, x0, x1, psr):
 
 
 @njit(cache=True)
-def support_project(tab, off, n, x0, x1):
-    """Euclidean projection of x onto the convex set; (y0, y1, inside).
-
-    The projection of an outside point is the boundary point y(psi) = h s + h' s_perp whose
-    normal psi solves F(psi) = x.s_perp(psi) - h'(psi) = 0 with x.s(psi) > h(psi).  On the
-    arc of normals with x.s > h (less than a half turn, containing the normal psi_r of the
-    boundary point on the ray of x) F decreases; outside it the predicate
-    R(psi) = (F <= 0 if visible else psi > psi_r) continues monotonically, so a binary search
-    over the samples finds the interval (or the flat edge) of the root and a safeguarded
-    Newton iteration finishes inside it."""
-    r = math.hypot(x0, x1)
-    if r == 0.0:
-        return x0, x1, True
-    rho, psr = support_radial(tab, off, n, math.atan2(x1, x0))
-    if r <= rho:
-        return x0, x1, True
-    if r <= rho * (1.0 + 1e-14):
-        # outside by rounding only: x is its own projection (on a flat edge the search
-        # below would see x.s - h <= 0 at the edge's normal and jump to the edge's end)
-        return x0, x1, False
-    # window of samples with psi in (psr - pi, psr + pi): K in [klo, khi]
-    base = 0
-    while _psi_k(tab, off, n, base) > psr:
-        base -= n
-    while _psi_k(tab, off, n, base + n) <= psr:
-        base += n
-    lo = base - n
-    hi = base + n
-    while lo < hi:                                      # first K with psi_K > psr - pi
-        mid = (lo + hi) // 2
-        if _psi_k(tab, off, n, mid) > psr - math.pi:
-            hi = mid
-        else:
-            lo = mid + 1
-    klo = lo
-    lo = klo
-    hi = base + 2 * n
-    while lo < hi:                                      # first K with psi_K >= psr + pi
-        mid = (lo + hi) // 2
-        if _psi_k(tab, off, n, mid) >= psr + math.pi:
-            hi = mid
-        else:
-            lo = mid + 1
-    khi = lo - 1
-    lo = klo
-    hi = khi + 1
-    while lo < hi:                                      # first K with R true
-        mid = (lo + hi) // 2
-        if _visible_pred(tab, off + _row(mid, n), _psi_k(tab, off, n, mid), x0, x1, psr):
-            hi = mid
-        else:
-            lo = mid + 1
-    kb = lo
-    ka = kb - 1
+def _project_interval(tab, off, n, x0, x1, ka, psr):
+    """The projection of an outside point x whose normal lies in the sample interval
+    [psi_ka, psi_ka+1] (a flat edge if they are equal): (y0, y1, t, phi, rr) with t the
+    normal's offset psi - psi_ka, phi the polar angle of y and rr = |y| (the radial function
+    of the set at phi).  Safeguarded Newton iteration on F(psi) = x.s_perp - h' from the
+    linear interpolation of F."""
+    kb = ka + 1
     ra = off + _row(ka, n)
     rb = off + _row(kb, n)
     a = _psi_k(tab, off, n, ka)
@@ -241,7 +194,9 @@ def support_project(tab, off, n, x0, x1):
         c = tab[ra, 5]
         s = tab[ra, 6]
         v = x0 * c + x1 * s - tab[ra, 3]
-        return x0 - v * c, x1 - v * s, False
+        y0 = x0 - v * c
+        y1 = x1 - v * s
+        return y0, y1, 0.0, math.atan2(y1, y0), math.hypot(y0, y1)
     d0 = tab[ra, 2]
     d1 = tab[rb, 2]
     dd = (d1 - d0) / d
@@ -287,7 +242,344 @@ def support_project(tab, off, n, x0, x1):
             break
         t = tn
     rr = h / math.cos(de)
-    return rr * math.cos(psi + de), rr * math.sin(psi + de), False
+    phi = psi + de
+    return rr * math.cos(phi), rr * math.sin(phi), t, phi, rr
+
+
+@njit(cache=True)
+def support_project_full(tab, off, n, x0, x1):
+    """Euclidean projection of x onto the convex set with what the law needs beside it:
+    (y0, y1, inside, ka, t, phi, rr) -- ka the row of the sample interval of the normal
+    (-1 inside or on the boundary), t the normal's offset in it, phi the polar angle of y,
+    rr = |y| on the boundary (the radial function at phi; inside: rho(phi)).
+
+    The projection of an outside point is the boundary point y(psi) = h s + h' s_perp whose
+    normal psi solves F(psi) = x.s_perp(psi) - h'(psi) = 0 with x.s(psi) > h(psi).  On the
+    arc of normals with x.s > h (less than a half turn, containing the normal psi_r of the
+    boundary point on the ray of x) F decreases; outside it the predicate
+    R(psi) = (F <= 0 if visible else psi > psi_r) continues monotonically, so a binary search
+    over the samples finds the interval (or the flat edge) of the root and a safeguarded
+    Newton iteration finishes inside it."""
+    r = math.hypot(x0, x1)
+    if r == 0.0:
+        return x0, x1, True, -1, 0.0, 0.0, support_radial(tab, off, n, 0.0)[0]
+    phi = math.atan2(x1, x0)
+    rho, psr = support_radial(tab, off, n, phi)
+    if r <= rho:
+        return x0, x1, True, -1, 0.0, phi, rho
+    if r <= rho * (1.0 + 1e-14):
+        # outside by rounding only: x is its own projection (on a flat edge the search
+        # below would see x.s - h <= 0 at the edge's normal and jump to the edge's end)
+        return x0, x1, False, -1, 0.0, phi, rho
+    # window of samples with psi in (psr - pi, psr + pi): K in [klo, khi]
+    base = 0
+    while _psi_k(tab, off, n, base) > psr:
+        base -= n
+    while _psi_k(tab, off, n, base + n) <= psr:
+        base += n
+    lo = base - n
+    hi = base + n
+    while lo < hi:                                      # first K with psi_K > psr - pi
+        mid = (lo + hi) // 2
+        if _psi_k(tab, off, n, mid) > psr - math.pi:
+            hi = mid
+        else:
+            lo = mid + 1
+    klo = lo
+    lo = klo
+    hi = base + 2 * n
+    while lo < hi:                                      # first K with psi_K >= psr + pi
+        mid = (lo + hi) // 2
+        if _psi_k(tab, off, n, mid) >= psr + math.pi:
+            hi = mid
+        else:
+            lo = mid + 1
+    khi = lo - 1
+    lo = klo
+    hi = khi + 1
+    while lo < hi:                                      # first K with R true
+        mid = (lo + hi) // 2
+        if _visible_pred(tab, off + _row(mid, n), _psi_k(tab, off, n, mid), x0, x1, psr):
+            hi = mid
+        else:
+            lo = mid + 1
+    ka = lo - 1
+    y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, psr)
+    return y0, y1, False, _row(ka, n), t, phi, rr
+
+
+@njit(cache=True)
+def support_project(tab, off, n, x0, x1):
+    """Euclidean projection of x onto the convex set; (y0, y1, inside)
+    (see :func:`support_project_full`)."""
+    y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
+    return y0, y1, inside
+
+
+#: a warm start of the projection onto a support set (columns of a caller's row): the sample
+#: interval, and the offset t in it with cos psi, sin psi, h, tan delta evaluated there
+#: (h = 0: nothing evaluated yet), and the offset of the last root
+PW_K, PW_T, PW_C, PW_S, PW_H, PW_TDE, PW_R, PW_SIZE = 0, 1, 2, 3, 4, 5, 6, 7
+_SIXTH, _THIRD, _12TH, _20TH, _24TH = 1.0 / 6.0, 1.0 / 3.0, 1.0 / 12.0, 1.0 / 20.0, 1.0 / 24.0
+#: how far from the kept point (rad) the boundary data come from Taylor series
+PW_STEP = 1e-4
+
+
+@njit(cache=True, inline="always")
+def _ends(tab, off, n, ka):
+    """Rows and psi of both ends of the sample interval ka in [0, n) (no division)."""
+    kb = ka + 1
+    if kb < n:
+        return off + ka, off + kb, tab[off + ka, 0], tab[off + kb, 0]
+    return off + ka, off, tab[off + ka, 0], tab[off, 0] + TWO_PI
+
+
+@njit(cache=True, error_model="numpy")
+def _eval_point(tab, off, n, ka, t, wk):
+    """Exact boundary data at offset t of the sample interval ka, kept in wk."""
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    d = b - a
+    d0 = tab[ra, 2]
+    d1 = tab[rb, 2]
+    psi = a + t
+    wk[PW_K] = ka
+    wk[PW_T] = t
+    wk[PW_C] = math.cos(psi)
+    wk[PW_S] = math.sin(psi)
+    wk[PW_H] = math.exp(tab[ra, 1] + tan_integral(d0, d1, d, t))
+    wk[PW_TDE] = math.tan(d0 + (d1 - d0) * (t / d))
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _taylor(wk, dd, st):
+    """(cos psi, sin psi, h, tan delta) at offset st from the anchor kept in wk, by their
+    Taylor series there (h to fourth order, tan delta to third, cos and sin to fifth)."""
+    Ta = wk[PW_TDE]
+    T2 = Ta * Ta
+    k = dd * (3.0 + 2.0 * dd)
+    h2 = T2 + (1.0 + T2) * dd                               # h'' / h at the anchor
+    h3 = Ta * (T2 + (1.0 + T2) * k)                         # h''' / h
+    h4 = Ta * h3 + (1.0 + T2) * dd * (3.0 * T2 + k * (1.0 + 3.0 * T2))
+    h = wk[PW_H] * (1.0 + st * (Ta + st * (0.5 * h2 + st * (_SIXTH * h3
+                                                            + st * _24TH * h4))))
+    dT = dd * st
+    T = Ta + (1.0 + T2) * dT * (1.0 + Ta * dT + (1.0 + 3.0 * T2) * dT * dT * _THIRD)
+    q = st * st
+    cs = 1.0 - 0.5 * q * (1.0 - q * _12TH)
+    sn = st * (1.0 - q * _SIXTH * (1.0 - q * _20TH))
+    return wk[PW_C] * cs - wk[PW_S] * sn, wk[PW_S] * cs + wk[PW_C] * sn, h, T
+
+
+@njit(cache=True, error_model="numpy")
+def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
+    """The projection of x when its normal lies in the smooth sample interval ka and x sees
+    the whole interval (both ends visible): Halley's iteration on F(psi) = x.s_perp - h'
+    from the last root kept in wk (if in this interval; else from the linear interpolation
+    of F).  Within PW_STEP of the anchor kept in wk (an exactly evaluated point; and with the
+    change of delta below PW_STEP) h, tan delta, cos psi and sin psi come from their Taylor
+    series at the anchor (relative errors ~1e-16), farther away from an exact evaluation that
+    becomes the anchor; so a projection near the last costs no transcendental function.
+    Halley's error is ~K step^3 (K ~ 1 + (d delta / d psi)^2): a step with K step^3 < 1e-17
+    is the last.  Returns (y0, y1, rr, ux, uy): y, |y| and y / |y|."""
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    d = b - a
+    dd = (tab[rb, 2] - tab[ra, 2]) / d
+    kk = 1.0 + dd * dd
+    tlo = 0.0
+    thi = d
+    if int(wk[PW_K]) == ka and wk[PW_H] > 0.0 and 0.0 < wk[PW_T] < d:
+        t = wk[PW_R]
+        if not 0.0 < t < d:
+            t = wk[PW_T]
+    else:
+        ca, sa, cb, sb = tab[ra, 5], tab[ra, 6], tab[rb, 5], tab[rb, 6]
+        Fa = -x0 * sa + x1 * ca - tab[ra, 4]
+        Fb = -x0 * sb + x1 * cb - tab[rb, 4]
+        t = d * Fa / (Fa - Fb) if Fa > Fb else 0.5 * d
+        if not 0.0 < t < d:
+            t = 0.5 * d
+        _eval_point(tab, off, n, ka, t, wk)
+    ta = wk[PW_T]
+    c = s = h = T = 0.0
+    last = False
+    for _ in range(100):
+        # the boundary data at t: Taylor series at the anchor, or exact (a new anchor)
+        st = t - ta
+        if abs(st) <= PW_STEP and abs(dd * st) <= PW_STEP:
+            c, s, h, T = _taylor(wk, dd, st)
+        else:
+            _eval_point(tab, off, n, ka, t, wk)
+            ta = t
+            c, s, h, T = wk[PW_C], wk[PW_S], wk[PW_H], wk[PW_TDE]
+        if last:
+            break
+        xs = x0 * c + x1 * s
+        F = -x0 * s + x1 * c - h * T
+        if F <= 0.0:
+            thi = t
+        else:
+            tlo = t
+        T2 = T * T
+        dF = -xs - h * (T2 + (1.0 + T2) * dd)
+        tn = 0.5 * (tlo + thi)
+        halley = False
+        if dF < 0.0:
+            d2F = -(F + h * T) - h * T * (T2 + (1.0 + T2) * dd * (3.0 + 2.0 * dd))
+            den = 2.0 * dF * dF - F * d2F
+            cand = t - 2.0 * F * dF / den if den > 0.0 else t - F / dF
+            if tlo < cand < thi:
+                tn = cand
+                halley = den > 0.0
+        st = tn - t
+        if abs(st) <= 4e-16 * (1.0 + abs(a + t)) or thi - tlo <= 4e-16 * (1.0 + abs(a + t)):
+            break
+        if halley and kk * st * st * abs(st) <= 1e-17:
+            last = True                      # tn is the root: its boundary data, then stop
+        t = tn
+    wk[PW_R] = t
+    hp = h * T
+    y0 = h * c - hp * s
+    y1 = h * s + hp * c
+    rr = h * math.sqrt(1.0 + T * T)
+    return y0, y1, rr, y0 / rr, y1 / rr
+
+
+@njit(cache=True, error_model="numpy")
+def _bracket(tab, off, n, ka, x0, x1):
+    """Where the projection's normal lies against the sample interval ka (both ends
+    visible with a margin): 0 inside it, -1 before, +1 after, 2 unknown (an end not
+    clearly visible)."""
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    va = x0 * tab[ra, 5] + x1 * tab[ra, 6] - tab[ra, 3]
+    vb = x0 * tab[rb, 5] + x1 * tab[rb, 6] - tab[rb, 3]
+    if va <= 1e-12 * tab[ra, 3] or vb <= 1e-12 * tab[rb, 3]:
+        return 2
+    if -x0 * tab[ra, 6] + x1 * tab[ra, 5] - tab[ra, 4] <= 0.0:
+        return -1
+    if -x0 * tab[rb, 6] + x1 * tab[rb, 5] - tab[rb, 4] > 0.0:
+        return 1
+    return 0
+
+
+@njit(cache=True, error_model="numpy")
+def support_project_warm(tab, off, n, x0, x1, wk):
+    """:func:`support_project` for arguments near the last one (time steps, iterations):
+    (y0, y1, inside, rr, ux, uy) with rr = |y| on the boundary (inside: rho at x's angle)
+    and u = y / |y|.  ``wk`` (at least PW_SIZE,) keeps the warm start (PW_* columns; PW_K
+    = -1 before the first call).  When x lies outside and the normal of its projection is
+    in the kept interval or up to 3 intervals away (told by the signs of F at the ends, both
+    clearly visible -- then x is outside and every normal in between is visible), the
+    searches are skipped (:func:`_project_interval_warm`); otherwise the full search.
+    Same projection as :func:`support_project` to ~1e-15."""
+    k0 = int(wk[PW_K])
+    if 0 <= k0 < n:
+        ka = k0
+        for _ in range(4):
+            w = _bracket(tab, off, n, ka, x0, x1)
+            if w == 2:
+                break
+            if w == 0:
+                ra, rb, a, b = _ends(tab, off, n, ka)
+                if b <= a:
+                    break                               # a flat edge: the full path
+                y0, y1, rr, ux, uy = _project_interval_warm(tab, off, n, x0, x1, ka, wk)
+                return y0, y1, False, rr, ux, uy
+            ka += w
+            if ka < 0:
+                ka = n - 1
+            elif ka >= n:
+                ka = 0
+    y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
+    wk[PW_K] = ka
+    wk[PW_T] = t
+    wk[PW_H] = 0.0
+    r = math.hypot(y0, y1)
+    if r == 0.0:
+        return y0, y1, inside, rr, 1.0, 0.0
+    return y0, y1, inside, rr, y0 / r, y1 / r
+
+
+@njit(cache=True, error_model="numpy")
+def support_radial_warm(tab, off, n, ux, uy, wk, dphi):
+    """(rho, ok): the radial function of the convex set along the unit vector u from the
+    warm start of the last projection (:func:`support_project_warm`): Newton on
+    cross(y(psi), u) = 0 from the last root, the boundary data from the Taylor series at the
+    kept anchor, started dphi / (1 + delta') away (dphi: the angle from the ray of the last
+    root to u); the last step once below 1e-8 rad (quadratic convergence); ok False (rho 0)
+    when that is not possible (no kept point, a flat edge, the ray outside the kept
+    interval or beyond the series' reach): then ask :func:`support_radial`."""
+    ka = int(wk[PW_K])
+    if not (0 <= ka < n and wk[PW_H] > 0.0):
+        return 0.0, False
+    ra, rb, a, b = _ends(tab, off, n, ka)
+    d = b - a
+    if d <= 0.0:
+        return 0.0, False
+    dd = (tab[rb, 2] - tab[ra, 2]) / d
+    ta = wk[PW_T]
+    t = wk[PW_R] + dphi / (1.0 + dd)
+    if not 0.0 <= t <= d:
+        t = ta
+    last = False
+    for _ in range(8):
+        st = t - ta
+        if not (abs(st) <= PW_STEP and abs(dd * st) <= PW_STEP):
+            return 0.0, False
+        c, s, h, T = _taylor(wk, dd, st)
+        T2 = T * T
+        if last:
+            return h * math.sqrt(1.0 + T2), True
+        hp = h * T
+        y0 = h * c - hp * s
+        y1 = h * s + hp * c
+        f = y0 * uy - y1 * ux                       # cross(y, u)
+        g = h * (1.0 + T2 + (1.0 + T2) * dd)        # h + h'': dy/dpsi = g s_perp
+        df = g * (-s * uy - c * ux)
+        if df == 0.0 or y0 * ux + y1 * uy <= 0.0:
+            return 0.0, False
+        tn = t - f / df
+        if not 0.0 <= tn <= d:
+            return 0.0, False
+        if abs(tn - t) <= 1e-15 * (1.0 + abs(a + t)):
+            return h * math.sqrt(1.0 + T2), True
+        last = abs(tn - t) <= 1e-8
+        t = tn
+    return 0.0, False
+
+
+@njit(cache=True, error_model="numpy")
+def star_radial_dir(tab, off, n, ux, uy, k0):
+    """(rho, k): radial function of the star-shaped polygon along the unit vector u and the
+    edge k (from vertex k to k + 1) hit, found from edge k0 by a walk of up to 3 edges
+    (cross products, no angle) or by :func:`star_radial`'s search."""
+    k = k0
+    if 0 <= k < n:
+        for _ in range(4):
+            k1 = k + 1 if k + 1 < n else 0
+            v0x = tab[off + k, 0]
+            v0y = tab[off + k, 1]
+            v1x = tab[off + k1, 0]
+            v1y = tab[off + k1, 1]
+            if v0x * uy - v0y * ux < 0.0:             # u before vertex k
+                k = k - 1 if k > 0 else n - 1
+            elif ux * v1y - uy * v1x <= 0.0:          # u at or after vertex k + 1
+                k = k1
+            else:
+                dx = v1x - v0x
+                dy = v1y - v0y
+                return (v0x * dy - v0y * dx) / (ux * dy - uy * dx), k
+    phi = math.atan2(uy, ux)
+    a0 = tab[off, 2]
+    pm = a0 + (phi - a0) % TWO_PI
+    lo = 0
+    hi = n - 1
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if tab[off + mid, 2] <= pm:
+            lo = mid
+        else:
+            hi = mid - 1
+    return star_radial(tab, off, n, phi), lo
 
 
 @njit(cache=True)
