@@ -18,11 +18,16 @@ import pytest
 
 from asperity.dynamics import moreau as M
 from asperity.laws import planar as L
-from asperity.laws._law_kernels import (WARM_P1, law_alpha, law_alpha_warm, law_point,
-                                        law_point_warm, new_warm)
-from asperity.laws._set_kernels import (PW_H, PW_K, SET_STAR, SET_SUPPORT, star_radial,
-                                        star_radial_dir, support_project,
-                                        support_project_warm)
+from asperity.laws._law_kernels import (
+    WARM_P1,
+    law_alpha,
+    law_alpha_warm,
+    law_point,
+    law_point_warm,
+    new_warm,
+)
+from asperity.laws._set_kernels import SET_STAR, SET_SUPPORT, star_radial, support_project
+from asperity.laws._warm_kernels import PW_H, PW_K, star_radial_dir, support_project_warm
 
 
 def gauge_star_law():

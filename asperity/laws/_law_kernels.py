@@ -9,9 +9,9 @@ import math
 import numpy as np
 from numba import njit
 
-from ._set_kernels import (PW_K, PW_SIZE, SET_STAR, SET_SUPPORT, set_project, set_radial,
-                           star_radial_dir, support_project_warm, support_radial,
-                           support_radial_warm)
+from ._set_kernels import SET_STAR, SET_SUPPORT, set_project, set_radial, support_radial
+from ._warm_kernels import (PW_K, PW_SIZE, star_radial_dir, support_project_warm,
+                            support_radial_warm)
 
 #: columns of a contact's warm-start row (see :func:`law_point_warm`): the projection's
 #: (PW_*), rho_C and rho_D on the ray of the last point, whether they are valid, the star
