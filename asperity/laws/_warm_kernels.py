@@ -1,9 +1,10 @@
 """Warm-started numba kernels of the support sets and star polygons
-(:mod:`asperity.laws._set_kernels`): the projection onto a support set and its radial function started from the last step's sample
-interval and root, with the boundary data near an exactly evaluated point from Taylor series,
-and the star polygon's edge found from the last one.  The point mass of the Moreau solver
-calls them once a step (:mod:`asperity.laws._law_kernels`); they agree with the plain kernels
-to rounding (tests/test_law_warm.py)."""
+(:mod:`asperity.laws._set_kernels`): the projection onto a support set and its radial
+function started from the last step's sample interval and root, with the boundary data near
+an exactly evaluated point from Taylor series, and the star polygon's edge found from the
+last one.  The point mass of the Moreau solver calls them once a step
+(:mod:`asperity.laws._law_kernels`); they agree with the plain kernels to rounding
+(tests/test_law_warm.py)."""
 from __future__ import annotations
 
 import math
