@@ -33,6 +33,7 @@ _LAZY = {
     "compute_facet_reservoir": "asperity.friction.facet_reservoir",
     "derive": "asperity.friction.derive",
     "derive_scan": "asperity.friction.tiled",
+    "derive_windows": "asperity.friction.elastic_windows",
     "fit_derivation": "asperity.laws.fitting",
     "WalkerLeineLaw": "asperity.laws.walker_leine",
     "TruncatedEllipse": "asperity.laws.sets",
@@ -71,14 +72,16 @@ _LAZY = {
     "ring_footprint": "asperity.bodies.footprint",
     "rectangle_footprint": "asperity.bodies.footprint",
     "polygon_footprint": "asperity.bodies.footprint",
-    "mesh_patch": "asperity.bodies.footprint",
-    "pressure_footprint": "asperity.bodies.footprint",
-    "read_pressure": "asperity.bodies.footprint",
+    "mesh_patch": "asperity.bodies.pressure",
+    "pressure_footprint": "asperity.bodies.pressure",
+    "contact_footprint": "asperity.bodies.pressure",
+    "read_pressure": "asperity.bodies.pressure",
     "read_body": "asperity.bodies.body_file",
     "disc_f_m": "asperity.bodies.closed_forms",
     "ring_f_m": "asperity.bodies.closed_forms",
     "spin_drift_force": "asperity.bodies.closed_forms",
     "disc_reference": "asperity.bodies.closed_forms",
+    "slide_body": "asperity.dynamics.body_api",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }
@@ -90,7 +93,7 @@ __all__ = ["__version__", *_LAZY]
 _RENAMED = {"simulate_microslip": "simulate", "law_from_gauge": "from_gauge",
             "disc_footprint": "disc", "ring_footprint": "ring",
             "rectangle_footprint": "rectangle", "polygon_footprint": "polygon",
-            "pressure_footprint": "from_pressure"}
+            "pressure_footprint": "from_pressure", "contact_footprint": "from_contact"}
 
 
 def __getattr__(name: str):

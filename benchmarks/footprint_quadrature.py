@@ -18,22 +18,23 @@ import json
 
 import numpy as np
 
+from asperity.bodies import accuracy as fpa
 from asperity.bodies import footprint as fpm
 
 
 def measure(kind: str, n: int, directions: int, dense: int) -> dict:
     fp = fpm.disc(1.0, contact_points=n) if kind == "disc" else fpm.ring(1.0, contact_points=n)
-    table = fpm.sampling_errors(fp, fpm.TABLE_EPS, directions)
-    sweep = fpm.sampling_errors(fp, np.linspace(1.2 / dense, 1.2, dense), directions)
+    table = fpa.sampling_errors(fp, fpa.TABLE_EPS, directions)
+    sweep = fpa.sampling_errors(fp, np.linspace(1.2 / dense, 1.2, dense), directions)
     worst = max(sweep + table, key=lambda r: max(r["force"], r["torque"]))
     return {"kind": kind, "n": fp.n, "table": table, "worst": worst,
             "default": n == fpm.DEFAULT_CONTACT_POINTS[kind]}
 
 
 def format_rows(rows: list[dict]) -> str:
-    head = "| kind | N | " + " | ".join(f"eps={e:g} F / T %" for e in fpm.TABLE_EPS) + \
+    head = "| kind | N | " + " | ".join(f"eps={e:g} F / T %" for e in fpa.TABLE_EPS) + \
         " | worst over eps in (0, 1.2]: F / T % (at eps) |"
-    lines = [head, "|" + "---|" * (3 + len(fpm.TABLE_EPS))]
+    lines = [head, "|" + "---|" * (3 + len(fpa.TABLE_EPS))]
     for r in rows:
         cells = [f"{c['force'] * 100:.3f} / {c['torque'] * 100:.3f}" for c in r["table"]]
         w = r["worst"]

@@ -42,7 +42,9 @@ TESTS = REPO / "tests"
 #: numba kernel modules and the kernel modules that compile them in (numba's cache does not
 #: notice a change in a module a cached kernel calls into: their caches are dropped too)
 KERNEL_DEPENDENTS = {
-    "laws/_set_kernels.py": ("laws/_law_kernels.py", "dynamics/_moreau_kernels.py"),
+    "laws/_set_kernels.py": ("laws/_warm_kernels.py", "laws/_law_kernels.py",
+                             "dynamics/_moreau_kernels.py"),
+    "laws/_warm_kernels.py": ("laws/_law_kernels.py", "dynamics/_moreau_kernels.py"),
     "laws/_law_kernels.py": ("dynamics/_moreau_kernels.py",),
     "texture/_tip_kernels.py": ("texture/_spring_kernels.py",),
     "microslip/_chain_kernels.py": ("microslip/_dynamic_kernels.py",
@@ -55,6 +57,7 @@ FRICTION = ("test_texture_closed_form.py", "test_surface_facets.py", "test_deriv
 LAWS = ("test_law_sets.py", "test_law_fitting.py", "test_gauge_file.py", "test_fit_law_cli.py",
         "test_dynamics_moreau.py")
 DYNAMICS = ("test_dynamics_moreau.py", "test_slide_cli.py")
+WARM = ("test_law_warm.py", "test_dynamics_moreau.py")
 MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_risk.py",
              "test_risk_cli.py", "test_chain_reference.py")
 CHAIN = ("test_microslip_events.py", "test_chain_reference.py", "test_microslip.py",
@@ -72,6 +75,8 @@ CONTACT_SOLVER = ("test_contact_solver.py",)
 CONTACT_CLI = ("test_contact_cli.py",)
 FAMILY = ("test_law_family.py", "test_law_family_cli.py")
 WINDOWS = ("test_contact_windows.py",)
+MESH_CONTACT = ("test_contact_mesh.py",)
+WINDOWS_MORE = ("test_contact_windows_more.py",)
 STUDY_CONTACT = ("test_study_contact.py",)
 WEB_CONTACT = ("test_web_contact.py",)
 REPORT = ("test_report.py",)
@@ -79,6 +84,7 @@ FAMILY_AXES = ("test_family_axes.py",)
 WEB_FAMILY = ("test_web_law_family.py",)
 BODIES = ("test_bodies_closed_forms.py", "test_bodies_footprint.py")
 WEB_BODY = ("test_web_body.py",)
+BODY_CLI = ("test_slide_body_cli.py",)
 
 
 @dataclass(frozen=True)
@@ -159,18 +165,54 @@ MUTANTS = [
            "W = w * r                                        # int 2 r g dr",
            "W = w                                            # int 2 r g dr", BODIES,
            "disc quadrature: a ring's weight without the Jacobian r"),
-    Mutant("polygon-crossing-check-off", "bodies/footprint.py",
+    Mutant("polygon-crossing-check-off", "bodies/polygon.py",
            "hit = _crossing(v)", "hit = None", BODIES,
            "a polygon whose boundary crosses itself is accepted"),
     Mutant("linear-pressure-without-area", "bodies/footprint.py",
            "return np.linalg.solve(J, area * cop)", "return np.linalg.solve(J, cop)", BODIES,
            "linear pressure: J beta = c instead of J beta = A c"),
-    Mutant("clip-piece-at-its-start", "bodies/footprint.py",
+    Mutant("clip-piece-at-its-start", "bodies/polygon.py",
            "ym = ay[..., None] + dy[..., None] * tm", "ym = ay[..., None] + dy[..., None] * t0",
            BODIES, "cell clipping: a piece's strip decided at its start (on the strip line)"),
-    Mutant("mesh-patch-upside", "bodies/footprint.py",
+    Mutant("pressure-merge-unweighted", "bodies/pressure.py",
+           "X = np.bincount(inv, weights=w * p[:, 0], minlength=uniq.size) / W",
+           "X = np.bincount(inv, weights=p[:, 0], minlength=uniq.size) / np.bincount(inv)",
+           BODIES, "merged pressure points at their cell's mean, not its load centroid"),
+    Mutant("mesh-patch-upside", "bodies/pressure.py",
            "sel, s = sel[s < 0], s[s < 0]", "sel, s = sel[s > 0], s[s > 0]", BODIES,
            "a closed mesh's patch from the faces facing up"),
+    # ---- slide --body and slide_body (issue 20, item 4)
+    Mutant("body-launch-angle-in-degrees", "dynamics/body_api.py",
+           "a = math.radians(angle)", "a = angle", BODY_CLI,
+           "slide_body: the launch direction's degrees taken as radians"),
+    Mutant("terminal-ratio-at-the-last-step", "dynamics/body_api.py",
+           "t_at = res.stop_time - TERMINAL_STEPS * dt", "t_at = res.stop_time", BODY_CLI,
+           "terminal ratio of the last moving step (the step's noise) instead of 10 before"),
+    Mutant("terminal-ratio-diameter", "dynamics/body_api.py",
+           "return math.hypot(vx, vy) / (radius * abs(w))",
+           "return math.hypot(vx, vy) / (2 * radius * abs(w))", BODY_CLI,
+           "terminal ratio v / (D omega) with the diameter"),
+    Mutant("body-inertia-per-unit-mass", "dynamics/body_api.py",
+           "inertia = mass * fp.inertia_per_mass", "inertia = fp.inertia_per_mass", BODY_CLI,
+           "the lamina's inertia of a 1 kg body whatever --mass"),
+    Mutant("drift-per-cycle-off-by-one", "dynamics/body_api.py",
+           "k = cycles - first", "k = cycles - first + 1", BODY_CLI,
+           "drift per cycle divided by one cycle too many"),
+    Mutant("drift-from-the-first-cycle", "dynamics/body_api.py",
+           "first = 1 if cycles >= 2 else 0", "first = 0", BODY_CLI,
+           "drift per cycle with the first (transient) cycle in it"),
+    Mutant("body-csv-theta-omega-swapped", "dynamics/body_api.py",
+           "(res.t[i], q[0], q[1], q[2], u[0], u[1],", "(res.t[i], q[0], q[1], u[2], u[0], u[1],",
+           BODY_CLI, "CSV: omega written in the theta column"),
+    Mutant("torque-on-fy", "cli/slide.py",
+           "const[2] = check_range(\"--torque\"", "const[1] = check_range(\"--torque\"",
+           BODY_CLI, "--torque applied as a force along y"),
+    Mutant("texture-angle-dropped", "cli/slide.py",
+           "texture_angle_deg=tex,\n", "texture_angle_deg=0.0,\n", BODY_CLI,
+           "--texture-angle read but not passed to the solver"),
+    Mutant("together-any-gap", "dynamics/body_api.py",
+           "together = abs(ts - tw) <= TOGETHER_STEPS", "together = abs(ts - tw) >= TOGETHER_STEPS",
+           BODY_CLI, "slide and spin 'together' when their stops are apart"),
     # ---- the five that the suite missed in issue 11
     Mutant("admissibility-hard-wired", "friction/diagnostics.py",
            "return Admissibility(dmin >= -ADMISSIBILITY_TOL, dmin,",
@@ -190,7 +232,7 @@ MUTANTS = [
            "return min(mp, mm) * p * lam", "return mm * p * lam", MICROSLIP,
            "strip elastic limit with mu- instead of min(mu+, mu-)"),
     Mutant("wl-stick-ignores-alpha", "laws/_law_kernels.py",
-           "t = k * rd / (1.0 - k + k * rd / rc)", "t = k * rc",
+           "return k * rd / (1.0 - k + k * rd / rc)", "return k * rc",
            ("test_law_sets.py", "test_dynamics_moreau.py"),
            "Walker-Leine sticking map scales y to C's gauge k_D(y), ignoring alpha"),
     # ---- texture
@@ -244,6 +286,43 @@ MUTANTS = [
     Mutant("moreau-midpoint-full-step", "dynamics/_moreau_kernels.py",
            "qm[j] = q[j] + 0.5 * dt * u[j]", "qm[j] = q[j] + dt * u[j]", DYNAMICS,
            "Moreau midpoint q_M = q_A + dt u_A (factor 1/2 missing)"),
+    # ---- the warm-started law kernels of the point mass (issue 20)
+    Mutant("warm-taylor-h-second-order", "laws/_warm_kernels.py",
+           "st * (Ta + st * (0.5 * h2 + st", "st * (Ta + st * (h2 + st", WARM,
+           "Taylor series of h about the anchor: h''/2 written h'' (wrong constant)"),
+    Mutant("warm-taylor-tan-third-order-dropped", "laws/_warm_kernels.py",
+           "(1.0 + Ta * dT + (1.0 + 3.0 * T2) * dT * dT * _THIRD)", "(1.0 + Ta * dT)", WARM,
+           "Taylor series of tan delta about the anchor without its third-order term"),
+    Mutant("warm-taylor-sin-sign", "laws/_warm_kernels.py",
+           "return wk[PW_C] * cs - wk[PW_S] * sn, wk[PW_S] * cs + wk[PW_C] * sn",
+           "return wk[PW_C] * cs + wk[PW_S] * sn, wk[PW_S] * cs + wk[PW_C] * sn", WARM,
+           "cos(psi + st) from the anchor's cos and sin with a sign error"),
+    Mutant("warm-halley-factor", "laws/_warm_kernels.py",
+           "cand = t - 2.0 * F * dF / den if den > 0.0 else t - F / dF",
+           "cand = t - F * dF / den if den > 0.0 else t - F / dF", WARM,
+           "Halley's step without its factor 2 (the iteration then stops short of the root)"),
+    Mutant("warm-bracket-off-by-one", "laws/_warm_kernels.py",
+           "    if -x0 * tab[rb, 6] + x1 * tab[rb, 5] - tab[rb, 4] > 0.0:\n        return 1",
+           "    if -x0 * tab[rb, 6] + x1 * tab[rb, 5] - tab[rb, 4] > 0.0:\n        return 0",
+           WARM, "warm projection: a root beyond the interval's end taken to be inside it"),
+    Mutant("star-dir-cross-sign", "laws/_warm_kernels.py",
+           "return (v0x * dy - v0y * dx) / (ux * dy - uy * dx), k",
+           "return (v0x * dy + v0y * dx) / (ux * dy - uy * dx), k", WARM,
+           "star polygon's radial function from the last edge: cross product with a sign error"),
+    Mutant("warm-alpha-swapped", "laws/_law_kernels.py",
+           "return 1.0 / (r / wk[WARM_RD] - r / wk[WARM_RC] + 1.0)",
+           "return 1.0 / (r / wk[WARM_RC] - r / wk[WARM_RD] + 1.0)", WARM,
+           "alpha = 1 / (k_D - k_C + 1) from the kept radial functions with C and D swapped"),
+    Mutant("alpha-near-swapped", "laws/_law_kernels.py",
+           "    return 1.0 / (r / rd - r / rc + 1.0)\n\n\n@njit(cache=True, inline=",
+           "    return 1.0 / (r / rc - r / rd + 1.0)\n\n\n@njit(cache=True, inline=", WARM,
+           "alpha at the extrapolated force with C and D swapped"),
+    Mutant("radial-warm-derivative-term-dropped", "laws/_warm_kernels.py",
+           "g = h * (1.0 + T2 + (1.0 + T2) * dd)", "g = h * (1.0 + T2)", WARM,
+           "D's radial function from the last root: Newton with dy/dpsi missing the h'' term"),
+    Mutant("point-iterate-velocity-sign", "dynamics/_moreau_kernels.py",
+           "g1 = uf[1] - minv[1] * P[0, 1]", "g1 = uf[1] + minv[1] * P[0, 1]",
+           DYNAMICS, "point mass: u_E = u_free + M^-1 P along t_b (impulse sign error)"),
     Mutant("moreau-torque-sign", "dynamics/_moreau_kernels.py",
            "ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] - ow[i, 1] * P[i, 0])",
            "ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] + ow[i, 1] * P[i, 0])", DYNAMICS,
@@ -873,6 +952,45 @@ MUTANTS = [
            "texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)",
            "texture = load_source(source, ctx)[0]", WEB_CONTACT,
            "the web risk of an elastic Surface result uses its area-weighted surface"),
+    # ---- issue 19: meshes pressed on their height grid, windows of contact, redraws
+    Mutant("mesh-grid-last-triangle-wins", "surface/_mesh_grid_kernels.py",
+           "                        if zz > z[i, j]:\n", "                        if True:\n",
+           MESH_CONTACT, "a node takes the last triangle over it, not the highest (no upper "
+           "envelope: a closed mesh shows its underside)"),
+    Mutant("mesh-grid-edges-excluded", "surface/mesh_grid.py", "EDGE_EPS = 1e-9",
+           "EDGE_EPS = -1e-9", MESH_CONTACT,
+           "nodes on a triangle's edge or vertex belong to none (holes along every edge)"),
+    Mutant("mesh-grid-one-node-short", "surface/mesh_grid.py",
+           "(hi[k] - lo[k]) / step * (1 + 1e-12))) + 1", "(hi[k] - lo[k]) / step * (1 + 1e-12)))",
+           MESH_CONTACT, "the grid stops one node short of the mesh's far edges"),
+    Mutant("mesh-force-edge-node-to-each", "surface/_mesh_grid_kernels.py",
+           "                            out[t] += p[i, j] / count[i, j]",
+           "                            out[t] += p[i, j]", MESH_CONTACT,
+           "a node on an edge gives its whole force to each triangle there (the load counted "
+           "twice or six times)"),
+    Mutant("mesh-force-area-weighted", "surface/facets.py", "fpc = F[facing] / area",
+           "fpc = np.full_like(area, total / area.sum())", MESH_CONTACT,
+           "a mesh's triangles weighted by their area, not by the contact force"),
+    Mutant("mesh-default-step-coarsest", "surface/mesh_grid.py",
+           "step = min(step, float(np.median(e)) / NODES_PER_EDGE)",
+           "step = max(step, float(np.median(e)) / NODES_PER_EDGE)", MESH_CONTACT,
+           "the default grid step the coarser of the two rules, not the finer"),
+    Mutant("window-redraw-same-origin", "friction/elastic_windows.py",
+           "origin = _draw(plan.strata[k], src.shape, w, rng)", "origin = plan.origins[k]",
+           WINDOWS_MORE, "a skipped random window 'redrawn' at the same place"),
+    Mutant("window-grid-redrawn", "friction/elastic_windows.py",
+           'if placement == "random" else None, seed=seed)', "if placement else None, seed=seed)",
+           WINDOWS_MORE, "grid windows moved when they have too few defined pixels"),
+    Mutant("window-family-first-member", "friction/window_summary.py",
+           '**r["members"][i]}', '**r["members"][0]}', WINDOWS_MORE,
+           "every pressure's spread computed from the first pressure's windows"),
+    Mutant("window-redraws-miscounted", "friction/window_summary.py",
+           '"redraws": sum(len(r["redrawn_from"]) for r in redrawn)',
+           '"redraws": len(redrawn)', WINDOWS_MORE,
+           "the redraws counted as the windows redrawn"),
+    Mutant("window-contact-derives", "friction/elastic_windows.py",
+           "    if not plan.derive:", "    if False:", WINDOWS_MORE,
+           "contact --window derives friction it does not report (and its cost)"),
 ]
 
 

@@ -8,7 +8,9 @@ import math
 import numpy as np
 import pytest
 
+from asperity.bodies import accuracy as fpa
 from asperity.bodies import footprint as fpm
+from asperity.bodies import pressure as fpp
 from asperity.bodies.closed_forms import disc_f_m, ring_f_m
 from asperity.errors import InputError
 
@@ -35,7 +37,7 @@ def worst_errors(fp, f_m, eps_list, n_dir=24, R=None):
         f, m = f_m(eps)
         ef = em = 0.0
         for d in np.linspace(0, 2 * math.pi, n_dir, endpoint=False):
-            F, T = fpm.coulomb_wrench(fp, eps, R, d)
+            F, T = fpa.coulomb_wrench(fp, eps, R, d)
             ev = np.array([math.cos(d), math.sin(d)])
             ef = max(ef, float(np.hypot(*(F + f * ev))) / (f if f > 0 else 1.0))
             em = max(em, abs(T + m) / (m if m > 0 else 1.0))
@@ -51,13 +53,13 @@ def test_disc_default_meets_half_a_percent_for_every_eps():
     values and the pure slide, whatever the direction of the velocity."""
     fp = fpm.disc(0.05)
     assert fp.n == fpm.DEFAULT_CONTACT_POINTS["disc"]
-    eps = [*np.linspace(0.004, 1.2, 300), *fpm.TABLE_EPS, math.inf]
-    errs = fpm.sampling_errors(fp, eps, directions=48)
+    eps = [*np.linspace(0.004, 1.2, 300), *fpa.TABLE_EPS, math.inf]
+    errs = fpa.sampling_errors(fp, eps, directions=48)
     bad = [e for e in errs if max(e["force"], e["torque"]) > 5e-3]
     assert not bad, bad
     # and the slow check agrees with the vectorised one
     slow = worst_errors(fp, disc_f_m, [0.653, 1.0], n_dir=48)
-    fast = fpm.sampling_errors(fp, [0.653, 1.0], directions=48)
+    fast = fpa.sampling_errors(fp, [0.653, 1.0], directions=48)
     for (_, ef, em), e in zip(slow, fast):
         assert ef == pytest.approx(e["force"], rel=1e-9) and em == pytest.approx(e["torque"],
                                                                                rel=1e-9)
@@ -94,8 +96,8 @@ def test_ring_default():
     fp = fpm.ring(R)
     assert np.allclose(np.hypot(*fp.points.T), R, rtol=1e-14)
     assert np.allclose(fp.weights, 1 / fp.n) and fp.inertia_per_mass == pytest.approx(R * R)
-    eps = [*np.linspace(0.004, 2.0, 200), *fpm.TABLE_EPS, math.inf]
-    bad = [e for e in fpm.sampling_errors(fp, eps) if max(e["force"], e["torque"]) > 5e-3]
+    eps = [*np.linspace(0.004, 2.0, 200), *fpa.TABLE_EPS, math.inf]
+    bad = [e for e in fpa.sampling_errors(fp, eps) if max(e["force"], e["torque"]) > 5e-3]
     assert not bad, bad
     assert worst_errors(fp, ring_f_m, [0.95, 1.0])[1][1] > 1e-3      # the rim: O(1/N)
     assert fp.area == 0.0
@@ -196,7 +198,7 @@ def test_hertz_disc_moments():
     assert fp.profile == "hertz" and np.all(fp.weights > 0)
     assert fp.weights @ r == pytest.approx(3 * math.pi * R / 16, rel=1e-6)
     assert fp.weights @ r**2 == pytest.approx(2 * R * R / 5, rel=1e-6)
-    _, T = fpm.coulomb_wrench(fp, 0.0)
+    _, T = fpa.coulomb_wrench(fp, 0.0)
     assert -T * R == pytest.approx(3 * math.pi * R / 16, rel=1e-6)
     assert fp.inertia_per_mass == pytest.approx(R * R / 2)           # the lamina's, not p's
     # more load near the centre than the uniform disc
@@ -261,9 +263,9 @@ def test_pressure_file_csv_and_npy(tmp_path):
     csv.write_text("x_m,y_m,p_Pa\n" + "".join(f"{x},{y},{q}\n" for (x, y), q in zip(pts, p)))
     np.save(tmp_path / "p.npy", np.column_stack([pts, p]))
     for f in (csv, tmp_path / "p.npy"):
-        xy, q = fpm.read_pressure(f)
+        xy, q = fpp.read_pressure(f)
         assert np.array_equal(xy, pts) and np.array_equal(q, p)
-    fp = fpm.from_pressure(pts, p)
+    fp = fpp.from_pressure(pts, p)
     assert fp.n == 4 and fp.kind == "pressure" and fp.profile == "file"  # zero dropped
     assert np.allclose(fp.weights, [0.125, 0.375, 0.125, 0.375])
     assert fp.info["centroid_shift"] == pytest.approx([0.001, 0.001])    # equal cells' mean
@@ -280,27 +282,57 @@ def test_bad_pressure_files(tmp_path, text, words):
     f = tmp_path / "p.csv"
     f.write_text(text)
     with pytest.raises(InputError, match=words):
-        fpm.read_pressure(f)
+        fpp.read_pressure(f)
 
 
 @pytest.mark.parametrize("p,words", [([1.0, -1.0], "does not carry the load"),
                                      ([0.0, 0.0], "does not carry the load")])
 def test_pressures_that_do_not_carry_the_load(p, words):
     with pytest.raises(InputError, match=words):
-        fpm.from_pressure([[0, 0], [1e-3, 0]], p)
+        fpp.from_pressure([[0, 0], [1e-3, 0]], p)
 
 
 def test_pressure_on_a_shape_keeps_its_frame_and_refuses_points_outside():
     shape = fpm.polygon(L_SHAPE, contact_points=100)
     pts = [[0.005, 0.005], [0.04, 0.005], [0.005, 0.03]]
-    fp = fpm.from_pressure(pts, [1.0, 1.0, 2.0], shape=shape)
+    fp = fpp.from_pressure(pts, [1.0, 1.0, 2.0], shape=shape)
     c = np.array(shape.info["centroid_shift"])
     assert np.allclose(fp.points, np.array(pts) - c)
     assert fp.inertia_per_mass == shape.inertia_per_mass and fp.area == shape.area
     with pytest.raises(InputError, match="outside"):
-        fpm.from_pressure([[0.03, 0.03]], [1.0], shape=shape)          # the L's notch
+        fpp.from_pressure([[0.03, 0.03]], [1.0], shape=shape)          # the L's notch
     with pytest.raises(InputError, match="outside"):
-        fpm.from_pressure([[0.0, 0.011]], [1.0], shape=fpm.disc(0.01))
+        fpp.from_pressure([[0.0, 0.011]], [1.0], shape=fpm.disc(0.01))
+
+
+def test_pressure_points_merged_keep_load_and_centre():
+    rng = np.random.default_rng(3)
+    pts = rng.uniform(-0.01, 0.01, size=(20000, 2))
+    p = rng.uniform(0, 1e6, size=20000) * (1 + 50 * pts[:, 0])
+    full = fpp.from_pressure(pts, p)
+    fp = fpp.from_pressure(pts, p, contact_points=300)
+    assert 280 <= fp.n <= 320 and full.n == 20000
+    assert np.allclose(fp.centre_of_pressure, full.centre_of_pressure, atol=1e-15)
+    assert fp.inertia_per_mass == full.inertia_per_mass
+    # merging moves load inwards within a cell: the second moment drops by a cell's share
+    r2 = lambda f: f.weights @ (f.points**2).sum(axis=1)            # noqa: E731
+    assert 0 < r2(full) - r2(fp) < (0.02**2 / 300) / 6 * 1.5
+
+
+def test_contact_solution_of_a_sphere_gives_hertz():
+    """A sphere's bottom (R = 5 cm) pressed on a flat: the contact footprint's load-weighted
+    mean radius is Hertz's 3 pi a / 16 (a from the contact area), within the pixels' 3 %."""
+    from asperity.contact.solver import solve_contact
+    n, dx = 96, 1e-5
+    x = (np.arange(n) - n / 2) * dx
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    res = solve_contact(-(X**2 + Y**2) / (2 * 0.05), dx, 1e9, 4.5e5, boundary="free")
+    fp = fpp.from_contact(res, contact_points=200)
+    a = math.sqrt(fp.info["contact_area_m2"] / math.pi)
+    assert a > 20 * dx                                                  # resolved
+    assert 180 <= fp.n <= 220
+    assert fp.weights @ np.hypot(*fp.points.T) == pytest.approx(3 * math.pi * a / 16, rel=0.03)
+    assert np.abs(fp.centre_of_pressure).max() < 1e-8 * a        # symmetric to the solver's tol
 
 
 # ----------------------------------------------------------------------------- a mesh's patch
@@ -319,7 +351,7 @@ def meshes(tmp_path_factory):
 
 
 def test_mesh_patch_of_a_box_is_its_bottom(meshes):
-    fp = fpm.mesh_patch(meshes / "box.stl", unit="mm", contact_points=200)
+    fp = fpp.mesh_patch(meshes / "box.stl", unit="mm", contact_points=200)
     assert fp.kind == "mesh" and fp.info["faces"] == 2
     assert fp.area == pytest.approx(8e-4, rel=1e-12)
     assert fp.inertia_per_mass == pytest.approx((0.04**2 + 0.02**2) / 12, rel=1e-12)
@@ -329,7 +361,7 @@ def test_mesh_patch_of_a_box_is_its_bottom(meshes):
 
 def test_mesh_patch_of_a_part_on_two_feet(meshes):
     """Only the feet's soles touch; the bridge's underside (15 mm up) does not."""
-    fp = fpm.mesh_patch(meshes / "bridge.stl", unit="mm", contact_points=200)
+    fp = fpp.mesh_patch(meshes / "bridge.stl", unit="mm", contact_points=200)
     assert fp.area == pytest.approx(2e-4, rel=1e-12)
     assert fp.info["centroid_shift"] == pytest.approx([0.02, 0.0], abs=1e-15)
     assert fp.inertia_per_mass == pytest.approx(0.01**2 / 6 + 0.02**2, rel=1e-12)
@@ -344,25 +376,38 @@ def test_mesh_patch_of_a_tilted_block_needs_the_tolerance(meshes):
     m.apply_transform(trimesh.transformations.rotation_matrix(math.radians(0.5), (0, 1, 0)))
     m.export(meshes / "tilted.stl")
     with pytest.raises(InputError, match="tolerance"):
-        fpm.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=1e-4)
-    fp = fpm.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=4e-4, contact_points=100)
+        fpp.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=1e-4)
+    fp = fpp.mesh_patch(meshes / "tilted.stl", unit="mm", tolerance=4e-4, contact_points=100)
     assert fp.area == pytest.approx(0.04 * math.cos(math.radians(0.5)) * 0.02, rel=1e-6)  # STL: float32
 
 
 def test_mesh_patch_keeps_the_underside_of_a_closed_mesh(meshes):
     """A tolerance above the whole box takes every face; the top (facing up) is not a
     second layer of contact: only the faces facing down count."""
-    fp = fpm.mesh_patch(meshes / "box.stl", unit="mm", tolerance=0.011, contact_points=100)
+    fp = fpp.mesh_patch(meshes / "box.stl", unit="mm", tolerance=0.011, contact_points=100)
     assert fp.area == pytest.approx(8e-4, rel=1e-12) and fp.info["faces"] == 2
+
+
+def test_mesh_patch_leaves_out_a_ledge_facing_up():
+    """A sole (20 x 10 mm at z = 0, facing down) and a ledge beside it 1 mm up facing up
+    (30 x 10 mm): within a 1.5 mm tolerance both, but only the sole touches."""
+    from asperity.surface.topography import TriangleMesh
+    v = np.array([[0, 0, 0], [20, 0, 0], [20, 10, 0], [0, 10, 0],
+                  [20, 0, 1], [50, 0, 1], [50, 10, 1], [20, 10, 1]], dtype=float) * 1e-3
+    faces = np.array([[0, 2, 1], [0, 3, 2],            # clockwise from above: down
+                      [4, 5, 6], [4, 6, 7]])           # counter-clockwise: up
+    fp = fpp.mesh_patch(TriangleMesh(v, faces), tolerance=1.5e-3, contact_points=50)
+    assert fp.area == pytest.approx(2e-4, rel=1e-12)
+    assert fp.info["centroid_shift"] == pytest.approx([0.01, 0.005])
 
 
 def test_mesh_patch_refusals(meshes, tmp_path):
     with pytest.raises(InputError, match="unit"):
-        fpm.mesh_patch(meshes / "box.stl")
+        fpp.mesh_patch(meshes / "box.stl")
     with pytest.raises(InputError, match="mesh"):
-        fpm.mesh_patch(tmp_path / "missing.stl", unit="mm")
+        fpp.mesh_patch(tmp_path / "missing.stl", unit="mm")
     with pytest.raises(InputError, match="tolerance"):
-        fpm.mesh_patch(meshes / "box.stl", unit="mm", tolerance=-1.0)
+        fpp.mesh_patch(meshes / "box.stl", unit="mm", tolerance=-1.0)
 
 
 # ----------------------------------------------------------------------------- body files

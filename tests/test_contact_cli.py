@@ -184,18 +184,20 @@ def test_bad_values_are_one_line_exit_1_nothing_written(scan, capsys, tmp_path, 
     assert not plot.exists() and not saved.exists() and not list(tmp_path.glob(".*part"))
 
 
-def test_a_map_without_a_finite_pixel_and_a_mesh_are_refused(capsys, tmp_path):
+def test_a_map_without_a_finite_pixel_is_refused_and_a_mesh_is_pressed(capsys, tmp_path):
     plot, saved = tmp_path / "p.png", tmp_path / "p.npy"
     nan = tmp_path / "nan.npy"
     np.save(nan, np.full((8, 8), np.nan))
-    for argv, words in (
-            (files(nan), "every pixel is undefined"),
-            ([str(ROOT / "surfaces" / "wedge-30-10.stl"), "--unit", "mm"], "needs a height map")):
-        code, out, err = run(capsys, "contact", *argv, "--elastic", "1e9", "--pressure", "1e6",
-                             "--plot", plot, "--save-pressure", saved)
-        assert code == 1 and words in err, err
-        assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
-        assert not plot.exists() and not saved.exists()
+    code, out, err = run(capsys, "contact", *files(nan), "--elastic", "1e9", "--pressure",
+                         "1e6", "--plot", plot, "--save-pressure", saved)
+    assert code == 1 and "every pixel is undefined" in err, err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert not plot.exists() and not saved.exists()
+    # a mesh: its upper envelope on a grid (tests/test_contact_mesh.py checks the physics)
+    d = run_json(capsys, "contact", str(ROOT / "surfaces" / "wedge-30-10.stl"), "--unit", "mm",
+                 "--elastic", "1e9", "--pressure", "1e6", "--plot", plot)
+    assert d["texture"]["kind"] == "mesh" and d["boundary"] == "free"
+    assert 0 < d["area_fraction"] < 1 and plot.exists()
 
 
 def test_the_iteration_limit_exits_3_with_the_residual_nothing_written(scan, capsys, tmp_path):

@@ -24,6 +24,7 @@ from api_walk import (BIG_INT as BIG, NAN, Kind, address, array, callback, choic
 from hostile import SURF
 
 import asperity as A
+from asperity.dynamics.moreau import Force
 from asperity.errors import InputError
 
 #: public names that are not callables of the API (the version, the error classes)
@@ -53,6 +54,7 @@ class Row:
 
 def _files(folder: Path) -> dict:
     np.save(folder / "z.npy", Z)
+    np.save(folder / "w.npy", 1e-6 * np.random.default_rng(3).normal(size=(20, 18)))
     gl = A.fit_derivation(A.derive(TEX, n_directions=72), "star")
     A.write_gauge(folder / "g.json", gl)
     chain = A.two_node_chain(1e6, 0.1, 1.2e-5, 5e5, 100.0, 0.2, 0.1)
@@ -146,10 +148,15 @@ def api_table(folder: Path) -> list[Row]:
                  tolerance=number(0.0, 1e3, none=True), **shape_kw), shape_words),
         Row("pressure_footprint", A.pressure_footprint,
             dict(points=[[0.0, 0.0], [0.001, 0.0]], pressures=[1e5, 2e5], shape=None,
-                 cell_areas=None),
+                 cell_areas=None, contact_points=None),
             dict(points=array(-1e3, 1e3, ndim=2), pressures=array(0.0, None, extra=[
                 ("range", "all zero", [0.0, 0.0])]), shape=instance(none=True),
-                 cell_areas=array(0.0, None, lo_open=True, none=True))),
+                 cell_areas=array(0.0, None, lo_open=True, none=True), contact_points=points)),
+        Row("contact_footprint", A.contact_footprint,
+            dict(result=A.solve_contact(-np.hypot(*np.meshgrid(np.arange(16), np.arange(16)))
+                                        * 1e-6, 1e-6, 1e9, 1e5, boundary="free"),
+                 contact_points=None),
+            dict(result=instance(), contact_points=points)),
         Row("read_pressure", A.read_pressure, dict(path=folder / "pressure.csv"),
             dict(path=infile(folder, ".csv")), {"path": ("pressure file",)}),
         Row("read_body", A.read_body, dict(path=SURF / "body-plate.toml"),
@@ -163,6 +170,20 @@ def api_table(folder: Path) -> list[Row]:
             dict(v0=number(0.0, 1e4), omega0=number(0.0, 1e6), mu=number(1e-6, 100.0),
                  g=number(1e-6, 1e4), R=number(1e-9, 1e3), kind=choice(),
                  rtol=number(1e-14, 1e-3))),
+        Row("slide_body", A.slide_body,
+            dict(law=f["law"], body=A.disc_footprint(0.05, contact_points=16), u0=0.2,
+                 angle_deg=30.0, omega0=5.0, mass=None, inertia=None, g=9.81, dt=1e-3,
+                 t_end=None, force=None, texture_angle_deg=0.0, settings=None),
+            dict(law=instance(), body=instance(extra=[
+                ("range", "a point", A.Footprint("point", np.zeros((1, 2)), np.ones(1),
+                                                 np.zeros((1, 2)), 0.0))]),
+                 u0=number(0.0, 1e4), angle_deg=number(-360.0, 360.0),
+                 omega0=number(-1e6, 1e6), mass=number(1e-9, 1e9, none=True),
+                 inertia=number(1e-15, 1e12, none=True), g=number(1e-6, 1e4),
+                 dt=number(1e-9, 1.0), t_end=number(0.0, 1e9, none=True),
+                 force=instance(none=True, extra=[
+                     ("range", "a load without t_end", Force(constant=(1.0, 0.0, 0.0)))]),
+                 texture_angle_deg=number(-360.0, 360.0), settings=instance(none=True))),
         Row("WedgeTexture", A.WedgeTexture,
             dict(alpha_deg=30, beta_deg=10, mu_alpha=0.1, mu_beta=0.2, height=1e-6),
             dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,
@@ -270,8 +291,9 @@ def api_table(folder: Path) -> list[Row]:
         Row("load_elastic", A.load_elastic,
             dict({k: v for k, v in scan_args.items() if "_level" not in k
                   and k != "bearing_fraction"}, elastic=A.ElasticContact(1e9, 1e6),
-                 observe=None),
+                 observe=None, grid_step=None),
             dict(path=npy, elastic=instance(), observe=callback(),
+                 grid_step=number(0.0, None, lo_open=True, none=True),
                  **{k: v for k, v in scan.items() if k not in ("rest_level",
                                                                "bearing_fraction")}),
             {"path": ("surface file",), "friction_map": ("friction map",)}),
@@ -289,6 +311,20 @@ def api_table(folder: Path) -> list[Row]:
                  other_contact=choice(none=True), source=instance(none=True)),
             {"path": ("surface file",), "n_directions": ("directions",),
              "friction_map": ("friction map",)}),
+        Row("derive_windows", A.derive_windows,
+            dict({k: v for k, v in scan_args.items() if "_level" not in k
+                  and k != "bearing_fraction"}, path=folder / "w.npy",
+                 elastic=A.ElasticContact(1e9, 1e6), window=16, windows=2, placement="grid",
+                 seed=0, contact="all-faces", n_directions=8, client=None, source=None),
+            dict(path=npy, elastic=instance(), window=whole(16, 18), windows=whole(1, 10_000),
+                 placement=choice(), seed=whole(0, 2 ** 63 - 1), contact=contact,
+                 n_directions=whole(8, 100_000), client=instance(none=True),
+                 source=instance(none=True),
+                 **{k: v for k, v in scan.items() if k not in ("rest_level",
+                                                               "bearing_fraction")}),
+            {"path": ("surface file",), "friction_map": ("friction map",),
+             "n_directions": ("directions",), "placement": ("window_placement",),
+             "seed": ("window_seed",)}),
         Row("fit_derivation", A.fit_derivation, dict(d=f["d"], kind="star", holdout=True),
             dict(d=instance(), kind=choice(), holdout=flag()), {"d": ("derivation",)}),
         Row("WalkerLeineLaw", A.WalkerLeineLaw, dict(C=f["gl"].law.C, D=f["gl"].law.D),

@@ -34,6 +34,7 @@ from pathlib import Path
 
 from ..errors import InputError, check_choice, check_instance, check_range, check_table, check_text
 from . import footprint as fpm
+from . import pressure as fpp
 
 SHAPES = ("disc", "ring", "rectangle", "polygon", "mesh")
 _TOP = {"name", "description", "body"}
@@ -115,14 +116,14 @@ def _body(data: dict, p: Path) -> Body:
             fp = fpm.polygon(b["vertices"], **kw)
         else:
             mesh = named_path(check_text("body.mesh", b["mesh"]), p.parent)
-            fp = fpm.mesh_patch(mesh, unit=b.get("unit"), tolerance=b.get("tolerance"), **kw)
+            fp = fpp.mesh_patch(mesh, unit=b.get("unit"), tolerance=b.get("tolerance"), **kw)
     except InputError as exc:
         raise InputError(f"body.{exc}") from None
     if "pressure_file" in b:
         pf = named_path(check_text("body.pressure_file", b["pressure_file"]), p.parent)
-        pts, pr = fpm.read_pressure(pf)
+        pts, pr = fpp.read_pressure(pf)
         try:
-            fp = fpm.from_pressure(pts, pr, shape=fp)
+            fp = fpp.from_pressure(pts, pr, shape=fp)
         except InputError as exc:
             raise InputError(f"body.pressure_file {pf.name}: {exc}") from None
     if "inertia" in b:

@@ -7,7 +7,7 @@ import os
 from . import json_text
 
 PARTS = ("closed-form", "springs", "facets", "microslip", "moreau", "study", "big-scan",
-         "contact")
+         "contact", "body")
 #: largest --facets: the benchmark then takes 4.4 GB (peak RSS measured; estimated 7.5 GB)
 MAX_FACETS_GRID = 8192
 
@@ -28,7 +28,14 @@ def add_parser(sub) -> None:
                                    "contact solve against ContactMechanics and a plain "
                                    "NumPy Polonsky-Keer (periodic and free, a load curve), "
                                    "each solver in a child process, and whether the "
-                                   "issue's targets are met.")
+                                   "issue's targets are met; --only body: Moreau steps per "
+                                   "second of a point mass on the ellipse and the star law "
+                                   "against MuJoCo's box on a plane in the same run, "
+                                   "MuJoCo's spinning disc (when sliding and spinning stop, "
+                                   "v / (R omega) at the end) and the body solver's disc "
+                                   "with 256 contact points (MuJoCo runs in a child process "
+                                   "and is installed with pip when missing, unless "
+                                   "--no-install).")
     p.add_argument("--seconds", type=float, default=1.0, help="time per measurement (s)")
     p.add_argument("--only", choices=PARTS, default=None,
                    help="run one benchmark only (default: closed-form and springs)")
@@ -55,6 +62,9 @@ def add_parser(sub) -> None:
     p.add_argument("--big", action="store_true",
                    help="--only contact: also a free 4096 x 4096 solve of asperity's solver "
                         "(memory per pixel; about 3.5 GB)")
+    p.add_argument("--no-install", action="store_true",
+                   help="--only body: do not pip install MuJoCo when it is missing (its "
+                        "figures are then left out, saying so)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=main)
 
@@ -102,6 +112,9 @@ def main(args) -> int:
         out["big_scan"] = bench.bench_big_scan(sizes, n_dir, repeats, args.scan_dir)
     if "contact" in parts:
         out["contact"] = bench.bench_contact(contact_n, args.big, repeats)
+    if "body" in parts:
+        from ..dynamics.body_bench import bench_body
+        out["body"] = bench_body(seconds, install=not args.no_install)
     if args.json:
         print(json_text(out))
         return 0
@@ -122,4 +135,7 @@ def main(args) -> int:
         print(bench.format_big_scan(out["big_scan"]))
     if "contact" in out:
         print(bench.format_contact(out["contact"]))
+    if "body" in out:
+        from ..dynamics.body_bench import format_body
+        print(format_body(out["body"]))
     return 0

@@ -58,22 +58,10 @@ def add_parser(sub) -> None:
                              "to 4096; 0: in this process, the default)",
                           "run the tiles on an existing Dask cluster; the workers read the "
                           "tiles from the file's path")
-    w = p.add_argument_group(
-        "elastic contact of scans beyond one solve (windows)",
-        "The contact is long-range: tiles do not decouple.  With --elastic and one "
-        "--pressure, --window W solves K windows of W x W pixels, each on its own (read "
-        "from the file alone, free boundary by default), and reports each window's contact "
-        "and friction, their mean and spread: an estimate from K windows, not the whole "
-        "scan's contact.  --workers / --scheduler run the windows on a Dask cluster.")
-    w.add_argument("--window", metavar="W", default=None,
-                   help="window side in pixels, 16 to the scan's smaller side (None: no windows)")
-    w.add_argument("--windows", metavar="K", default=None,
-                   help="number of windows, 1 to 10000 (None: 8)")
-    w.add_argument("--window-placement", choices=["grid", "random"], default=None,
-                   help="grid: a regular grid from edge to edge of the scan; random: a uniform "
-                        "position in each stratum (--window-seed) (None: grid)")
-    w.add_argument("--window-seed", metavar="S", default=None,
-                   help="seed of --window-placement random (None: 0)")
+    from .derive_windows import add_window_arguments
+    add_window_arguments(p, "and reports each window's contact and friction, their mean and "
+                            "spread (several --pressure values: each window solved as a load "
+                            "curve, the spread given per pressure)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     p.add_argument("--plot", metavar="FILE.png", help="draw the polar reservoir and T/L against psi "
                                                       "(surfaces: and a height-map preview)")
@@ -197,10 +185,11 @@ def main(args) -> int:
         return contact_failed("derive", exc)
     from ..friction.family import LawFamily
     if isinstance(d, dict):                     # --window: an estimate from windows
-        from ..friction.window_summary import plot_windows, window_text
+        from ..friction import window_summary as ws
+        family = "per_pressure" in d
         if args.plot:
-            plot_windows(d, args.plot)
-        emit(args, obj, window_text(d))
+            (ws.plot_window_family if family else ws.plot_windows)(d, args.plot)
+        emit(args, obj, (ws.family_window_text if family else ws.window_text)(d))
         return 0
     if isinstance(d, LawFamily):                # several --pressure values
         from ..friction.family import family_text, plot_family

@@ -13,6 +13,16 @@ MAX_ROWS = 20000
 EXIT_NOT_CONVERGED = 3
 
 
+class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Defaults in the help, but not "(default: None)": those options say in words what
+    leaving them out means."""
+
+    def _get_help_string(self, action):
+        if action.default is None:
+            return action.help
+        return super()._get_help_string(action)
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser(
         "slide", help="slide a body on a friction law until it sticks (Moreau time-stepping)",
@@ -30,8 +40,16 @@ def add_parser(sub) -> None:
                     "start to rest (positive towards t_b). Exit status 3 if the fixed-point "
                     "iteration did not converge at some step (reported, with the residual). A "
                     "gauge file holding a law family (version 2) needs --pressure, the body's "
-                    "nominal normal pressure: its law is taken at it.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                    "nominal normal pressure: its law is taken at it. With --body disc, ring, "
+                    "rectangle or a TOML body file a rigid body slides and spins instead "
+                    "(--omega0), every contact point of its footprint on the law at its own "
+                    "velocity; it prints the rest point and angle, when sliding and spinning "
+                    "stopped and, for a disc or ring, the terminal ratio v / (R omega) "
+                    "(0.653 for a uniformly loaded disc, 1 for a ring). An external force "
+                    "or torque, constant or periodic (--force, --torque, --force-amplitude, "
+                    "--waveform, --period), needs --t-end and reports the drift and rotation "
+                    "per cycle.",
+        formatter_class=_HelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
     p.add_argument("--law", choices=LAWS, default=None,
                    help="law (default: the gauge file's; without one coulomb if only --mu1 "
@@ -45,7 +63,8 @@ def add_parser(sub) -> None:
     p.add_argument("--u0", type=float, required=True, metavar="M_S", help="initial speed (m/s)")
     p.add_argument("--angle", type=float, required=True, metavar="DEG",
                    help="direction of the initial velocity (deg from t_a towards t_b)")
-    p.add_argument("--mass", type=float, default=1.0, metavar="KG", help="mass (kg)")
+    p.add_argument("--mass", type=float, default=None, metavar="KG",
+                   help="mass (kg; default 1; a body file gives its own)")
     p.add_argument("--g", type=float, default=9.81, metavar="M_S2",
                    help="gravity: normal force m g (m/s^2)")
     p.add_argument("--dt", type=float, default=1e-4, metavar="S", help="time step (s)")
@@ -57,9 +76,50 @@ def add_parser(sub) -> None:
                    help="fixed-point iteration limit per step")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the path")
-    p.add_argument("--csv", metavar="FILE.csv", help="write t,x,y,vx,vy of the path")
+    p.add_argument("--csv", metavar="FILE.csv",
+                   help="write the path: t,x,y,vx,vy (point mass) or t,x,y,theta,vx,vy,omega "
+                        "(a body)")
+    b = p.add_argument_group(
+        "bodies", "a rigid body with a footprint instead of the point mass: it slides and "
+        "spins, every contact point with the law at its own velocity (exact stick of the "
+        "body). JSON adds final_angle_rad, slide_stop_time, spin_stop_time, together, "
+        "terminal_ratio (discs and rings), the body, and under a load its drift")
+    b.add_argument("--body", default="point", metavar="point|disc|ring|rectangle|BODY.toml",
+                   help="the body: the point mass, a disc or ring (--radius), a rectangle "
+                        "(--size) or a TOML body file (shape, size, mass, pressure: see "
+                        "surfaces/body-plate.toml)")
+    b.add_argument("--radius", type=float, metavar="M",
+                   help="radius of a disc or ring (m, in [1e-9, 1000])")
+    b.add_argument("--size", type=float, nargs=2, metavar=("A", "B"),
+                   help="sides of a rectangle (m, each in [1e-9, 1000]; A along the body's x)")
+    b.add_argument("--omega0", type=float, default=None, metavar="RAD_S",
+                   help="initial spin (rad/s, counter-clockwise, in [-1e6, 1e6]; default 0)")
+    b.add_argument("--contact-points", type=int, default=None, metavar="N",
+                   help="contact points sampling the footprint (default per shape: disc 1024, "
+                        "ring 512, rectangle 1024; a body file's own count is replaced)")
+    b.add_argument("--pressure-profile", choices=("uniform", "hertz", "linear"), default=None,
+                   help="normal pressure over the footprint (default uniform; hertz: discs; "
+                        "linear: with --centre-of-pressure, inside the footprint's core)")
+    b.add_argument("--centre-of-pressure", type=float, nargs=2, metavar=("X", "Y"),
+                   help="centre of pressure of the linear profile (m, body frame, from the "
+                        "centroid)")
+    b.add_argument("--texture-angle", type=float, default=None, metavar="DEG",
+                   help="angle of the law's t_a axis from x (deg, in [-360, 360]; default 0): "
+                        "the texture is fixed to the support")
+    b.add_argument("--force", type=float, nargs=2, metavar=("FX", "FY"),
+                   help="constant external force on the body (N); needs --t-end")
+    b.add_argument("--torque", type=float, metavar="TZ",
+                   help="constant external torque on the body (N m); needs --t-end")
+    b.add_argument("--force-amplitude", type=float, nargs="+", metavar="A",
+                   help="amplitude of the periodic load: AX AY [AT] (N, N, N m), with "
+                        "--waveform square or sine and --period; needs --t-end")
+    b.add_argument("--period", type=float, default=None, metavar="S",
+                   help="period of the periodic load (s, in [1e-9, 1e9]; default 1)")
+    b.add_argument("--waveform", choices=("none", "square", "sine"), default=None,
+                   help="shape of the periodic load: square (+A the first half of each period, "
+                        "-A the second), sine, or none (default: a constant load only)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False)],
-                   inputs=["gauge"])
+                   inputs=["gauge", "body"])
 
 
 def build_law(args):
@@ -80,8 +140,8 @@ def _build(args):
             raise InputError("--mu1/--mu2 do not apply with a gauge file (the file holds the law)")
         if args.law == "coulomb":
             raise InputError("--law coulomb takes --mu1, not a gauge file")
-        from ..laws.gauge_file import read_gauge
         from ..laws.family import GaugeFamily, law_at
+        from ..laws.gauge_file import read_gauge
         gl = read_gauge(args.gauge)
         if args.pressure is not None and not isinstance(gl, GaugeFamily):
             raise InputError(f"--pressure applies to a law family; {args.gauge} holds one law "
@@ -122,7 +182,11 @@ def run(args):
     from ..errors import InputError, check_int, check_range
     u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
     angle = check_range("--angle", args.angle, -360.0, 360.0, unit="deg")
-    mass = check_range("--mass", args.mass, *LIMITS["mass"], unit="kg")
+    if args.body != "point":
+        return run_body(args)
+    _refuse_body_options(args)
+    mass = check_range("--mass", 1.0 if args.mass is None else args.mass, *LIMITS["mass"],
+                       unit="kg")
     g = check_range("--g", args.g, *LIMITS["g"], unit="m/s^2")
     dt = check_range("--dt", args.dt, *LIMITS["dt"], unit="s")
     tol = check_range("--tol", args.tol, 1e-15, 1e-3)
@@ -157,6 +221,144 @@ def run(args):
     return law, res, obj
 
 
+#: options that apply to a body only (not to the point mass), with their flags
+BODY_OPTIONS = (("radius", "--radius"), ("size", "--size"), ("omega0", "--omega0"),
+                ("contact_points", "--contact-points"), ("pressure_profile", "--pressure-profile"),
+                ("centre_of_pressure", "--centre-of-pressure"),
+                ("texture_angle", "--texture-angle"), ("force", "--force"),
+                ("torque", "--torque"), ("force_amplitude", "--force-amplitude"),
+                ("period", "--period"), ("waveform", "--waveform"))
+
+
+def _refuse_body_options(args) -> None:
+    from ..errors import InputError
+    for dest, flag in BODY_OPTIONS:
+        if getattr(args, dest, None) is not None:
+            raise InputError(f"{flag} applies to a body (--body disc, ring, rectangle or a body "
+                             "file), not to the point mass")
+
+
+def _force(args):
+    """The external load of the options (a moreau.Force), or None."""
+    from ..dynamics.moreau import Force
+    from ..errors import InputError, check_range
+    amp = args.force_amplitude
+    wave = args.waveform
+    if amp is not None and len(amp) not in (2, 3):
+        raise InputError(f"--force-amplitude takes AX AY or AX AY AT (2 or 3 numbers), got "
+                         f"{len(amp)}")
+    if amp is not None and wave in (None, "none"):
+        raise InputError("--force-amplitude needs --waveform square or sine (the shape of the "
+                         "periodic load)")
+    if wave not in (None, "none") and amp is None:
+        raise InputError(f"--waveform {wave} needs --force-amplitude AX AY [AT]")
+    if args.period is not None and wave in (None, "none"):
+        raise InputError("--period applies to a periodic load (--waveform square or sine)")
+    const = [0.0, 0.0, 0.0]
+    if args.force is not None:
+        const[:2] = [check_range("--force", v, -1e12, 1e12, unit="N") for v in args.force]
+    if args.torque is not None:
+        const[2] = check_range("--torque", args.torque, -1e12, 1e12, unit="N m")
+    if args.force is None and args.torque is None and amp is None:
+        return None
+    a = [0.0, 0.0, 0.0]
+    if amp is not None:
+        a[:len(amp)] = [check_range("--force-amplitude", v, -1e12, 1e12) for v in amp]
+    period = 1.0 if args.period is None else \
+        check_range("--period", args.period, 1e-9, 1e9, unit="s")
+    if args.t_end is None:
+        raise InputError("--force, --torque and --force-amplitude need --t-end (a body under "
+                         "a load need not come to rest)")
+    return Force(constant=tuple(const), amplitude=tuple(a), period=period,
+                 waveform=wave or "none")
+
+
+def run_body(args):
+    """``asperity slide --body ...``: (law, BodyResult, the JSON object); the body run is
+    :func:`asperity.dynamics.body_api.slide_body`."""
+    from ..dynamics.body import BodySettings
+    from ..dynamics.body_api import make_body, slide_body
+    from ..dynamics.moreau import LIMITS
+    from ..errors import InputError, check_int, check_range
+    u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
+    angle = check_range("--angle", args.angle, -360.0, 360.0, unit="deg")
+    g = check_range("--g", args.g, *LIMITS["g"], unit="m/s^2")
+    dt = check_range("--dt", args.dt, *LIMITS["dt"], unit="s")
+    tol = check_range("--tol", args.tol, 1e-15, 1e-3)
+    maxit = check_int("--max-iterations", args.max_iterations, 1, 1_000_000)
+    omega0 = 0.0 if args.omega0 is None else \
+        check_range("--omega0", args.omega0, -1e6, 1e6, unit="rad/s")
+    tex = 0.0 if args.texture_angle is None else \
+        check_range("--texture-angle", args.texture_angle, -360.0, 360.0, unit="deg")
+    t_end = None if args.t_end is None else \
+        check_range("--t-end", args.t_end, *LIMITS["t_end"], unit="s")
+    force = _force(args)
+    law, how = _build(args)
+    body = make_body(args.body, radius=args.radius, size=args.size,
+                     contact_points=args.contact_points, pressure_profile=args.pressure_profile,
+                     centre_of_pressure=args.centre_of_pressure, mass=args.mass, cli=True)
+    try:
+        run = slide_body(law, body, u0, angle, omega0, g=g, dt=dt, t_end=t_end, force=force,
+                         texture_angle_deg=tex,
+                         settings=BodySettings(tol=tol, max_iterations=maxit))
+    except InputError as exc:          # the work limits name dt and t_end: say the options
+        msg = str(exc).replace("t_end / dt", "--t-end / --dt").replace("raise dt", "raise --dt")
+        raise type(exc)(msg.replace("lower t_end", "lower --t-end")) from None
+    obj = run.summary
+    if args.gauge:
+        obj["gauge"] = str(args.gauge)
+    if how is not None:
+        obj["family_pressure"] = how
+    if args.csv:
+        from ..dynamics.body_api import body_csv
+        from ..io import write_text_atomic
+        write_text_atomic(args.csv, body_csv(run.result))
+    if args.plot:
+        from ..dynamics.body_api import body_words
+        from ..dynamics.plot import plot_body_path
+        plot_body_path(args.plot, run.result, body.footprint.outline, law, angle,
+                       f"{body_words(obj['body'])}\n{law.description}")
+    return law, run.result, obj
+
+
+def _say_body(say, obj) -> None:
+    """The text of a body's slide."""
+    from ..dynamics.body_api import body_words
+    b = obj["body"]
+    say(body_words(b))
+    th = obj["final_angle_rad"]
+    if obj["rest"] is not None:
+        say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m, angle {th:.6g} rad "
+            f"({math.degrees(th):.4g} deg), after {obj['stop_time']:.6g} s ({obj['steps']} "
+            f"steps of {obj['dt']:g} s), distance {obj['distance']:.6g} m")
+    else:
+        say(f"still moving at t = {obj['t_end']:g} s: position "
+            f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m, angle "
+            f"{th:.6g} rad ({math.degrees(th):.4g} deg)")
+    ts, tw = obj["slide_stop_time"], obj["spin_stop_time"]
+    words = ["did not slide" if ts == 0 and obj["u0"] == 0 else
+             f"sliding stopped at {ts:.6g} s" if ts is not None else "still sliding",
+             "did not spin" if tw == 0 and obj["omega0"] == 0 else
+             f"spinning at {tw:.6g} s" if tw is not None else "still spinning"]
+    if obj["together"] is not None:
+        words.append("together" if obj["together"] else "not together")
+    say(", ".join(words))
+    if obj["terminal_ratio"] is not None:
+        from ..bodies.closed_forms import TERMINAL_RATIO
+        ref = TERMINAL_RATIO.get(b["kind"])
+        say(f"terminal ratio v/(R omega): {obj['terminal_ratio']:.4g} (closed form of a "
+            f"uniformly loaded {b['kind']}: {ref:.4g})")
+    if obj["load"] is not None:
+        ld = obj["load"]
+        if ld["drift_per_cycle"] is not None:
+            say(f"per cycle ({ld['cycles']} cycles): drift ({ld['drift_per_cycle'][0]:.6g}, "
+                f"{ld['drift_per_cycle'][1]:.6g}) m, rotation {ld['rotation_per_cycle']:.6g} rad")
+        if ld["drift_velocity"] is not None:
+            say(f"mean drift velocity ({ld['drift_velocity'][0]:.6g}, "
+                f"{ld['drift_velocity'][1]:.6g}) m/s, rotation rate {ld['rotation_rate']:.6g} "
+                "rad/s")
+
+
 def main(args) -> int:
     import sys
     law, res, obj = run(args)
@@ -173,7 +375,9 @@ def main(args) -> int:
         if obj.get("family_pressure"):
             from ..laws.family import how_words
             say(how_words(obj["family_pressure"]))
-        if obj["rest"] is not None:
+        if "body" in obj:
+            _say_body(say, obj)
+        elif obj["rest"] is not None:
             say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m after "
                 f"{obj['stop_time']:.6g} s ({obj['steps']} steps of {obj['dt']:g} s), "
                 f"distance {obj['distance']:.6g} m")

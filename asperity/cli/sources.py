@@ -28,10 +28,10 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "pressure": "--pressure", "hardness": "--hardness",
                 "max_iterations": "--max-iterations", "tol ": "--tol ",
                 "window_placement": "--window-placement", "window_seed": "--window-seed",
-                "windows": "--windows", "window ": "--window "}
+                "windows": "--windows", "window ": "--window ", "grid_step": "--grid-step"}
 #: the elastic-contact flags (dest -> flag)
 ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
-                 "hardness": "--hardness"}
+                 "hardness": "--hardness", "grid_step": "--grid-step"}
 
 
 def surface_options(args) -> dict:
@@ -74,15 +74,15 @@ def surface_from_args(args, progress=None, elastic=None):
         from ..surface.contact_facets import load_elastic
         opts = {k: v for k, v in surface_options(args).items()
                 if k not in ("rest_level", "bearing_fraction")}
-        return load_elastic(args.texture, elastic, **opts)
+        return load_elastic(args.texture, elastic, grid_step=args.grid_step, **opts)
 
 
 def add_elastic_arguments(p) -> None:
     """--elastic E* --pressure P [P ...] [--boundary] [--hardness]: load shares from an
     elastic contact solution (derive, fit, risk)."""
     e = p.add_argument_group(
-        "elastic contact (load shares from a contact solution; height maps and wedge "
-        "textures)",
+        "elastic contact (load shares from a contact solution; height maps, meshes and "
+        "wedge textures)",
         "The surface (a height map, or a wedge texture's profile over one period) is pressed "
         "at the nominal pressure P onto an elastic half-space of effective modulus E* "
         "(frictionless normal contact, Polonsky-Keer); each facet's load share is the "
@@ -98,6 +98,10 @@ def add_elastic_arguments(p) -> None:
                         "(default: free for files, periodic for wedge textures)")
     e.add_argument("--hardness", type=float, metavar="H_PA",
                    help="perfectly plastic cap of the pressure, Pa (above the pressure)")
+    e.add_argument("--grid-step", type=float, metavar="M",
+                   help="a mesh: the step (m) of the height grid its upper envelope is "
+                        "pressed on, each triangle weighing the force of the nodes it "
+                        "holds (default: its median projected edge length / 4)")
 
 
 #: exit status when the contact solve reaches its iteration limit (as ``slide``'s)
@@ -207,6 +211,9 @@ def texture_from_args(args, several: bool = False):
     file; with the elastic flags the texture weighted by the contact force (``several``: a
     list of them, one a pressure)."""
     elastic = elastic_from_args(args, several)
+    if getattr(args, "grid_step", None) is not None and (args.texture is None
+                                                         or is_texture_file(args.texture)):
+        raise InputError("--grid-step applies to meshes, not to wedge textures")
     texture, table = _texture_from_args(args, elastic)
     if elastic is None:
         return texture, table

@@ -13,7 +13,8 @@ import math
 import numpy as np
 from numba import njit
 
-from ..laws._law_kernels import law_alpha, law_point
+from ..laws._law_kernels import (WARM_A1, WARM_A2, WARM_NA, WARM_NP, WARM_P1, WARM_P2, WARM_P3,
+                                 law_alpha_near, law_alpha_warm, law_point_warm)
 from ..laws._set_kernels import TWO_PI
 
 STATUS_OK = 0
@@ -70,7 +71,122 @@ def _end_velocity(ue, uf, minv, P, ow, nc, ndof):
 
 
 @njit(cache=True)
-def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
+def _jacobi_iterate(uf, ue, minv, P, Pn, ow, stick, warm, lam_n, assoc, kinds, pars, tabs,
+                    offs, ns, r, tol, max_iter, nc, ndof):
+    """The Jacobi fixed-point iteration of one step over all contacts (see
+    :func:`integrate`); updates P, stick and the warm rows; returns (iterations, residual)."""
+    res = 0.0
+    it = 0
+    for it in range(1, max_iter + 1):
+        _end_velocity(ue, uf, minv, P, ow, nc, ndof)   # u_E for Lambda_i = -P_i
+        res = 0.0
+        for i in range(nc):
+            g0 = ue[0]
+            g1 = ue[1]
+            if ndof == 3:
+                g0 -= ue[2] * ow[i, 1]
+                g1 += ue[2] * ow[i, 0]
+            ln = lam_n[i]
+            p0 = P[i, 0] / ln
+            p1 = P[i, 1] / ln
+            wk = warm[i]
+            al = -1.0
+            if it == 1 and wk[WARM_NA] >= 2.0:
+                # first guess of alpha: extrapolated from the last two steps' (the
+                # fixed point is the same; the guess saves an iteration as it turns)
+                al = 2.0 * wk[WARM_A1] - wk[WARM_A2]
+            if not 0.0 < al <= 1.0:
+                al = law_alpha_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
+                                    ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
+                                    ns[i, 1], p0, p1, wk)
+            z0 = al * (p0 + r * g0 / ln)
+            z1 = al * (p1 + r * g1 / ln)
+            a, b, ins = law_point_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs,
+                                       offs[i, 0], ns[i, 0], kinds[i, 1], pars[i, 1],
+                                       tabs, offs[i, 1], ns[i, 1], z0, z1, wk)
+            stick[i] = ins
+            e = math.hypot(a - p0, b - p1)
+            if e > res:
+                res = e
+            Pn[i, 0] = a * ln
+            Pn[i, 1] = b * ln
+        for i in range(nc):
+            P[i, 0] = Pn[i, 0]
+            P[i, 1] = Pn[i, 1]
+        if res <= tol:
+            break
+    for i in range(nc):
+        wk = warm[i]
+        ln = lam_n[i]
+        wk[WARM_A2] = wk[WARM_A1]
+        wk[WARM_A1] = law_alpha_warm(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
+                                     ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
+                                     ns[i, 1], P[i, 0] / ln, P[i, 1] / ln, wk)
+        if wk[WARM_NA] < 2.0:
+            wk[WARM_NA] += 1.0
+    return it, res
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _point_iterate(uf, minv, P, wk, ln, assoc, ck, cp, dk, dp, tabs, coff, cn, doff, dn, r,
+                   tol, max_iter):
+    """The fixed-point iteration of one step of a point mass (one contact, W = identity):
+    the same iteration as the general one in :func:`integrate`, on scalars, started from the
+    force extrapolated (quadratically) from the last three steps when they slid, with its
+    alpha (so the first iteration converges when the extrapolation is within tol: ~1e-14
+    at dt = 1e-4 s); else from the last step's force with alpha extrapolated from the last
+    two steps.  Updates P and the warm row wk; returns (iterations, residual, stick)."""
+    res = 0.0
+    it = 0
+    ins = False
+    iln = 1.0 / ln
+    rl = r * iln
+    al = -1.0
+    if wk[WARM_NP] >= 3.0:
+        e0 = 3.0 * (wk[WARM_P1] - wk[WARM_P2]) + wk[WARM_P3]
+        e1 = 3.0 * (wk[WARM_P1 + 1] - wk[WARM_P2 + 1]) + wk[WARM_P3 + 1]
+        P[0, 0] = e0 * ln
+        P[0, 1] = e1 * ln
+        al = law_alpha_near(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn,
+                            P[0, 0] * iln, P[0, 1] * iln, wk)
+    elif wk[WARM_NA] >= 2.0:
+        al = 2.0 * wk[WARM_A1] - wk[WARM_A2]
+    for it in range(1, max_iter + 1):
+        p0 = P[0, 0] * iln
+        p1 = P[0, 1] * iln
+        g0 = uf[0] - minv[0] * P[0, 0]
+        g1 = uf[1] - minv[1] * P[0, 1]
+        if it > 1 or not 0.0 < al <= 1.0:
+            al = law_alpha_warm(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn, p0, p1,
+                                wk)
+        z0 = al * (p0 + rl * g0)
+        z1 = al * (p1 + rl * g1)
+        a, b, ins = law_point_warm(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn,
+                                   z0, z1, wk)
+        res = math.hypot(a - p0, b - p1)
+        P[0, 0] = a * ln
+        P[0, 1] = b * ln
+        if res <= tol:
+            break
+    wk[WARM_A2] = wk[WARM_A1]
+    wk[WARM_A1] = law_alpha_warm(assoc, ck, cp, tabs, coff, cn, dk, dp, tabs, doff, dn,
+                                 P[0, 0] * iln, P[0, 1] * iln, wk)
+    if wk[WARM_NA] < 2.0:
+        wk[WARM_NA] += 1.0
+    for j in range(2):
+        wk[WARM_P3 + j] = wk[WARM_P2 + j]
+        wk[WARM_P2 + j] = wk[WARM_P1 + j]
+    wk[WARM_P1] = P[0, 0] * iln
+    wk[WARM_P1 + 1] = P[0, 1] * iln
+    if ins or res > tol:                  # a stick (or a failed step): start the history anew
+        wk[WARM_NP] = 0.0
+    elif wk[WARM_NP] < 3.0:
+        wk[WARM_NP] += 1.0
+    return it, res, ins
+
+
+@njit(cache=True, error_model="numpy")
+def integrate(q, u, P, warm, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
               fpar, ftab, t0, dt, n_steps, step0, n_chunk, r, tol, max_iter, full_rank,
               halt_at_rest, record_every, rec_t, rec_q, rec_u, info):
     """Moreau midpoint time-stepping of a body on a plane (SPEC.md section 4), steps
@@ -80,6 +196,8 @@ def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
 
     q, u   : (ndof,) state, updated in place; ndof = 2 (point mass x, y) or 3 (rigid body)
     P      : (nc, 2) contact impulses of the last step (zeros before the first), in place
+    warm   : (nc, WARM_SIZE) each contact's warm start of the law's kernels
+             (laws._law_kernels.new_warm before the first step), carried like P
     minv   : (ndof,) inverse mass matrix diagonal
     offsets: (nc, 2) contact points in the body frame (rotated by theta at q_M)
     lam_n  : (nc,) normal impulse per step of each contact (share * m g dt)
@@ -129,6 +247,11 @@ def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
     it_total = int(info[INFO_ITER_TOTAL])
     status = int(info[INFO_STATUS])
     stop_at = min(n_steps, step0 + n_chunk)
+    # a point mass (one contact at the centre): the iteration on scalars
+    point = ndof == 2 and nc == 1
+    cp0 = pars[0, 0]
+    dp0 = pars[0, 1]
+    wk0 = warm[0]
     halted = False
     step = step0
     for step in range(step0, stop_at):
@@ -143,38 +266,15 @@ def integrate(q, u, P, minv, offsets, lam_n, assoc, kinds, pars, tabs, offs, ns,
             for i in range(nc):
                 ow[i, 0] = c * offsets[i, 0] - s * offsets[i, 1]
                 ow[i, 1] = s * offsets[i, 0] + c * offsets[i, 1]
-        res = 0.0
-        it = 0
-        for it in range(1, max_iter + 1):
-            _end_velocity(ue, uf, minv, P, ow, nc, ndof)   # u_E for Lambda_i = -P_i
-            res = 0.0
-            for i in range(nc):
-                g0 = ue[0]
-                g1 = ue[1]
-                if ndof == 3:
-                    g0 -= ue[2] * ow[i, 1]
-                    g1 += ue[2] * ow[i, 0]
-                ln = lam_n[i]
-                p0 = P[i, 0] / ln
-                p1 = P[i, 1] / ln
-                al = law_alpha(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0], ns[i, 0],
-                               kinds[i, 1], pars[i, 1], tabs, offs[i, 1], ns[i, 1], p0, p1)
-                z0 = al * (p0 + r * g0 / ln)
-                z1 = al * (p1 + r * g1 / ln)
-                a, b, ins = law_point(assoc[i], kinds[i, 0], pars[i, 0], tabs, offs[i, 0],
-                                      ns[i, 0], kinds[i, 1], pars[i, 1], tabs, offs[i, 1],
-                                      ns[i, 1], z0, z1)
-                stick[i] = ins
-                e = math.hypot(a - p0, b - p1)
-                if e > res:
-                    res = e
-                Pn[i, 0] = a * ln
-                Pn[i, 1] = b * ln
-            for i in range(nc):
-                P[i, 0] = Pn[i, 0]
-                P[i, 1] = Pn[i, 1]
-            if res <= tol:
-                break
+        if point:
+            it, res, stick[0] = _point_iterate(uf, minv, P, wk0, lam_n[0], assoc[0],
+                                               kinds[0, 0], cp0, kinds[0, 1], dp0, tabs,
+                                               offs[0, 0], ns[0, 0], offs[0, 1], ns[0, 1], r,
+                                               tol, max_iter)
+        else:
+            it, res = _jacobi_iterate(uf, ue, minv, P, Pn, ow, stick, warm, lam_n, assoc,
+                                      kinds, pars, tabs, offs, ns, r, tol, max_iter, nc,
+                                      ndof)
         it_total += it
         if it > max_it:
             max_it = it

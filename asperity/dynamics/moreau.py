@@ -22,6 +22,12 @@ y_i = alpha_i P_i on its ray.  r = relax / max eig(W^T M^-1 W), relax in (0, 2) 
 which for a point mass gives r = m: the associated law is then solved by one projection).
 The iteration stops when max_i |P_i^(k+1) - P_i^k| / Lambda_N,i <= tol; if the limit is
 reached first the result's status says so (first step and residual) -- never silently.
+Each step starts from the last step's P_i with alpha_i extrapolated from the last two steps
+(a point mass: from P extrapolated from the last three sliding steps, with its own alpha, so
+that a steady slide converges in one iteration), and the law's kernels start from their last
+evaluation (laws._law_kernels.law_point_warm: the projection onto D from the last sample
+interval and root, the star polygon from the last edge); a guess changes the iterations,
+not the fixed point.
 
 Exact stick: when every contact's prox argument lies inside its set (all contacts stick) and
 W^T has full column rank (point mass; rigid body with two or more distinct contacts), the
@@ -151,12 +157,16 @@ class Body:
 
     def delassus_max_eig(self) -> float:
         """max eig(W^T M^-1 W) (independent of theta: rotating the body rotates G's blocks)."""
+        if self.inertia is None:            # a point mass: W = identity (no LAPACK call)
+            return 1.0 / self.mass
         W = self.W()
         G = W.T @ (self.minv[:, None] * W)
         return float(np.linalg.eigvalsh(G).max())
 
     def full_rank(self) -> bool:
         """W^T has full column rank: all contacts sticking forces u = 0."""
+        if self.inertia is None:            # a point mass: W = identity
+            return True
         return bool(np.linalg.matrix_rank(self.W()) == self.ndof)
 
 
@@ -321,13 +331,15 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
     info = np.zeros(K.INFO_SIZE)
     qf, uf = q0.copy(), u0.copy()
     P = np.zeros((nc, 2))
+    from ..laws._law_kernels import new_warm
+    warm = new_warm(nc)
     contacts = np.ascontiguousarray(body.contacts)
     full_rank = body.full_rank()
     # pieces of STEPS_PER_PIECE steps (~0.1 s for the slowest law): Ctrl-C between them
     pieces = chunks(n_steps, max(1, STEPS_PER_PIECE // nc), "Moreau steps") if n_steps else \
         [(0, 0)]
     for start, stop in pieces:
-        K.integrate(qf, uf, P, body.minv, contacts, lam_n, assoc, kinds, pars, tabs, offs, ns,
+        K.integrate(qf, uf, P, warm, body.minv, contacts, lam_n, assoc, kinds, pars, tabs, offs, ns,
                     fpar, ftab, 0.0, dt, n_steps, start, stop - start, r, settings.tol,
                     settings.max_iterations, full_rank, bool(halt_at_rest), record_every,
                     rec_t, rec_q, rec_u, info)

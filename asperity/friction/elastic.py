@@ -13,7 +13,11 @@ of an :class:`~asperity.surface.contact_facets.ElasticContact`:
   unchanged (:class:`ElasticWedge`).  A flat gap between Gaussian wedges that touches
   becomes a level face ``gap`` (mu of its profile segment).
 
-A FacetSurface or a mesh has lost its heights' grid: it is refused in one line.
+* a TriangleMesh: its upper envelope on a height grid is pressed and each triangle weighs
+  the force of the grid nodes it holds (:func:`asperity.surface.contact_facets.elastic_facets`,
+  :mod:`asperity.surface.mesh_grid`; free boundary, the default grid step).
+
+A FacetSurface has lost its heights' grid: it is refused in one line.
 """
 from __future__ import annotations
 
@@ -139,9 +143,9 @@ def elastic_textures(texture, elastic, observe=None) -> list:
     the module's docstring); InputError for what has no height grid.  ``observe(result)``
     sees each pressure's ContactResult (a wedge's: its profile, 2 columns)."""
     from ..surface.contact_facets import check_elastic, elastic_facets
-    from ..surface.topography import HeightMap
+    from ..surface.topography import HeightMap, TriangleMesh
     elastic = check_elastic(elastic)
-    if isinstance(texture, HeightMap):
+    if isinstance(texture, (HeightMap, TriangleMesh)):
         return list(elastic_facets(texture, elastic, observe=observe))
     if callable(getattr(texture, "profile", None)) and getattr(texture, "kind", "") in (
             "wedge", "gaussian-wedge"):
@@ -149,5 +153,6 @@ def elastic_textures(texture, elastic, observe=None) -> list:
     what = "a surface's facets (they have lost the height grid: give the HeightMap, or " \
            "load_elastic(path, ...))" if getattr(texture, "kind", "") == "surface" else \
         f"{type(texture).__name__}"
-    raise InputError(f"texture must be a height map or a wedge texture for elastic contact, "
+    raise InputError(f"texture must be a height map, a mesh or a wedge texture for elastic "
+                     f"contact, "
                      f"got {what}")

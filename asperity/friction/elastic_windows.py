@@ -17,6 +17,14 @@ their spread.  It is an estimate from K windows of W, never the whole scan's sol
 * A window is read from the file alone (:func:`read_window`: a few lines of the file at a
   time, cropped), so a task holds its window and its solve, never the scan; a window with
   fewer than :data:`MIN_DEFINED_SHARE` of its pixels defined is skipped (and named).
+  With ``random`` placement a skipped window is redrawn in its own stratum (up to
+  :data:`MAX_REDRAWS` times, from the stream ``(seed, window, attempt)``: the same
+  whatever runs it); the result counts the windows redrawn and those still skipped.
+  ``grid`` windows are not redrawn (the grid is the placement asked for).
+* Several pressures (an ElasticContact family): each window is solved as a load curve
+  (:func:`asperity.contact.iter_load_curve`, each pressure from the previous one's
+  solution) and derived at each pressure; the summary gives the spread per pressure.
+* ``derive=False`` (``asperity contact --window``): the windows' contact figures only.
 * Each window is prepared as a scan of its own (spikes, form and slope removed within it),
   weighted by :func:`asperity.surface.contact_facets.elastic_facets` and derived
   (:func:`asperity.friction.derive.derive`): its principal direction is its own.
@@ -30,9 +38,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_int
+from ..errors import InputError, check_choice, check_instance, check_int
 from ..progress import report
-from .window_summary import MIN_DEFINED_SHARE, summarise
+from .window_summary import MAX_REDRAWS, MIN_DEFINED_SHARE, summarise
 
 #: smallest window side (pixels): a smaller patch cannot resolve a contact spot
 MIN_WINDOW = 16
@@ -55,32 +63,51 @@ class WindowPlan:
     options: dict                   # detrend, mu, despike, max_slope
     contact: str
     n_directions: int
+    derive: bool = True             # False: the contact figures only (asperity contact)
+    strata: tuple | None = None     # random placement: each window's stratum, for redraws
+    seed: int = 0
 
     @property
     def n_tiles(self) -> int:       # the runner of .tiled counts its items so
         return len(self.origins)
 
 
-def window_origins(shape, window: int, count: int, placement: str = "grid",
-                   seed: int = 0) -> list[tuple[int, int]]:
-    """Origins (i0, j0) of ``count`` windows of ``window`` pixels in a map of ``shape``."""
+def window_strata(shape, window: int, count: int) -> list[tuple]:
+    """The stratum (x0, x1, y0, y1, a, b, r, c) of each of ``count`` windows: origins in
+    [x0, x1) x [y0, y1), cell (a, b) of the r x c grid of strata."""
     nx, ny = shape
     sx, sy = nx - window + 1, ny - window + 1          # origins available along x, y
     r = int(min(count, max(1, round(math.sqrt(count * sx / sy)))))
     c = -(-count // r)
     cells = np.round(np.linspace(0, r * c - 1, count)).astype(int)
-    rng = np.random.default_rng(seed)
     out = []
     for k in cells:
         a, b = divmod(int(k), c)
-        x0, x1 = a * sx / r, (a + 1) * sx / r          # stratum of origins [x0, x1)
-        y0, y1 = b * sy / c, (b + 1) * sy / c
+        out.append((a * sx / r, (a + 1) * sx / r, b * sy / c, (b + 1) * sy / c, a, b, r, c))
+    return out
+
+
+def _draw(stratum, shape, window, rng) -> tuple[int, int]:
+    """A uniform origin in ``stratum``."""
+    x0, x1, y0, y1 = stratum[:4]
+    sx, sy = shape[0] - window + 1, shape[1] - window + 1
+    u, v = rng.random(2)
+    return (min(sx - 1, int(x0 + u * (x1 - x0))), min(sy - 1, int(y0 + v * (y1 - y0))))
+
+
+def window_origins(shape, window: int, count: int, placement: str = "grid",
+                   seed: int = 0) -> list[tuple[int, int]]:
+    """Origins (i0, j0) of ``count`` windows of ``window`` pixels in a map of ``shape``."""
+    sx, sy = shape[0] - window + 1, shape[1] - window + 1
+    rng = np.random.default_rng(seed)
+    out = []
+    for st in window_strata(shape, window, count):
+        a, b, r, c = st[4:]
         if placement == "grid":                        # spread from edge to edge
             out.append((round((sx - 1) * (a / (r - 1) if r > 1 else 0.5)),
                         round((sy - 1) * (b / (c - 1) if c > 1 else 0.5))))
             continue
-        u, v = rng.random(2)
-        out.append((min(sx - 1, int(x0 + u * (x1 - x0))), min(sy - 1, int(y0 + v * (y1 - y0)))))
+        out.append(_draw(st, shape, window, rng))
     return out
 
 
@@ -109,24 +136,45 @@ def window_bytes(window: int, boundary: str) -> float:
     return float(window) ** 2 * (max(BYTES_PER_PIXEL[boundary], facet_bytes(False, True)) + 32)
 
 
+def _read_defined(plan: WindowPlan, k: int):
+    """(origin, heights, defined share, rejected origins) of window ``k``: redrawn in its
+    stratum while too few of its pixels are defined (random placement, at most
+    :data:`MAX_REDRAWS` times)."""
+    src, w = plan.heights, plan.window
+    origin = plan.origins[k]
+    rejected = []
+    for attempt in range(MAX_REDRAWS + 1):
+        if attempt:
+            rng = np.random.default_rng([plan.seed, k, attempt])
+            origin = _draw(plan.strata[k], src.shape, w, rng)
+        z = read_window(src, origin[0], origin[1], w)
+        share = float(np.isfinite(z).mean())
+        if share >= MIN_DEFINED_SHARE or plan.strata is None:
+            break
+        rejected.append([int(origin[0]), int(origin[1])])
+    return origin, z, share, rejected
+
+
 def solve_window(plan: WindowPlan, k: int, tick=None) -> dict:
     """One window's contact and friction (a task); ``skipped`` when too few pixels are
-    defined."""
-    from ..surface.contact_facets import elastic_facets
+    defined (after the redraws of a random placement)."""
+    from ..surface.contact_facets import contact_solutions, elastic_facets
     from ..surface.prepare import DETREND
     from ..surface.quality import remove_spikes
     from ..surface.topography import HeightMap
     from .derive import derive, to_json
     src, w = plan.heights, plan.window
-    i0, j0 = plan.origins[k]
-    z = read_window(src, i0, j0, w)
-    out = {"index": k, "origin_px": [i0, j0], "origin_m": [i0 * src.dx, j0 * src.dy]}
-    ok = np.isfinite(z)
-    share = float(ok.mean())
+    (i0, j0), z, share, rejected = _read_defined(plan, k)
+    out = {"index": k, "origin_px": [int(i0), int(j0)],
+           "origin_m": [i0 * src.dx, j0 * src.dy]}
     out["defined_share"] = share
+    if plan.strata is not None:
+        out["redrawn_from"] = rejected if share >= MIN_DEFINED_SHARE else rejected[:-1]
     if share < MIN_DEFINED_SHARE:
         out["skipped"] = (f"{100 * share:.1f} % of its pixels defined (at least "
-                          f"{100 * MIN_DEFINED_SHARE:.0f} % needed)")
+                          f"{100 * MIN_DEFINED_SHARE:.0f} % needed)"
+                          + (f", after {MAX_REDRAWS} redraws" if plan.strata is not None
+                             else ""))
         return out
     o = plan.options
     spikes = 0 if o["despike"] is None else remove_spikes(z, o["despike"])
@@ -136,20 +184,32 @@ def solve_window(plan: WindowPlan, k: int, tick=None) -> dict:
     if degree not in (None, "slope"):
         from ..surface.detrend import detrend
         hm = detrend(hm, degree)
-    fm = None if plan.mu_map is None else read_window(plan.mu_map, i0, j0, w)
-    fs = next(elastic_facets(hm, plan.elastic, mu=None if fm is not None else o["mu"],
-                             friction_map=fm, level_slope=o["detrend"] == "slope",
-                             info={"file": src.path, "detrend": o["detrend"]},
-                             max_slope=o["max_slope"]))
-    d = derive(fs, plan.contact, "closed-form", plan.n_directions)
-    j = to_json(d)
-    out.update({key: j[key] for key in ("mu_a_plus", "mu_a_minus", "mu_b_plus",
-                                        "mu_b_minus", "principal_direction_deg",
-                                        "anisotropy", "n_facets")})
-    out["self_locking"] = bool(d.self_locking)
     out["spikes_removed"] = spikes
-    out["elastic_contact"] = fs.elastic
-    out["tangential"] = [x["tangential"] for x in j["directions"]]
+    e = plan.elastic
+    if not plan.derive:                  # the contact figures only
+        members = [{"elastic_contact": res.to_dict()} for res in contact_solutions(
+            hm, e, e.boundary_or("free"), o["detrend"] == "slope")]
+    else:
+        fm = None if plan.mu_map is None else read_window(plan.mu_map, i0, j0, w)
+        members = []
+        for fs in elastic_facets(hm, e, mu=None if fm is not None else o["mu"],
+                                 friction_map=fm, level_slope=o["detrend"] == "slope",
+                                 info={"file": src.path, "detrend": o["detrend"]},
+                                 max_slope=o["max_slope"]):
+            d = derive(fs, plan.contact, "closed-form", plan.n_directions)
+            j = to_json(d)
+            m = {key: j[key] for key in ("mu_a_plus", "mu_a_minus", "mu_b_plus",
+                                         "mu_b_minus", "principal_direction_deg",
+                                         "anisotropy", "n_facets")}
+            m["self_locking"] = bool(d.self_locking)
+            m["elastic_contact"] = fs.elastic
+            m["tangential"] = [x["tangential"] for x in j["directions"]]
+            members.append(m)
+            del fs, d, j
+    if e.family:
+        out["members"] = members
+    else:
+        out.update(members[0])
     if tick is not None:
         tick(1.0)
     return out
@@ -178,10 +238,37 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
                    contact="all-faces", n_directions=72, client=None, source=None) -> dict:
     """The contact-weighted friction of a height-map file estimated from ``windows``
     windows of ``window`` x ``window`` pixels (see the module's docstring): the JSON object
-    of ``asperity derive --window`` (README).  ``elastic``: an ElasticContact of one
-    pressure (boundary None: free); ``client``: a dask.distributed Client whose workers
-    solve the windows (reading them from the file's path); ``source``: the file already
-    opened by :func:`asperity.surface.tiles.open_scan`."""
+    of ``asperity derive --window`` (README).  ``elastic``: an ElasticContact (boundary
+    None: free) of one pressure, or of several (each window solved as a load curve; the
+    spread given per pressure); ``client``: a dask.distributed Client whose workers solve
+    the windows (reading them from the file's path); ``source``: the file already opened
+    by :func:`asperity.surface.tiles.open_scan`."""
+    from .window_summary import summarise_family
+    plan, results = _run(path, elastic, True, window, windows, placement, seed, unit,
+                         pixel_size, height_scale, detrend, mu, friction_map, despike,
+                         despike_window, max_slope, contact, n_directions, client, source)
+    if plan.elastic.family:
+        return summarise_family(plan, results, placement, seed)
+    return summarise(plan, results, placement, seed)
+
+
+def contact_windows(path, elastic, *, window, windows=8, placement="grid", seed=0,
+                    unit=None, pixel_size=None, height_scale=1.0, detrend="slope",
+                    despike=None, despike_window=None, client=None, source=None) -> dict:
+    """The elastic contact of a height-map file estimated from windows (as
+    :func:`derive_windows`, the contact figures only): the JSON object of ``asperity
+    contact --window`` (README)."""
+    from .window_summary import contact_summary
+    plan, results = _run(path, elastic, False, window, windows, placement, seed, unit,
+                         pixel_size, height_scale, detrend, None, None, despike,
+                         despike_window, None, "all-faces", 72, client, source)
+    return contact_summary(plan, results, placement, seed)
+
+
+def _run(path, elastic, derive, window, windows, placement, seed, unit, pixel_size,
+         height_scale, detrend, mu, friction_map, despike, despike_window, max_slope,
+         contact, n_directions, client, source):
+    """(the plan, each window's result), the inputs checked first."""
     from dataclasses import replace
 
     from ..surface.contact_facets import check_elastic
@@ -190,8 +277,6 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
     from .reservoir import check_contact
     from .tiled import _Runner
     elastic = check_elastic(elastic)
-    if elastic.family:
-        raise InputError("pressure: windows take one pressure (a number), got several")
     despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
                                                despike_window=despike_window,
                                                max_slope=max_slope)
@@ -199,6 +284,12 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
         raise InputError("give mu or a friction map, not both")
     check_contact(contact)
     n_dir = check_int("directions", n_directions, 8, 100_000)
+    if client is not None:
+        from distributed import Client
+        check_instance("client", client, Client, "dask.distributed Client")
+    if source is not None:
+        from ..surface.readers._lines import LineSource
+        check_instance("source", source, LineSource, "scan opened by open_scan")
     src = source if source is not None else open_scan(
         path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
     w, n = check_window_request(src.shape, window, windows, placement, seed)
@@ -214,8 +305,10 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
                       w, tuple(window_origins(src.shape, w, n, placement, seed)),
                       replace(elastic, boundary=boundary),
                       {"detrend": detrend, "mu": mu, "despike": despike,
-                       "max_slope": max_slope}, contact, n_dir)
+                       "max_slope": max_slope}, contact, n_dir, derive=derive,
+                      strata=tuple(window_strata(src.shape, w, n))
+                      if placement == "random" else None, seed=seed)
     report(0.0, "windows")
     results = _Runner(plan, client, run_windows, "lower --window").map("window", plan,
                                                                        label="windows")
-    return summarise(plan, results, placement, seed)
+    return plan, results

@@ -9,5 +9,5 @@
   pressure, :mod:`.family_report` -- their summary, text, plot and exports;
   :mod:`.export` -- CSV polar table and Abaqus block; :mod:`.plot` -- figures;
 * :mod:`.planar` -- the laws as the solvers use them, with their proximal maps (kernels in
-  :mod:`._set_kernels` and :mod:`._law_kernels`).
+  :mod:`._set_kernels`, :mod:`._warm_kernels` and :mod:`._law_kernels`).
 """

@@ -179,60 +179,13 @@ def _visible_pred(tab, row, psi, x0, x1, psr):
 
 
 @njit(cache=True)
-def support_project(tab, off, n, x0, x1):
-    """Euclidean projection of x onto the convex set; (y0, y1, inside).
-
-    The projection of an outside point is the boundary point y(psi) = h s + h' s_perp whose
-    normal psi solves F(psi) = x.s_perp(psi) - h'(psi) = 0 with x.s(psi) > h(psi).  On the
-    arc of normals with x.s > h (less than a half turn, containing the normal psi_r of the
-    boundary point on the ray of x) F decreases; outside it the predicate
-    R(psi) = (F <= 0 if visible else psi > psi_r) continues monotonically, so a binary search
-    over the samples finds the interval (or the flat edge) of the root and a safeguarded
-    Newton iteration finishes inside it."""
-    r = math.hypot(x0, x1)
-    if r == 0.0:
-        return x0, x1, True
-    rho, psr = support_radial(tab, off, n, math.atan2(x1, x0))
-    if r <= rho:
-        return x0, x1, True
-    if r <= rho * (1.0 + 1e-14):
-        # outside by rounding only: x is its own projection (on a flat edge the search
-        # below would see x.s - h <= 0 at the edge's normal and jump to the edge's end)
-        return x0, x1, False
-    # window of samples with psi in (psr - pi, psr + pi): K in [klo, khi]
-    base = 0
-    while _psi_k(tab, off, n, base) > psr:
-        base -= n
-    while _psi_k(tab, off, n, base + n) <= psr:
-        base += n
-    lo = base - n
-    hi = base + n
-    while lo < hi:                                      # first K with psi_K > psr - pi
-        mid = (lo + hi) // 2
-        if _psi_k(tab, off, n, mid) > psr - math.pi:
-            hi = mid
-        else:
-            lo = mid + 1
-    klo = lo
-    lo = klo
-    hi = base + 2 * n
-    while lo < hi:                                      # first K with psi_K >= psr + pi
-        mid = (lo + hi) // 2
-        if _psi_k(tab, off, n, mid) >= psr + math.pi:
-            hi = mid
-        else:
-            lo = mid + 1
-    khi = lo - 1
-    lo = klo
-    hi = khi + 1
-    while lo < hi:                                      # first K with R true
-        mid = (lo + hi) // 2
-        if _visible_pred(tab, off + _row(mid, n), _psi_k(tab, off, n, mid), x0, x1, psr):
-            hi = mid
-        else:
-            lo = mid + 1
-    kb = lo
-    ka = kb - 1
+def _project_interval(tab, off, n, x0, x1, ka, psr):
+    """The projection of an outside point x whose normal lies in the sample interval
+    [psi_ka, psi_ka+1] (a flat edge if they are equal): (y0, y1, t, phi, rr) with t the
+    normal's offset psi - psi_ka, phi the polar angle of y and rr = |y| (the radial function
+    of the set at phi).  Safeguarded Newton iteration on F(psi) = x.s_perp - h' from the
+    linear interpolation of F."""
+    kb = ka + 1
     ra = off + _row(ka, n)
     rb = off + _row(kb, n)
     a = _psi_k(tab, off, n, ka)
@@ -241,7 +194,9 @@ def support_project(tab, off, n, x0, x1):
         c = tab[ra, 5]
         s = tab[ra, 6]
         v = x0 * c + x1 * s - tab[ra, 3]
-        return x0 - v * c, x1 - v * s, False
+        y0 = x0 - v * c
+        y1 = x1 - v * s
+        return y0, y1, 0.0, math.atan2(y1, y0), math.hypot(y0, y1)
     d0 = tab[ra, 2]
     d1 = tab[rb, 2]
     dd = (d1 - d0) / d
@@ -287,7 +242,78 @@ def support_project(tab, off, n, x0, x1):
             break
         t = tn
     rr = h / math.cos(de)
-    return rr * math.cos(psi + de), rr * math.sin(psi + de), False
+    phi = psi + de
+    return rr * math.cos(phi), rr * math.sin(phi), t, phi, rr
+
+
+@njit(cache=True)
+def support_project_full(tab, off, n, x0, x1):
+    """Euclidean projection of x onto the convex set with what the law needs beside it:
+    (y0, y1, inside, ka, t, phi, rr) -- ka the row of the sample interval of the normal
+    (-1 inside or on the boundary), t the normal's offset in it, phi the polar angle of y,
+    rr = |y| on the boundary (the radial function at phi; inside: rho(phi)).
+
+    The projection of an outside point is the boundary point y(psi) = h s + h' s_perp whose
+    normal psi solves F(psi) = x.s_perp(psi) - h'(psi) = 0 with x.s(psi) > h(psi).  On the
+    arc of normals with x.s > h (less than a half turn, containing the normal psi_r of the
+    boundary point on the ray of x) F decreases; outside it the predicate
+    R(psi) = (F <= 0 if visible else psi > psi_r) continues monotonically, so a binary search
+    over the samples finds the interval (or the flat edge) of the root and a safeguarded
+    Newton iteration finishes inside it."""
+    r = math.hypot(x0, x1)
+    if r == 0.0:
+        return x0, x1, True, -1, 0.0, 0.0, support_radial(tab, off, n, 0.0)[0]
+    phi = math.atan2(x1, x0)
+    rho, psr = support_radial(tab, off, n, phi)
+    if r <= rho:
+        return x0, x1, True, -1, 0.0, phi, rho
+    if r <= rho * (1.0 + 1e-14):
+        # outside by rounding only: x is its own projection (on a flat edge the search
+        # below would see x.s - h <= 0 at the edge's normal and jump to the edge's end)
+        return x0, x1, False, -1, 0.0, phi, rho
+    # window of samples with psi in (psr - pi, psr + pi): K in [klo, khi]
+    base = 0
+    while _psi_k(tab, off, n, base) > psr:
+        base -= n
+    while _psi_k(tab, off, n, base + n) <= psr:
+        base += n
+    lo = base - n
+    hi = base + n
+    while lo < hi:                                      # first K with psi_K > psr - pi
+        mid = (lo + hi) // 2
+        if _psi_k(tab, off, n, mid) > psr - math.pi:
+            hi = mid
+        else:
+            lo = mid + 1
+    klo = lo
+    lo = klo
+    hi = base + 2 * n
+    while lo < hi:                                      # first K with psi_K >= psr + pi
+        mid = (lo + hi) // 2
+        if _psi_k(tab, off, n, mid) >= psr + math.pi:
+            hi = mid
+        else:
+            lo = mid + 1
+    khi = lo - 1
+    lo = klo
+    hi = khi + 1
+    while lo < hi:                                      # first K with R true
+        mid = (lo + hi) // 2
+        if _visible_pred(tab, off + _row(mid, n), _psi_k(tab, off, n, mid), x0, x1, psr):
+            hi = mid
+        else:
+            lo = mid + 1
+    ka = lo - 1
+    y0, y1, t, phi, rr = _project_interval(tab, off, n, x0, x1, ka, psr)
+    return y0, y1, False, _row(ka, n), t, phi, rr
+
+
+@njit(cache=True)
+def support_project(tab, off, n, x0, x1):
+    """Euclidean projection of x onto the convex set; (y0, y1, inside)
+    (see :func:`support_project_full`)."""
+    y0, y1, inside, ka, t, phi, rr = support_project_full(tab, off, n, x0, x1)
+    return y0, y1, inside
 
 
 @njit(cache=True)

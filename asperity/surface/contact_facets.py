@@ -13,7 +13,9 @@ tractions, ploughing, the sliding-induced tilt of the contact are left out).
 * :class:`ElasticContact` -- the options: E*, one pressure or several (a load curve: each
   solution starts the next), the boundary (``periodic``: the map is one period and its
   cells across the edges are facets too; ``free``: a non-periodic scan), the hardness;
-* :func:`elastic_facets` -- the facets of a HeightMap at each pressure;
+* :func:`elastic_facets` -- the facets of a HeightMap at each pressure; or of a
+  TriangleMesh, pressed as its upper envelope on a height grid, each triangle weighing the
+  force of the grid nodes it holds (:mod:`.mesh_grid`);
 * :func:`load_elastic` -- the same from a surface file with :func:`load_surface`'s options.
 
 Slope removal (``detrend="slope"``): on a ``free`` map the mean facet gradient is removed
@@ -153,17 +155,31 @@ def contact_solutions(hm: HeightMap, elastic: ElasticContact, boundary: str,
         yield res
 
 
-def elastic_facets(hm: HeightMap, elastic: ElasticContact, *, mu=None, friction_map=None,
+def elastic_facets(hm, elastic: ElasticContact, *, mu=None, friction_map=None,
                    level_slope=True, info=None, max_slope=None, default_boundary="free",
-                   observe=None):
+                   observe=None, grid_step=None, node_bytes=0.0):
     """Yield the facets of ``hm`` weighted by the contact force at each pressure of
     ``elastic`` (FacetSurfaces whose ``elastic`` holds the contact's figures: the keys of
     ``asperity contact --json``).  Options as :func:`.facets.heightmap_facets`;
     ``default_boundary`` when ``elastic.boundary`` is None; ``observe`` as
-    :func:`contact_solutions`'s."""
+    :func:`contact_solutions`'s.
+
+    ``hm`` a TriangleMesh: its upper envelope on a grid of ``grid_step`` (m; None: the
+    default of :func:`.mesh_grid.mesh_heightmap`; ``node_bytes`` for its memory check) is
+    pressed, and each of the mesh's own triangles weighs the force of the grid nodes it
+    holds (:func:`.mesh_grid.face_forces`); its facets are :func:`.facets.mesh_facets`'s
+    (``elastic`` gains the grid's figures, :meth:`.mesh_grid.MeshGrid.to_dict`)."""
+    from .topography import TriangleMesh
+    if isinstance(hm, TriangleMesh):
+        yield from _mesh_elastic_facets(hm, check_elastic(elastic), mu, friction_map,
+                                        level_slope, info, max_slope, default_boundary,
+                                        observe, grid_step, node_bytes)
+        return
     if not isinstance(hm, HeightMap):
-        raise InputError("elastic contact needs a height map (the scan's grid); a mesh's "
-                         "facets cannot be weighted by a contact solution yet")
+        raise InputError(f"elastic contact needs a height map or a triangle mesh, got "
+                         f"{type(hm).__name__}")
+    if grid_step is not None:
+        raise InputError("grid_step applies to meshes (a height map has its own grid)")
     elastic = check_elastic(elastic)
     boundary = elastic.boundary_or(default_boundary)
     periodic = boundary == "periodic"
@@ -176,16 +192,39 @@ def elastic_facets(hm: HeightMap, elastic: ElasticContact, *, mu=None, friction_
         yield replace(fs, elastic=summary)
 
 
+def _mesh_elastic_facets(mesh, elastic, mu, friction_map, level_slope, info, max_slope,
+                         default_boundary, observe, grid_step, node_bytes):
+    from .facets import mesh_facets
+    from .mesh_grid import face_forces, mesh_heightmap
+    boundary = elastic.boundary_or(default_boundary)
+    if boundary == "periodic":
+        raise InputError("boundary of a mesh must be free (its height grid is no period of "
+                         "a texture), got periodic")
+    mg = mesh_heightmap(mesh, grid_step, node_bytes)
+    for res in contact_solutions(mg.heightmap, elastic, boundary, level_slope, observe):
+        force = face_forces(mesh, mg, res.pressure)
+        summary = {**res.to_dict(), **mg.to_dict()}
+        del res
+        fs = mesh_facets(mesh, mu=mu, friction_map=friction_map, info=info,
+                         level_slope=level_slope, max_slope=max_slope, force=force)
+        yield replace(fs, elastic=summary)
+
+
 def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
                  height_scale=1.0, detrend="slope", mu=None, friction_map=None,
                  despike=None, despike_window=None, max_slope=None,
-                 observe=None) -> list[FacetSurface]:
+                 observe=None, grid_step=None) -> list[FacetSurface]:
     """:func:`.facets.load_surface` with the facets weighted by the contact force: one
     FacetSurface per pressure of ``elastic`` (boundary ``free`` unless it says otherwise).
-    A height-map file only (not a mesh), read whole (no tiles); ``observe`` as
-    :func:`contact_solutions`'s."""
+    A height-map or mesh file, read whole (no tiles); ``observe`` as
+    :func:`contact_solutions`'s; ``grid_step`` (m): a mesh's height grid (see
+    :func:`elastic_facets`; None: its default)."""
     from ..contact.elastic import BYTES_PER_PIXEL
     elastic = check_elastic(elastic)
+    if grid_step is not None:
+        g = check_range("grid_step", grid_step, 0.0, None, low_open=True, unit="m")
+        if not np.isfinite(g):
+            raise InputError(f"grid_step must be a finite length in m, got {g}")
     if observe is not None and not callable(observe):
         raise InputError(f"observe must be a callable or None, got "
                          f"{type(observe).__name__}")
@@ -198,9 +237,13 @@ def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
                            detrend=detrend, friction_map=friction_map, despike=despike,
                            point_bytes=per_point)
     out = []
+    if grid_step is not None and isinstance(prep.surface, HeightMap):
+        raise InputError(f"grid_step applies to meshes; {path} is a height map (its own "
+                         "grid)")
     for fs in elastic_facets(prep.surface, replace(elastic, boundary=boundary), mu=mu,
                              friction_map=prep.friction_map, level_slope=prep.level_slope,
-                             info=prep.info, max_slope=max_slope, observe=observe):
+                             info=prep.info, max_slope=max_slope, observe=observe,
+                             grid_step=grid_step, node_bytes=per_point):
         fs.quality.update(prep.quality)
         out.append(fs)
     return out

@@ -298,11 +298,14 @@ def heightmap_facets(hm, *, mu=None, friction_map=None, rest_level=None,
 
 def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
                 bearing_fraction=None, level_slope=False, info=None,
-                max_slope=None) -> FacetSurface:
+                max_slope=None, force=None) -> FacetSurface:
     """Facets of a :class:`~asperity.surface.topography.TriangleMesh`.
 
     friction_map: one local friction value per triangle of ``mesh.faces``; max_slope as
-    for :func:`heightmap_facets`.
+    for :func:`heightmap_facets`.  force: None, or the normal force (N, >= 0) on each
+    triangle of ``mesh.faces`` (an elastic contact's, :func:`.mesh_grid.face_forces`): a
+    facet then weighs that force; triangles skipped as vertical or overhanging carry
+    none (their share of it is ``info["force_skipped_share"]``).
     """
     check_instance("surface", mesh, TriangleMesh, "TriangleMesh")
     rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, level_slope,
@@ -330,6 +333,15 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
         return m[facing]
 
     fmu = _facet_mu(mu, friction_map, per_face)
+    fpc = None
+    if force is not None:                 # the facet's mean pressure: force / its area
+        F = np.asarray(force, dtype=float)
+        if F.shape != (f.shape[0],) or not np.all(np.isfinite(F)) or (F < 0).any():
+            raise InputError(f"force must hold {f.shape[0]} finite forces >= 0 (one a "
+                             "triangle)")
+        total = float(F.sum())
+        skipped = total - float(F[facing].sum())
+        fpc = F[facing] / area
     lo, hi = v.min(axis=0), v.max(axis=0)
     info = dict(info or {})
     info.update(kind="mesh", source=mesh.source, n_triangles=int(f.shape[0]),
@@ -338,11 +350,13 @@ def mesh_facets(mesh, *, mu=None, friction_map=None, rest_level=None,
                 n_skipped_vertical=int(vertical.sum()),
                 n_skipped_overhanging=int(np.count_nonzero(~facing & ~vertical)),
                 mu=None if not np.isscalar(fmu) else float(fmu))
+    if fpc is not None:
+        info["force_skipped_share"] = skipped / total if total > 0 else 0.0
     xy = ((p0[facing, 0] + p1[facing, 0] + p2[facing, 0]) / 3.0,
           (p0[facing, 1] + p1[facing, 1] + p2[facing, 1]) / 3.0)
     return _finish(gx, gy, fmu, area, zc, xy, level_slope, rest_level, bearing_fraction, info,
                    max_slope=max_slope, preview=mesh_preview(p0, p1, p2, lo, hi),
-                   extent=(float(hi[0] - lo[0]), float(hi[1] - lo[1])))
+                   extent=(float(hi[0] - lo[0]), float(hi[1] - lo[1])), force=fpc)
 
 
 def surface_facets(surface, **kwargs) -> FacetSurface:
