@@ -83,9 +83,9 @@ def body_params(web, form: Form, kept: dict, *, dt: float, mass: float) -> dict 
         if spec["pressure_profile"] == "linear":
             spec["centre_of_pressure"] = [_number(form, k, 0.0, -1e3, 1e3)
                                           for k in ("cop_x", "cop_y")]
-        from .tasks_body import footprint_of
+        from .tasks_body import make
         try:
-            fp = footprint_of(spec)
+            fp = make(spec, mass).footprint
         except InputError as exc:
             raise FormError(_page_words(str(exc)), _field_of(str(exc), spec)) from None
         inertia = mass * fp.inertia_per_mass
@@ -145,6 +145,8 @@ def _field_of(msg: str, spec: dict) -> str:
     for key in ("contact_points", "pressure_profile"):
         if key in msg:
             return WORDS[key][0]
+    if msg.startswith("mass "):
+        return "mass"
     return "size_a" if shape == "rectangle" else "radius"
 
 
