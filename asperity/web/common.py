@@ -16,6 +16,8 @@ from .words import FILE_FIELDS, MULTIPLE, WEDGE, page_words
 
 MAX_FIELDS = 200
 MAX_FILES = 200
+#: most bytes of a TOML upload read as text (a study, assembly or body file)
+MAX_TOML = 1 << 20
 
 
 async def read_form(request: Request) -> Form:
@@ -178,3 +180,11 @@ def status_of(exc: BaseException) -> int:
     if isinstance(exc, TooLarge):
         return 413
     return 400 if isinstance(exc, (FormError, UploadError)) else 422
+
+
+def stored_text(web, meta: dict, what: str) -> str:
+    """The text of a stored TOML upload (at most 1 MB)."""
+    path = web.store.upload_path(meta["id"])
+    if path.stat().st_size > MAX_TOML:
+        raise UploadError(f"{meta['name']!r} is too large for {what} (1 MB)")
+    return path.read_text(encoding="utf-8", errors="replace")

@@ -23,8 +23,6 @@ PROFILES = {"disc": ("uniform", "hertz", "linear"), "rectangle": ("uniform", "li
             "ring": ("uniform",)}
 #: waveforms of the external force: value -> the library's waveform (asperity.dynamics.moreau)
 WAVES = {"": None, "constant": "none", "square": "square", "sine": "sine"}
-#: keys of a body file that name other files: refused on the page
-NAMED_FILES = ("mesh", "pressure_file")
 #: most contact points on the page: the solver behind simulate_body takes at most 10000
 #: contacts (asperity.dynamics.moreau.Body) until the fast one lands
 MAX_POINTS = 10_000
@@ -161,9 +159,10 @@ def _body_file(web, kept: dict):
         if not name.lower().endswith(".toml"):
             raise UploadError(f"the body file must be a .toml file, got {name!r}")
         from ..io import parse_toml
-        from .pages_motion import _stored_text
-        data = parse_toml(_stored_text(web, meta, "a body file"), name, UploadError)
+        from .common import stored_text
+        data = parse_toml(stored_text(web, meta, "a body file"), name, UploadError)
         table = data.get("body")
+        from .tasks_body import NAMED_FILES
         for key in NAMED_FILES:
             if isinstance(table, dict) and key in table:
                 raise UploadError(f"{name}: body.{key} = {str(table[key])[:80]!r}: on this page "

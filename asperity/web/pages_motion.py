@@ -4,7 +4,7 @@ from __future__ import annotations
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
-from .common import DONE_LIMIT, done_job, post_form, wedge_source, wedge_title
+from .common import DONE_LIMIT, done_job, post_form, stored_text, wedge_source, wedge_title
 from .forms import Form, FormError, at
 from .labels import label
 from .pages import CONTACTS, UNITS
@@ -17,7 +17,6 @@ BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a
            ("collinear", "built in: collinear (force along the sliding direction)"),
            ("star", "built in: star (windward wedge reservoir, mu1 / mu2)"),
            ("upload", "a gauge file (upload below)"))
-MAX_TOML = 1 << 20
 #: the Motion page's pressure field, for a law family (a gauge file of version 2)
 PRESSURE = "nominal pressure, Pa"
 
@@ -193,7 +192,7 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     meta = kept.get("assembly")
     if meta is not None:
         with at("assembly_file"):
-            text = _stored_text(web, meta, "an assembly file")
+            text = stored_text(web, meta, "an assembly file")
             data = parse_toml(text, meta["name"], UploadError)
         what = meta["name"]
     else:
@@ -244,14 +243,6 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
     return params, f"risk of {what} on {src_what}"
 
 
-def _stored_text(web, meta: dict, what: str) -> str:
-    """The text of a stored TOML upload (at most 1 MB)."""
-    path = web.store.upload_path(meta["id"])
-    if path.stat().st_size > MAX_TOML:
-        raise UploadError(f"{meta['name']!r} is too large for {what} (1 MB)")
-    return path.read_text(encoding="utf-8", errors="replace")
-
-
 def register(app, web) -> None:
     web.renderers.update(slide=render_motion, risk=render_motion, study=render_studies)
 
@@ -290,11 +281,11 @@ async def _study_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         names = [check_plain_name(m["name"]) for m in companions]
         if name in names:
             raise UploadError(f"{name!r} is the study file; upload each file once, please")
-        texts = {n: _stored_text(web, m, "a study, texture or assembly file")
+        texts = {n: stored_text(web, m, "a study, texture or assembly file")
                  if n.lower().endswith(".toml") else None for m, n in zip(companions, names)}
     workers = form.whole("workers", 0, low=0, high=64, label="local worker processes")
     try:
-        check_references(_stored_text(web, study, "a study file"), texts)
+        check_references(stored_text(web, study, "a study file"), texts)
     except UploadError as exc:
         exc.field = "companions" if MISSING in str(exc) else "study"   # add the file there
         exc.discard = OUTSIDE in str(exc)     # names a file of its own choosing: none kept

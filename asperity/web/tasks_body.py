@@ -13,6 +13,10 @@ from __future__ import annotations
 from ..errors import InputError
 from ..io import write_text_atomic
 
+#: keys of a body file that name other files: refused on the page (the form checks them;
+#: a job checks again before the body file is read)
+NAMED_FILES = ("mesh", "pressure_file")
+
 
 def make(spec: dict, mass: float):
     """The Body of a disc, ring or rectangle of the page (:func:`asperity.dynamics.body_api.
@@ -42,7 +46,6 @@ def body_of(spec: dict, mass: float, ctx: dict):
     if spec.get("shape") != "upload":
         return make(spec, mass)
     from ..io import read_toml
-    from .pages_body import NAMED_FILES
     from .tasks_surface import upload_file
     path = upload_file(ctx, spec.get("upload"), str(spec.get("name")))
     table = read_toml(path, "body file", {"name", "description", "body"}, InputError).get("body")
