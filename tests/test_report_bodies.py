@@ -2,6 +2,7 @@
 against the closed forms of SPEC.md 8, the footprint's own sums and the point mass."""
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,6 +10,7 @@ import pytest
 from asperity.report import bodies as B
 
 G = 9.81
+SURF = Path(__file__).resolve().parents[1] / "surfaces"
 
 
 def test_the_section_follows_moreau():
@@ -92,7 +94,7 @@ def test_spin_drift_first_step_against_the_integral_of_p():
     """A disc spun from rest: the first step's acceleration against -g/(2 pi) int p dpsi
     (spin_drift_force) and the footprint's own sum; none on the ellipse law."""
     rows = {r["law"].split(",")[1].split()[0] if "wedge" in r["law"] else "ellipse": r
-            for r in B.drift_rows(B.QUICK, to_rest=False)}
+            for r in B.drift_rows(B.QUICK, to_rest=False, surfaces=SURF)}
     af, ww, el = rows["all-faces"], rows["windward"], rows["ellipse"]
     assert af["a_ref"][0] > 0.01 and abs(af["a_ref"][1]) < 1e-12
     assert af["error"] < 1e-3 and af["error_own"] < 1e-3
@@ -185,7 +187,7 @@ def test_mujoco_part_reads_the_committed_json_or_says_how(tmp_path):
 @pytest.mark.slow
 def test_quick_section_tables_and_figures(tmp_path):
     """The whole section (quick): its tables against the closed forms, every figure."""
-    lines = B.section(tmp_path, quick=True)
+    lines = B.section(tmp_path, quick=True, surfaces=SURF)
     text = "\n".join(lines)
     assert lines[0].startswith("## Bodies")
     default = next(x for x in lines if "(default)" in x)

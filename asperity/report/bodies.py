@@ -42,7 +42,7 @@ class Sizes:
     steps_per_stage: int
 
 
-FULL = Sizes(disc_points=1024, ring_points=128, rect_points=256, steps_per_stage=2000)
+FULL = Sizes(disc_points=1024, ring_points=128, rect_points=256, steps_per_stage=1000)
 QUICK = Sizes(disc_points=64, ring_points=64, rect_points=60, steps_per_stage=800)
 
 
@@ -303,15 +303,17 @@ def plot_terminal(path, rows) -> None:
 
 # ----------------------------------------------------------------------------- 3. spin drift
 
-def wedge_laws() -> dict:
-    """The star laws of the shipped asymmetric wedge texture (derive -> fit), both contact
-    regimes, and an ellipse law (centrally symmetric: no drift)."""
+def wedge_laws(surfaces: Path | None = None) -> dict:
+    """The star laws of the shipped asymmetric wedge texture (derive -> fit; the file
+    ``wedge-asymmetric.toml`` of ``surfaces``, by default the repository's surfaces/), both
+    contact regimes, and an ellipse law (centrally symmetric: no drift)."""
     from ..friction.derive import derive
     from ..laws.fitting import fit_derivation
     from ..laws.planar import ellipse_law, from_gauge
     from ..texture.wedges import load_texture_file
     from .gauges import SURFACES
-    tf = load_texture_file(Path(SURFACES) / "wedge-asymmetric.toml")
+    src = Path(SURFACES) if surfaces is None else Path(surfaces)
+    tf = load_texture_file(src / "wedge-asymmetric.toml")
     out = {}
     for contact in ("all-faces", "windward"):
         d = derive(tf.texture, contact, "closed-form", 360)
@@ -335,7 +337,8 @@ def own_drift(fp, law) -> np.ndarray:
     return -(np.asarray(fp.weights) @ law.force(np.mod(psi, 2 * math.pi)))
 
 
-def drift_rows(sizes: Sizes = FULL, to_rest: bool = True) -> list[dict]:
+def drift_rows(sizes: Sizes = FULL, to_rest: bool = True, surfaces: Path | None = None
+               ) -> list[dict]:
     """A disc spinning from rest on each law of :func:`wedge_laws`: the first step's
     acceleration against g times ``spin_drift_force`` and the run to rest (with
     ``to_rest`` False: three steps only)."""
@@ -344,7 +347,7 @@ def drift_rows(sizes: Sizes = FULL, to_rest: bool = True) -> list[dict]:
     from ..dynamics.body import simulate_body
     fp = disc(R, contact_points=sizes.disc_points)
     rows = []
-    for name, law in wedge_laws().items():
+    for name, law in wedge_laws(surfaces).items():
         r = simulate_body(fp.points, fp.weights, law, mass=MASS,
                           inertia=MASS * fp.inertia_per_mass, u0=(0.0, 0.0, DRIFT_OMEGA0),
                           dt=DRIFT_DT, t_end=None if to_rest else 3 * DRIFT_DT)
@@ -611,9 +614,10 @@ def _num(x) -> float | None:
     return float(x) if ok else None
 
 
-def section(folder: Path, quick: bool = False) -> list[str]:
+def section(folder: Path, quick: bool = False, surfaces: Path | None = None) -> list[str]:
     """Markdown lines of the section; writes bodies_sampling.png, bodies_terminal.png,
-    bodies_drift.png, bodies_rectangle.png and bodies_mujoco.png."""
+    bodies_drift.png, bodies_rectangle.png and bodies_mujoco.png.  ``surfaces``: the folder
+    of ``wedge-asymmetric.toml`` (default: the repository's surfaces/)."""
     from ..bodies.closed_forms import terminal_ratio
     from ..bodies.footprint import DEFAULT_CONTACT_POINTS
     folder = Path(folder)
@@ -689,7 +693,7 @@ def section(folder: Path, quick: bool = False) -> list[str]:
               "R omega, stay below 1e-10 of the launch's speed scale (`BodyResult`)."]
     lines += ["", "![terminal ratio](bodies_terminal.png)", ""]
     # 3. spin drift
-    drows = drift_rows(sizes)
+    drows = drift_rows(sizes, surfaces=surfaces)
     from ..bodies.footprint import disc
     plot_drift(folder / "bodies_drift.png", drows, disc(R, contact_points=8).outline)
     lines += ["### A disc spinning from rest drifts on an asymmetric law", "",
