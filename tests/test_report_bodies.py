@@ -172,7 +172,7 @@ def test_mujoco_part_reads_the_committed_json_or_says_how(tmp_path):
         row = [c.strip() for c in next(x for x in lines if x.startswith(f"| {name}"))
                .strip("|").split("|")]
         slide, spin, gap = float(row[1]), float(row[2]), float(row[3])
-        assert abs(gap) <= 2e-4, row                       # they stop together
+        assert abs(gap) <= 2e-4 and abs(slide - spin) <= 2e-4, row     # they stop together
         assert slide == pytest.approx(ref.stop_time, abs=2e-3)
         assert 0.6 < float(row[4]) < 0.72, row            # near 0.653, not 6.2
     assert (tmp_path / "bodies_mujoco.png").stat().st_size > 20_000
@@ -194,7 +194,7 @@ def test_quick_section_tables_and_figures(tmp_path):
     cells = [c.strip() for c in default.strip("|").split("|")]
     assert float(cells[1]) < 5e-3 and float(cells[2]) < 5e-3
     rows = [[c.strip() for c in x.strip("|").split("|")] for x in lines
-            if x.startswith("| disc |") or x.startswith("| ring |")]
+            if x.startswith(("| disc |", "| ring |"))]
     assert len(rows) == 4
     for r in rows:
         eps_end, ref = float(r[9]), float(r[10])
