@@ -85,6 +85,7 @@ WEB_FAMILY = ("test_web_law_family.py",)
 BODIES = ("test_bodies_closed_forms.py", "test_bodies_footprint.py")
 WEB_BODY = ("test_web_body.py",)
 BODY_CLI = ("test_slide_body_cli.py",)
+REPORT_BODIES = ("test_report_bodies.py",)
 
 
 @dataclass(frozen=True)
@@ -888,6 +889,41 @@ MUTANTS = [
     Mutant("report-westergaard-width-wrong", "report/contact.py",
            "2.0 / math.pi * math.asin(math.sqrt(f))", "1.0 / math.pi * math.asin(f)", REPORT,
            "the Westergaard closed form of the report mis-stated"),
+    # ---- issue 20: the report's section on bodies
+    Mutant("report-bodies-range-open-end", "report/bodies.py",
+           "(eps >= lo) & (eps <= hi)", "(eps >= lo) & (eps < hi)", REPORT_BODIES,
+           "the sampling table's ranges of eps leave out their upper ends"),
+    Mutant("report-bodies-stage-time-unscaled", "report/bodies.py",
+           "offset += scale * r.t[j]", "offset += r.t[j]", REPORT_BODIES,
+           "a magnified stage's cut time added unscaled to the physical time"),
+    Mutant("report-bodies-stage-speed-unscaled", "report/bodies.py",
+           "us.append(scale * r.u[first_row:j + 1])", "us.append(r.u[first_row:j + 1])",
+           REPORT_BODIES, "a magnified stage's velocities recorded without scaling back"),
+    Mutant("report-bodies-stage-join-twice", "report/bodies.py",
+           "first_row = 0 if k == 0 else 1", "first_row = 0", REPORT_BODIES,
+           "the state at a cut recorded twice (once per stage)"),
+    Mutant("report-bodies-fixed-point-inertia", "report/bodies.py",
+           "return -float(F @ e_v) - eps * (-T) / k", "return -float(F @ e_v) - eps * (-T) * k",
+           REPORT_BODIES, "the footprint's own fixed point with k multiplied, not divided"),
+    Mutant("report-bodies-drift-radial", "report/bodies.py",
+           "psi = np.arctan2(r[:, 0], -r[:, 1])", "psi = np.arctan2(r[:, 1], r[:, 0])",
+           REPORT_BODIES, "the footprint's own drift with each point sliding radially, not "
+           "along omega x r"),
+    Mutant("report-bodies-drift-without-g", "report/bodies.py",
+           "a_ref = G * spin_drift_force(law)", "a_ref = spin_drift_force(law)", REPORT_BODIES,
+           "the drift's closed-form acceleration without g"),
+    Mutant("report-bodies-crossing-ratio-inverted", "report/bodies.py",
+           "ratio = float(v[k[0]] / w[k[0]])", "ratio = float(w[k[0]] / v[k[0]])", REPORT_BODIES,
+           "the benchmark's end ratio as R omega / v"),
+    Mutant("report-bodies-crossing-slide-only", "report/bodies.py",
+           "    s = v + w\n", "    s = v\n", REPORT_BODIES,
+           "the end of the benchmark's motion judged by the sliding speed alone"),
+    Mutant("report-bodies-reference-log10", "report/bodies.py",
+           "np.interp(math.log(w_fraction)", "np.interp(math.log10(w_fraction)", REPORT_BODIES,
+           "the reference's eps looked up at log10 of the speed fraction against ln"),
+    Mutant("report-bodies-point-mass-angle", "report/bodies.py",
+           "pm = slide(law, U0, 30.0, dt=1e-4)", "pm = slide(law, U0, 60.0, dt=1e-4)",
+           REPORT_BODIES, "the rectangle compared with a point mass launched at another angle"),
     # ---- issue 19: family summaries read every member along one common axis
     Mutant("family-summary-axes-not-aligned", "friction/family.py",
            "    ref = align_rows(rows)\n", "    ref = align_rows([dict(r) for r in rows])\n",
