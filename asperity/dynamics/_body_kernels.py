@@ -120,7 +120,7 @@ def _eval(kind, par, tab, gx, gy, out):
 
 
 @njit(cache=True)
-def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev):
+def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=-1):
     """R(u) = M (u - uf) + sum lam_i W_i c_i (want_hull: the hull's gradient instead of c and
     its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i."""
     for j in range(3):
@@ -143,6 +143,8 @@ def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev):
         if r2 < rmin:
             rmin = r2
             imin = i
+        if i == skip:
+            continue
         _eval(kind, par, tab, gx, gy, ev)
         li = lam[i]
         cx = ev[off]
@@ -245,6 +247,88 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
     for k in range(3):
         u[k] = un[k]
     return True
+
+
+@njit(cache=True)
+def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
+    """The step's solution with point j sliding slowly: unknowns (rho, phi, omega) with
+    gamma_j = rho (cos phi, sin phi) and u = (gamma_j + omega (oy_j, -ox_j), omega).  In
+    these coordinates point j's force c(phi) is smooth even at rho = 0, where F has its kink
+    (plain Newton on u then only creeps).  Newton on the three equations R = 0 with a
+    backtracking search on |R|; accepted (u overwritten, True) on convergence with rho >= 0."""
+    un = np.empty(3)
+    x = np.empty(3)
+    dx = np.empty(3)
+    xn = np.empty(3)
+    Jp = np.empty((3, 3))
+    oxj = ox[j]
+    oyj = oy[j]
+    gx = u[0] - u[2] * oyj
+    gy = u[1] + u[2] * oxj
+    x[0] = math.sqrt(gx * gx + gy * gy)
+    x[1] = math.atan2(gy, gx)
+    x[2] = u[2]
+    lj = lam[j]
+    rn = np.inf
+    for it in range(40):
+        # residual at x (and its norm), Jacobian
+        cph = math.cos(x[1])
+        sph = math.sin(x[1])
+        un[0] = x[0] * cph + x[2] * oyj
+        un[1] = x[0] * sph - x[2] * oxj
+        un[2] = x[2]
+        _assemble(un, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev, j)
+        _eval(kind, par, tab, cph, sph, ev)
+        cx, cy = ev[0], ev[1]
+        # dc/dphi = J(unit) s_perp
+        dcx = -ev[2] * sph + ev[3] * cph
+        dcy = -ev[4] * sph + ev[5] * cph
+        R[0] += lj * cx
+        R[1] += lj * cy
+        R[2] += lj * (oxj * cy - oyj * cx)
+        rn = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
+        if rn <= tol_r:
+            if x[0] < 0.0:
+                return False
+            for k in range(3):
+                u[k] = un[k]
+            return True
+        for k in range(3):
+            Jp[k, 0] = J[k, 0] * cph + J[k, 1] * sph
+            Jp[k, 1] = x[0] * (-J[k, 0] * sph + J[k, 1] * cph)
+            Jp[k, 2] = J[k, 0] * oyj - J[k, 1] * oxj + J[k, 2]
+        Jp[0, 1] += lj * dcx
+        Jp[1, 1] += lj * dcy
+        Jp[2, 1] += lj * (oxj * dcy - oyj * dcx)
+        for k in range(3):
+            R[k] = -R[k]
+        if not _solve3(Jp, R, dx):
+            return False
+        step = 1.0
+        ok = False
+        for _ in range(40):
+            for k in range(3):
+                xn[k] = x[k] + step * dx[k]
+            cph = math.cos(xn[1])
+            sph = math.sin(xn[1])
+            un[0] = xn[0] * cph + xn[2] * oyj
+            un[1] = xn[0] * sph - xn[2] * oxj
+            un[2] = xn[2]
+            _assemble(un, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev, j)
+            _eval(kind, par, tab, cph, sph, ev)
+            R[0] += lj * ev[0]
+            R[1] += lj * ev[1]
+            R[2] += lj * (oxj * ev[1] - oyj * ev[0])
+            r2 = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
+            if r2 < rn:
+                ok = True
+                break
+            step *= 0.5
+        if not ok:
+            return False
+        for k in range(3):
+            x[k] = xn[k]
+    return False
 
 
 @njit(cache=True)
@@ -417,7 +501,7 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             rn2 = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
             # F cannot resolve changes below its rounding (~1e-16 F) while the residual
             # still can: a full step that lowers the residual is taken too
-            if f2 < f or (step == 1.0 and rn2 < rn):
+            if f2 < f or (f2 <= f + 1e-15 * abs(f) and rn2 < rn):
                 ok = True
                 break
             step *= 0.5
@@ -425,10 +509,17 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
             rn = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
             return it, rn <= 1e3 * tol_r, rn
-        if step < 1.0 and ev[14] < 1e-6 * ev[15]:
+        if step < 1.0 and ev[14] < 1e-2 * ev[15]:
             # the Newton step was damped next to a point that (nearly) sticks: try the
             # solution with that point sticking exactly
-            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, int(ev[13]), tol_r, R, J, ev):
+            jk = int(ev[13])
+            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev):
+                return it, True, 0.0
+            for k in range(3):
+                dx[k] = un[k]
+            if _polar(dx, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev):
+                for k in range(3):
+                    u[k] = dx[k]
                 return it, True, 0.0
             _merit(un, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
         if step < 1.0:
@@ -464,10 +555,10 @@ def _force(fpar, t, out):
 
 
 @njit(cache=True)
-def step_velocity(uA, uf, md, ox, oy, lam, kind, par, tab, assoc, tol, maxit, scale, out,
-                  R, J, ev, work):
-    """The end velocity of one step (out) from the start velocity uA and the free velocity
-    uf.  scale: the impulse scale sum_i lam_i mu_max / sqrt(m) of the tolerances.
+def step_velocity(uA, uP, warm, uf, md, ox, oy, lam, kind, par, tab, assoc, tol, maxit, scale,
+                  out, R, J, ev, work):
+    """The end velocity of one step (out) from the start velocity uA (uP the one before,
+    used if warm) and the free velocity uf.  scale: the impulse scale sum_i lam_i mu_max / sqrt(m) of the tolerances.
     Returns (iterations, status, relative residual)."""
     b = np.empty(3)
     d = np.empty(3)
@@ -479,24 +570,42 @@ def step_velocity(uA, uf, md, ox, oy, lam, kind, par, tab, assoc, tol, maxit, sc
         for j in range(3):
             out[j] = 0.0
         return 0, STATUS_OK, 0.0
-    # start direction: the motion before the step, else the free motion
-    if uA[0] != 0.0 or uA[1] != 0.0 or uA[2] != 0.0:
-        for j in range(3):
-            d[j] = uA[j]
-    else:
-        for j in range(3):
-            d[j] = uf[j]
+    # tolerance on residuals and margins (units of M^(1/2) velocity): tol times the impulse
+    # scale, plus the rounding floor of the momentum M u_free itself
+    tola = tol * scale + 1e-15 * math.sqrt(md[0] * uf[0] * uf[0] + md[1] * uf[1] * uf[1]
+                                           + md[2] * uf[2] * uf[2])
     its = 0
     rn = 0.0
+    if uA[0] != 0.0 or uA[1] != 0.0 or uA[2] != 0.0:
+        # moving: Newton from the linear extrapolation of the last two velocities (second
+        # order in dt on a smooth motion: one or two iterations); a collapse towards the
+        # stick of the body is caught inside _slide
+        for j in range(3):
+            out[j] = 2.0 * uA[j] - uP[j] if warm else uA[j]
+        k, conv, rn = _slide(out, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tola,
+                             maxit, R, J, ev, dx, un)
+        its += k
+        if conv:
+            return its, STATUS_OK, rn / scale
+        if out[0] != 0.0 or out[1] != 0.0 or out[2] != 0.0:
+            for j in range(3):
+                d[j] = out[j]
+        else:
+            for j in range(3):
+                d[j] = uA[j]
+    else:
+        # from rest: along the free motion
+        for j in range(3):
+            d[j] = uf[j]
     for attempt in range(4):
         s = _ray(d, b, md, ox, oy, lam, kind, par, tab, ev)
         if s <= 0.0:
             # no sliding on this ray: find the direction of least margin; the body sticks
             # iff the margin is not negative
-            G, k = _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tol * scale, maxit, R,
+            G, k = _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tola, maxit, R,
                                J, ev, work)
             its += k
-            if G >= -tol * scale:
+            if G >= -tola:
                 for j in range(3):
                     out[j] = 0.0
                 return its, STATUS_OK, 0.0
@@ -505,7 +614,7 @@ def step_velocity(uA, uf, md, ox, oy, lam, kind, par, tab, assoc, tol, maxit, sc
                 s = -G
         for j in range(3):
             out[j] = s * d[j]
-        k, conv, rn = _slide(out, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol * scale,
+        k, conv, rn = _slide(out, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tola,
                              maxit, R, J, ev, dx, un)
         its += k
         if conv:
@@ -553,6 +662,8 @@ def integrate(q, u, pts, md, lam, kind, par, tab, assoc, fpar, dt, n_steps, star
     halted = False
     stuck = False
     bprev = np.zeros(3)
+    up = np.zeros(3)
+    warm = False
     for step in range(start, start + count):
         tM = (step + 0.5) * dt
         for j in range(3):
@@ -573,7 +684,7 @@ def integrate(q, u, pts, md, lam, kind, par, tab, assoc, fpar, dt, n_steps, star
             for i in range(n):
                 ox[i] = c * pts[i, 0] - s * pts[i, 1]
                 oy[i] = s * pts[i, 0] + c * pts[i, 1]
-            its, st, res = step_velocity(u, uf, md, ox, oy, lam, kind, par, tab, assoc, tol,
+            its, st, res = step_velocity(u, up, warm, uf, md, ox, oy, lam, kind, par, tab, assoc, tol,
                                          maxit, scale, ue, R, J, ev, work)
             if res > info[INFO_MAX_RESIDUAL]:
                 info[INFO_MAX_RESIDUAL] = res
@@ -607,7 +718,9 @@ def integrate(q, u, pts, md, lam, kind, par, tab, assoc, fpar, dt, n_steps, star
             info[INFO_SLIDE_LAST] = step + 1
         if rho * abs(ue[2]) > stop_v:
             info[INFO_SPIN_LAST] = step + 1
+        warm = moving_before and not rest
         for j in range(3):
+            up[j] = u[j]
             u[j] = ue[j]
             q[j] += 0.5 * dt * u[j]
         last = step == n_steps - 1
