@@ -188,6 +188,54 @@ def test_stick_is_decided_by_the_limit_set(law):
             assert r.u[-1, 2] > 0
 
 
+def test_force_outside_the_limit_set_moves_the_body_though_not_along_the_force():
+    """On the ellipse 0.3/0.1 a force at 45 deg between the limit radius rho and the support
+    h of that direction: the ray of the free motion shows no sliding (h > |F|/mg), the body
+    slides all the same (|F|/mg > rho, along the normal of the ellipse) -- found by the least
+    margin over the sphere -- and moves exactly as the point mass does."""
+    law = ellipse_law(0.3, 0.1)
+    pts, w = disc_points(0.05, 4, 16)
+    rho = 1.0 / math.sqrt(0.5 / 0.09 + 0.5 / 0.01)
+    h = math.sqrt(0.5 * 0.09 + 0.5 * 0.01)
+    F = 0.9 * h * G
+    assert rho * G < F < h * G
+    fx = fy = F / math.sqrt(2.0)
+    r = simulate_body(pts, w, law, mass=1.0, inertia=1e-3, dt=1e-4, t_end=0.05,
+                      force=Force(constant=(fx, fy, 0.0)))
+    ref = simulate(Body(mass=1.0, laws=(law,)), (0.0, 0.0), dt=1e-4, t_end=0.05,
+                   force=Force(constant=(fx, fy)))
+    assert r.ok and ref.ok
+    assert np.hypot(*r.u[1, :2]) > 0.0                    # moving from the first step on
+    np.testing.assert_allclose(r.u[:, :2], ref.u, atol=1e-12)
+    np.testing.assert_allclose(r.q[:, :2], ref.q, atol=1e-12)
+
+
+def test_few_point_footprints_match_the_multi_contact_jacobi_solver():
+    """A random 4-point footprint sliding and spinning (points stick one by one: F's kinks)
+    against asperity.dynamics.moreau.simulate, an independent solver over the 2N contact
+    impulses (which converges for few points)."""
+    rng = np.random.default_rng(5)
+    compared = 0
+    for k in range(4):
+        pts = rng.normal(scale=0.05, size=(4, 2))
+        w = rng.uniform(0.2, 1.0, 4)
+        w /= w.sum()
+        pts -= w @ pts
+        law = (coulomb_law(0.3), ellipse_law(0.3, 0.15))[k % 2]
+        u0 = np.array([rng.normal(), rng.normal(), rng.normal(scale=20)])
+        r = simulate_body(pts, w, law, mass=1.0, inertia=2e-3, u0=u0, dt=1e-4)
+        ref = simulate(Body(mass=1.0, laws=law, inertia=2e-3, contacts=pts, share=w), u0,
+                       dt=1e-4, t_end=r.steps * 1e-4)
+        assert r.ok and r.rest
+        if not ref.ok:                     # the Jacobi iteration's limit, not ours (case 1)
+            continue
+        compared += 1
+        assert r.stop_time == pytest.approx(ref.stop_time, abs=1e-12)
+        np.testing.assert_allclose(r.u, ref.u, atol=1e-9)
+        np.testing.assert_allclose(r.q, ref.q, atol=1e-11)
+    assert compared >= 3
+
+
 def test_square_wave_at_rest_below_threshold_never_moves():
     pts, w = disc_points(0.1, 4, 16)
     f = Force(amplitude=(0.2, 0.1, 0.005), period=0.1, waveform="square")
