@@ -197,7 +197,7 @@ def test_force_outside_the_limit_set_moves_the_body_though_not_along_the_force()
     pts, w = disc_points(0.05, 4, 16)
     rho = 1.0 / math.sqrt(0.5 / 0.09 + 0.5 / 0.01)
     h = math.sqrt(0.5 * 0.09 + 0.5 * 0.01)
-    F = 0.9 * h * G
+    F = 1.02 * rho * G                                     # 2 % outside
     assert rho * G < F < h * G
     fx = fy = F / math.sqrt(2.0)
     r = simulate_body(pts, w, law, mass=1.0, inertia=1e-3, dt=1e-4, t_end=0.05,
@@ -211,14 +211,15 @@ def test_force_outside_the_limit_set_moves_the_body_though_not_along_the_force()
 
 
 def test_few_point_footprints_match_the_multi_contact_jacobi_solver():
-    """A random 4-point footprint sliding and spinning (points stick one by one: F's kinks)
+    """Random 4- to 6-point footprints sliding and spinning (points stick one by one: F's kinks)
     against asperity.dynamics.moreau.simulate, an independent solver over the 2N contact
     impulses (which converges for few points)."""
     rng = np.random.default_rng(5)
     compared = 0
-    for k in range(4):
-        pts = rng.normal(scale=0.05, size=(4, 2))
-        w = rng.uniform(0.2, 1.0, 4)
+    for k in range(8):
+        n = 4 + k % 3
+        pts = rng.normal(scale=0.05, size=(n, 2))
+        w = rng.uniform(0.2, 1.0, n)
         w /= w.sum()
         pts -= w @ pts
         law = (coulomb_law(0.3), ellipse_law(0.3, 0.15))[k % 2]
@@ -227,13 +228,14 @@ def test_few_point_footprints_match_the_multi_contact_jacobi_solver():
         ref = simulate(Body(mass=1.0, laws=law, inertia=2e-3, contacts=pts, share=w), u0,
                        dt=1e-4, t_end=r.steps * 1e-4)
         assert r.ok and r.rest
-        if not ref.ok:                     # the Jacobi iteration's limit, not ours (case 1)
+        if not ref.ok:                     # the Jacobi iteration's limit, not ours
             continue
         compared += 1
-        assert r.stop_time == pytest.approx(ref.stop_time, abs=1e-12)
+        # (the Jacobi solver declares rest only when every contact sticks: it may end one
+        # step later with a velocity at its tolerance; the paths are compared)
         np.testing.assert_allclose(r.u, ref.u, atol=1e-9)
         np.testing.assert_allclose(r.q, ref.q, atol=1e-11)
-    assert compared >= 3
+    assert compared >= 5
 
 
 def test_square_wave_at_rest_below_threshold_never_moves():
