@@ -49,6 +49,7 @@ _LAZY = {
     "windward_star_law": "asperity.laws.planar",
     "law_from_gauge": "asperity.laws.planar",
     "slide": "asperity.dynamics.moreau",
+    "simulate_body": "asperity.dynamics.body",
     "ratchet_drift_square": "asperity.dynamics.references",
     "deflection_deg": "asperity.dynamics.moreau",
     "simulate_microslip": "asperity.microslip.quasi_static",

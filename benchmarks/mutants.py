@@ -86,6 +86,7 @@ BODIES = ("test_bodies_closed_forms.py", "test_bodies_footprint.py")
 WEB_BODY = ("test_web_body.py",)
 BODY_CLI = ("test_slide_body_cli.py",)
 REPORT_BODIES = ("test_report_bodies.py",)
+BODY = ("test_dynamics_body.py",)
 
 
 @dataclass(frozen=True)
@@ -330,6 +331,31 @@ MUTANTS = [
            "ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] - ow[i, 1] * P[i, 0])",
            "ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] + ow[i, 1] * P[i, 0])", DYNAMICS,
            "rigid body: torque of a contact impulse with a sign error (r x P)"),
+    # ---- rigid body with a footprint (issue 20)
+    Mutant("body-torque-sign", "dynamics/_body_kernels.py",
+           "R[2] += li * (oxi * cy - oyi * cx)", "R[2] += li * (oxi * cy + oyi * cx)", BODY,
+           "body solver: torque of a point's friction force with a sign error (r x c)"),
+    Mutant("body-midpoint-full-step", "dynamics/_body_kernels.py",
+           "            q[j] += 0.5 * dt * u[j]\n        _force(fpar, tM, f)",
+           "            q[j] += dt * u[j]\n        _force(fpar, tM, f)", BODY,
+           "body solver: q_M = q_A + dt u_A (factor 1/2 missing)"),
+    Mutant("body-stick-margin-loose", "dynamics/_body_kernels.py",
+           "if G >= -tola:", "if G >= -0.1 * scale:", BODY,
+           "body solver: the body sticks while the least margin is still negative"),
+    Mutant("body-normal-impulse-no-dt", "dynamics/body.py",
+           "lam = w * mass * g * dt", "lam = w * mass * g", BODY,
+           "body solver: normal impulse m g w_i instead of m g w_i dt"),
+    Mutant("body-table-no-interpolation", "dynamics/_body_kernels.py",
+           "out[j] = a0 + t * (a1 - a0)", "out[j] = a0", BODY,
+           "body solver: law tables read at the grid point below, not interpolated"),
+    Mutant("body-kink-outside-C", "dynamics/_body_kernels.py",
+           "if _gauge(kind, par, tab, cx, cy) > 1.0 + 1e-12:",
+           "if _gauge(kind, par, tab, cx, cy) > 1.1:", BODY,
+           "body solver: a point held sticking with a force outside its friction set"),
+    Mutant("body-texture-angle-sign", "dynamics/body.py",
+           "ql = np.array([*(Rm @ q0[:2]), q0[2] - a])",
+           "ql = np.array([*(Rm @ q0[:2]), q0[2] + a])", BODY,
+           "body solver: body angle turned the wrong way into the frame of the texture"),
     Mutant("stop-distance-factor-2", "dynamics/references.py",
            "return u0 * u0 / (2.0 * mu * g)", "return u0 * u0 / (mu * g)", DYNAMICS,
            "closed-form Coulomb stop distance u0^2/(mu g) (factor 2 missing)"),

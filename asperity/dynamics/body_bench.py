@@ -118,11 +118,8 @@ def _child(worker: str, spec: dict) -> dict:
 
 
 def body_solver_disc(law_name: str, seconds: float) -> dict:
-    """The body solver's 256-point disc (``asperity.dynamics.body.bench_disc``) if present."""
-    try:
-        from .body import bench_disc
-    except ImportError:
-        return {"error": "body solver not available"}
+    """The body solver's 256-point disc (:func:`asperity.dynamics.disc_bench.bench_disc`)."""
+    from .disc_bench import bench_disc
     return dict(bench_disc(law_name, contact_points=256, seconds=seconds))
 
 
