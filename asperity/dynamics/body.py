@@ -62,7 +62,7 @@ import numpy as np
 from ..errors import InputError, check_array, check_instance, check_int, check_range
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
-from .moreau import LIMITS, MAX_STEPS, Force, Settings
+from .moreau import LIMITS, MAX_STEPS, Force
 
 #: most contact points of a footprint (the kernel's memory is a few arrays of this length)
 MAX_POINTS = 1_000_000
@@ -78,7 +78,8 @@ class BodySettings:
     """Settings of the body solver.
 
     tol : relative tolerance of a step's equation (residual / scale of the impulses)
-    max_iterations : iteration limit per step
+    max_iterations : iteration limit of each Newton solve of a step (a step that does not
+        converge restarts from a better point up to four times before it is reported)
     """
 
     tol: float = 1e-12

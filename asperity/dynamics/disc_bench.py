@@ -29,7 +29,7 @@ def bench_disc(law_name: str, contact_points: int = 256, seconds: float = 1.0) -
     20 rad/s, integrated with dt = 1e-4 s until rest (about 7000 steps), repeated for
     ``seconds``; compilation excluded (one short warm-up run first).
 
-    Returns dict(steps_per_s, steps, seconds, mean_iterations, contact_points, law)."""
+    Returns dict(steps_per_second, steps, seconds, mean_iterations, contact_points, law)."""
     from ..bodies.footprint import disc
     from .body import simulate_body
     law_name = check_choice("law_name", law_name, LAWS)
@@ -51,6 +51,6 @@ def bench_disc(law_name: str, contact_points: int = 256, seconds: float = 1.0) -
         el = time.perf_counter() - t0
         if el >= seconds:
             break
-    return dict(steps_per_s=steps / el, steps=steps, seconds=el,
+    return dict(steps_per_second=steps / el, steps=steps, seconds=el,
                 mean_iterations=its / max(steps, 1), contact_points=int(pts.shape[0]),
                 law=law_name)

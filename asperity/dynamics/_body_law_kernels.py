@@ -1,0 +1,216 @@
+"""Numba kernels of the rigid-body solver: the friction law at a contact point and the
+assembled equations of a step (:mod:`asperity.dynamics._body_kernels` has the overview).
+
+``_eval`` gives the sliding force c (per unit normal load), its Jacobian dc/dgamma and the
+gradient, Hessian and value of the support function h of (the hull of) C -- closed forms
+for the (truncated) ellipse, linear interpolation in psi of tables on a uniform grid
+otherwise; ``_assemble`` sums the points' contributions to the residual and Jacobian of a
+step; ``_merit``, ``_ray``, ``_solve3`` serve the Newton iterations.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+TWO_PI = 2.0 * math.pi
+KIND_ELLIPSE = 0     # closed form: par = (a+, a-, b+, b-, cos th, sin th)
+KIND_TABLE = 1       # tab (K+1, 4): c_x, c_y, grad h_x, grad h_y on psi_k = 2 pi k / K
+
+
+@njit(cache=True)
+def _eval(kind, par, tab, gx, gy, out):
+    """Law at the slip (gx, gy): out = c_x, c_y, J00, J01, J10, J11 (dc/dgamma),
+    hg_x, hg_y (grad h), H00, H01, H10, H11 (Hessian of h), h (value at gamma)."""
+    r2 = gx * gx + gy * gy
+    if r2 == 0.0:
+        for j in range(13):
+            out[j] = 0.0
+        return
+    if kind == KIND_ELLIPSE:
+        co, si = par[4], par[5]
+        la = co * gx + si * gy
+        lb = -si * gx + co * gy
+        A = par[0] if la >= 0.0 else par[1]
+        B = par[2] if lb >= 0.0 else par[3]
+        A2 = A * A
+        B2 = B * B
+        h = math.sqrt(A2 * la * la + B2 * lb * lb)
+        ya = A2 * la / h
+        yb = B2 * lb / h
+        # local Jacobian D/h - y y^T / h
+        j00 = A2 / h - ya * ya / h
+        j01 = -ya * yb / h
+        j11 = B2 / h - yb * yb / h
+        cx = co * ya - si * yb
+        cy = si * ya + co * yb
+        # R J R^T
+        r00 = co * co * j00 - 2.0 * co * si * j01 + si * si * j11
+        r11 = si * si * j00 + 2.0 * co * si * j01 + co * co * j11
+        r01 = co * si * (j00 - j11) + (co * co - si * si) * j01
+        out[0] = cx
+        out[1] = cy
+        out[2] = r00
+        out[3] = r01
+        out[4] = r01
+        out[5] = r11
+        out[6] = cx
+        out[7] = cy
+        out[8] = r00
+        out[9] = r01
+        out[10] = r01
+        out[11] = r11
+        out[12] = h
+        return
+    K = tab.shape[0] - 1
+    dpsi = TWO_PI / K
+    psi = math.atan2(gy, gx)
+    if psi < 0.0:
+        psi += TWO_PI
+    x = psi / dpsi
+    k = int(x)
+    if k >= K:
+        k = K - 1
+    t = x - k
+    # s_perp / |gamma| = (-gy, gx) / r2
+    px = -gy / r2
+    py = gx / r2
+    for j in range(2):
+        a0 = tab[k, j]
+        a1 = tab[k + 1, j]
+        out[j] = a0 + t * (a1 - a0)
+        d = (a1 - a0) / dpsi
+        out[2 + 2 * j] = d * px
+        out[3 + 2 * j] = d * py
+        b0 = tab[k, 2 + j]
+        b1 = tab[k + 1, 2 + j]
+        out[6 + j] = b0 + t * (b1 - b0)
+        e = (b1 - b0) / dpsi
+        out[8 + 2 * j] = e * px
+        out[9 + 2 * j] = e * py
+    out[12] = out[6] * gx + out[7] * gy
+
+
+@njit(cache=True)
+def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=-1):
+    """R(u) = M (u - uf) + sum lam_i W_i c_i (want_hull: the hull's gradient instead of c and
+    its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i."""
+    for j in range(3):
+        R[j] = md[j] * (u[j] - uf[j])
+        for k in range(3):
+            J[j, k] = 0.0
+        J[j, j] = md[j]
+    hsum = 0.0
+    off = 6 if want_hull else 0
+    rmin = np.inf
+    imin = -1
+    rsum = 0.0
+    for i in range(ox.shape[0]):
+        oxi = ox[i]
+        oyi = oy[i]
+        gx = u[0] - u[2] * oyi
+        gy = u[1] + u[2] * oxi
+        r2 = gx * gx + gy * gy
+        rsum += r2
+        if r2 < rmin:
+            rmin = r2
+            imin = i
+        if i == skip:
+            continue
+        _eval(kind, par, tab, gx, gy, ev)
+        li = lam[i]
+        cx = ev[off]
+        cy = ev[off + 1]
+        a = ev[off + 2]
+        b = ev[off + 3]
+        c = ev[off + 4]
+        d = ev[off + 5]
+        hsum += li * ev[12]
+        R[0] += li * cx
+        R[1] += li * cy
+        R[2] += li * (oxi * cy - oyi * cx)
+        # W J W^T with W = [[1, 0], [0, 1], [-oy, ox]]
+        J[0, 0] += li * a
+        J[0, 1] += li * b
+        J[1, 0] += li * c
+        J[1, 1] += li * d
+        J[0, 2] += li * (-a * oyi + b * oxi)
+        J[1, 2] += li * (-c * oyi + d * oxi)
+        J[2, 0] += li * (-oyi * a + oxi * c)
+        J[2, 1] += li * (-oyi * b + oxi * d)
+        J[2, 2] += li * (oyi * oyi * a - oyi * oxi * (b + c) + oxi * oxi * d)
+    ev[13] = imin                      # the point of least slip (a kink of F near it)
+    ev[14] = rmin
+    ev[15] = rsum / ox.shape[0]
+    return hsum
+
+
+@njit(cache=True)
+def _gauge(kind, par, tab, cx, cy):
+    """k_C(c) of a force per unit load: closed form for the ellipse, else the gauge of the
+    hull of C from its support table (max over the table of c.s / h(s))."""
+    if kind == KIND_ELLIPSE:
+        co, si = par[4], par[5]
+        la = co * cx + si * cy
+        lb = -si * cx + co * cy
+        A = par[0] if la >= 0.0 else par[1]
+        B = par[2] if lb >= 0.0 else par[3]
+        return math.sqrt((la / A) ** 2 + (lb / B) ** 2)
+    K = tab.shape[0] - 1
+    g = 0.0
+    for k in range(K):
+        psi = TWO_PI * k / K
+        c = math.cos(psi)
+        s = math.sin(psi)
+        h = tab[k, 2] * c + tab[k, 3] * s
+        v = (cx * c + cy * s) / h
+        if v > g:
+            g = v
+    return g
+
+
+@njit(cache=True)
+def _solve3(J, r, x):
+    """x = J^-1 r by Cramer's rule; returns False if J is singular."""
+    a, b, c = J[0, 0], J[0, 1], J[0, 2]
+    d, e, f = J[1, 0], J[1, 1], J[1, 2]
+    g, h, k = J[2, 0], J[2, 1], J[2, 2]
+    A = e * k - f * h
+    B = f * g - d * k
+    C = d * h - e * g
+    det = a * A + b * B + c * C
+    if det == 0.0 or not math.isfinite(det):
+        return False
+    x[0] = (A * r[0] + (c * h - b * k) * r[1] + (b * f - c * e) * r[2]) / det
+    x[1] = (B * r[0] + (a * k - c * g) * r[1] + (c * d - a * f) * r[2]) / det
+    x[2] = (C * r[0] + (b * g - a * h) * r[1] + (a * e - b * d) * r[2]) / det
+    return True
+
+
+@njit(cache=True)
+def _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev):
+    hs = _assemble(u, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev)
+    if assoc:
+        f = 0.0
+        for j in range(3):
+            f += 0.5 * md[j] * (u[j] - uf[j]) ** 2
+        return f + hs
+    f = 0.0
+    for j in range(3):
+        f += 0.5 * R[j] * R[j] / md[j]
+    return f
+
+
+@njit(cache=True)
+def _ray(d, b, md, ox, oy, lam, kind, par, tab, ev):
+    """s with R(s d) . d = 0 on the ray of d (exact: c depends only on the slip direction):
+    s = (b.d - sum lam_i c_i . W_i^T d) / d^T M d."""
+    num = b[0] * d[0] + b[1] * d[1] + b[2] * d[2]
+    den = md[0] * d[0] * d[0] + md[1] * d[1] * d[1] + md[2] * d[2] * d[2]
+    for i in range(ox.shape[0]):
+        gx = d[0] - d[2] * oy[i]
+        gy = d[1] + d[2] * ox[i]
+        _eval(kind, par, tab, gx, gy, ev)
+        num -= lam[i] * (ev[0] * gx + ev[1] * gy)
+    return num / den
