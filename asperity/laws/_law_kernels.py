@@ -1,6 +1,11 @@
 """Numba kernels of the Walker-Leine map of a law (sets in
 :mod:`asperity.laws._set_kernels`): the force on ``C`` for a prox argument, the factor
 ``alpha``, and their vectorised forms for the Python wrappers in :mod:`asperity.laws.planar`.
+
+Kernels that allocate nothing are compiled with ``_nrt=False`` (no reference counts:
+numba increfs and decrefs every array argument of a call with atomic operations, which
+cost a Moreau step of a point mass ~200 ns of its ~300;
+:mod:`asperity.dynamics._moreau_kernels`).
 """
 from __future__ import annotations
 
@@ -24,7 +29,7 @@ WARM_P1, WARM_P2, WARM_P3, WARM_NP = PW_SIZE + 7, PW_SIZE + 9, PW_SIZE + 11, PW_
 WARM_SIZE = PW_SIZE + 14
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False, inline="always")
 def reservoir_radius(r, rc, rd):
     """|P| of the reservoir point on the ray of y = alpha(P) P, |y| = r, with the radial
     functions rc of C and rd of D on that ray: k = k_D(y) (at most 1),
@@ -35,7 +40,7 @@ def reservoir_radius(r, rc, rd):
     return k * rd / (1.0 - k + k * rd / rc)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def law_point(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1):
     """The Walker-Leine law at the prox argument x (per unit normal impulse, already scaled
     by alpha): y = prox_D(x), then the reservoir point P on the ray of y with
@@ -54,7 +59,7 @@ def law_point(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1):
     return t * y0 / r, t * y1 / r, inside
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def law_alpha(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1):
     """alpha(P) = 1 / (k_D(P) - k_C(P) + 1)."""
     if assoc:
@@ -78,7 +83,7 @@ def new_warm(nc):
     return wk
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, _nrt=False, inline="always", error_model="numpy")
 def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1, wk):
     """:func:`law_point` for a solver that calls it again and again with nearby arguments
     (a fixed-point iteration, time steps).  ``wk`` (WARM_SIZE,) is the contact's row: the
@@ -116,7 +121,7 @@ def law_point_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, x0, x1
     return t * ux, t * uy, inside
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def law_alpha_near(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1, wk):
     """:func:`law_alpha` of a point P near the last one of :func:`law_point_warm` with the row
     ``wk``: the radial functions from its warm starts (D's by :func:`support_radial_warm`,
@@ -151,7 +156,7 @@ def law_alpha_near(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1
     return 1.0 / (r / rd - r / rc + 1.0)
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, _nrt=False, inline="always", error_model="numpy")
 def law_alpha_warm(assoc, ck, cp, ctab, coff, cn, dk, dp, dtab, doff, dn, P0, P1, wk):
     """:func:`law_alpha` of the point last returned by :func:`law_point_warm` with the same
     row ``wk`` (its radial functions kept there), else of any P."""

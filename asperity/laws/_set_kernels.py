@@ -17,6 +17,11 @@ A set (reservoir ``C`` or sliding set ``D`` of a contact) is ``(kind, par, tab, 
                     psi is a flat edge.
 
 All sets are per unit normal impulse; the solver scales by the contact's normal impulse.
+
+Kernels that allocate nothing are compiled with ``_nrt=False`` (no reference counts:
+numba increfs and decrefs every array argument of a call with atomic operations, which
+cost a Moreau step of a point mass ~200 ns of its ~300;
+:mod:`asperity.dynamics._moreau_kernels`).
 """
 from __future__ import annotations
 
@@ -32,7 +37,7 @@ SET_SUPPORT = 3
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def tan_integral(d0, d1, length, t):
     """Integral of tan(delta(u)) du over [0, t], delta linear from d0 (u=0) to d1 (u=length)."""
     dd = (d1 - d0) * (t / length)
@@ -44,7 +49,7 @@ def tan_integral(d0, d1, length, t):
     return math.log1p(x) * t / dd
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _ellipse_local(par, x0, x1):
     c, s = par[4], par[5]
     xa = c * x0 + s * x1
@@ -54,7 +59,7 @@ def _ellipse_local(par, x0, x1):
     return xa, xb, A, B
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def ellipse_project(par, x0, x1):
     """Euclidean projection of x onto the truncated ellipse; (y0, y1, inside).
 
@@ -90,13 +95,13 @@ def ellipse_project(par, x0, x1):
     return c * ya - s * yb, s * ya + c * yb, False
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def ellipse_gauge(par, x0, x1):
     xa, xb, A, B = _ellipse_local(par, x0, x1)
     return math.hypot(xa / A, xb / B)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def star_radial(tab, off, n, phi):
     """Radial function of the star-shaped polygon: ray-edge intersection."""
     a0 = tab[off, 2]
@@ -119,18 +124,18 @@ def star_radial(tab, off, n, phi):
     return (v0x * dy - v0y * dx) / (ux * dy - uy * dx)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _psi_k(tab, off, n, K):
     q = K // n
     return tab[off + (K - q * n), 0] + TWO_PI * q
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _row(K, n):
     return K - (K // n) * n
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def support_radial(tab, off, n, phi):
     """(rho, psi): radial function of the convex set along the ray phi and the normal
     direction psi of the boundary point on that ray (the edge normal on a flat edge)."""
@@ -167,7 +172,7 @@ def support_radial(tab, off, n, phi):
     return math.exp(lnh) / math.cos(de), psi0 + t
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _visible_pred(tab, row, psi, x0, x1, psr):
     """Predicate R at a sample: True once the projection lies at or before this normal."""
     c = tab[row, 5]
@@ -178,7 +183,7 @@ def _visible_pred(tab, row, psi, x0, x1, psr):
     return psi > psr
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _project_interval(tab, off, n, x0, x1, ka, psr):
     """The projection of an outside point x whose normal lies in the sample interval
     [psi_ka, psi_ka+1] (a flat edge if they are equal): (y0, y1, t, phi, rr) with t the
@@ -246,7 +251,7 @@ def _project_interval(tab, off, n, x0, x1, ka, psr):
     return rr * math.cos(phi), rr * math.sin(phi), t, phi, rr
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def support_project_full(tab, off, n, x0, x1):
     """Euclidean projection of x onto the convex set with what the law needs beside it:
     (y0, y1, inside, ka, t, phi, rr) -- ka the row of the sample interval of the normal
@@ -308,7 +313,7 @@ def support_project_full(tab, off, n, x0, x1):
     return y0, y1, False, _row(ka, n), t, phi, rr
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def support_project(tab, off, n, x0, x1):
     """Euclidean projection of x onto the convex set; (y0, y1, inside)
     (see :func:`support_project_full`)."""
@@ -316,7 +321,7 @@ def support_project(tab, off, n, x0, x1):
     return y0, y1, inside
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_radial(kind, par, tab, off, n, phi):
     """Radial function rho(phi) of a set."""
     if kind == SET_DISC:
@@ -328,7 +333,7 @@ def set_radial(kind, par, tab, off, n, phi):
     return support_radial(tab, off, n, phi)[0]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_gauge(kind, par, tab, off, n, x0, x1):
     """Gauge k(x) = |x| / rho(angle x) of a set."""
     if kind == SET_ELLIPSE:
@@ -341,7 +346,7 @@ def set_gauge(kind, par, tab, off, n, x0, x1):
     return r / set_radial(kind, par, tab, off, n, math.atan2(x1, x0))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_project(kind, par, tab, off, n, x0, x1):
     """Euclidean projection onto a convex set (disc, ellipse or support set); (y0, y1, inside)."""
     if kind == SET_DISC:

@@ -4,7 +4,13 @@ function started from the last step's sample interval and root, with the boundar
 an exactly evaluated point from Taylor series, and the star polygon's edge found from the
 last one.  The point mass of the Moreau solver calls them once a step
 (:mod:`asperity.laws._law_kernels`); they agree with the plain kernels to rounding
-(tests/test_law_warm.py)."""
+(tests/test_law_warm.py).
+
+Kernels that allocate nothing are compiled with ``_nrt=False`` (no reference counts:
+numba increfs and decrefs every array argument of a call with atomic operations, which
+cost a Moreau step of a point mass ~200 ns of its ~300;
+:mod:`asperity.dynamics._moreau_kernels`).
+"""
 from __future__ import annotations
 
 import math
@@ -22,7 +28,7 @@ _SIXTH, _THIRD, _12TH, _20TH, _24TH = 1.0 / 6.0, 1.0 / 3.0, 1.0 / 12.0, 1.0 / 20
 PW_STEP = 1e-4
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False, inline="always")
 def _ends(tab, off, n, ka):
     """Rows and psi of both ends of the sample interval ka in [0, n) (no division)."""
     kb = ka + 1
@@ -31,7 +37,7 @@ def _ends(tab, off, n, ka):
     return off + ka, off, tab[off + ka, 0], tab[off, 0] + TWO_PI
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def _eval_point(tab, off, n, ka, t, wk):
     """Exact boundary data at offset t of the sample interval ka, kept in wk."""
     ra, rb, a, b = _ends(tab, off, n, ka)
@@ -47,7 +53,7 @@ def _eval_point(tab, off, n, ka, t, wk):
     wk[PW_TDE] = math.tan(d0 + (d1 - d0) * (t / d))
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, _nrt=False, inline="always", error_model="numpy")
 def _taylor(wk, dd, st):
     """(cos psi, sin psi, h, tan delta) at offset st from the anchor kept in wk, by their
     Taylor series there (h to fourth order, tan delta to third, cos and sin to fifth)."""
@@ -67,7 +73,7 @@ def _taylor(wk, dd, st):
     return wk[PW_C] * cs - wk[PW_S] * sn, wk[PW_S] * cs + wk[PW_C] * sn, h, T
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
     """The projection of x when its normal lies in the smooth sample interval ka and x sees
     the whole interval (both ends visible): Halley's iteration on F(psi) = x.s_perp - h'
@@ -141,7 +147,7 @@ def _project_interval_warm(tab, off, n, x0, x1, ka, wk):
     return y0, y1, rr, y0 / rr, y1 / rr
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def _bracket(tab, off, n, ka, x0, x1):
     """Where the projection's normal lies against the sample interval ka (both ends
     visible with a margin): 0 inside it, -1 before, +1 after, 2 unknown (an end not
@@ -158,7 +164,7 @@ def _bracket(tab, off, n, ka, x0, x1):
     return 0
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def support_project_warm(tab, off, n, x0, x1, wk):
     """:func:`support_project` for arguments near the last one (time steps, iterations):
     (y0, y1, inside, rr, ux, uy) with rr = |y| on the boundary (inside: rho at x's angle)
@@ -196,7 +202,7 @@ def support_project_warm(tab, off, n, x0, x1, wk):
     return y0, y1, inside, rr, y0 / r, y1 / r
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def support_radial_warm(tab, off, n, ux, uy, wk, dphi):
     """(rho, ok): the radial function of the convex set along the unit vector u from the
     warm start of the last projection (:func:`support_project_warm`): Newton on
@@ -244,7 +250,7 @@ def support_radial_warm(tab, off, n, ux, uy, wk, dphi):
     return 0.0, False
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, _nrt=False, error_model="numpy")
 def star_radial_dir(tab, off, n, ux, uy, k0):
     """(rho, k): radial function of the star-shaped polygon along the unit vector u and the
     edge k (from vertex k to k + 1) hit, found from edge k0 by a walk of up to 3 edges
