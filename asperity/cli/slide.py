@@ -386,7 +386,8 @@ def main(args) -> int:
                 f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m")
         say(f"deflection: {obj['deflection_deg']:+.4f} deg (from the initial velocity to the "
             f"line start -> {'rest' if obj['rest'] is not None else 'end'})")
-        say(f"fixed-point iterations per step: max {obj['max_iterations_used']}, mean "
+        what = "Newton iterations" if "body" in obj else "fixed-point iterations"
+        say(f"{what} per step: max {obj['max_iterations_used']}, mean "
             f"{obj['mean_iterations']:.3g}")
         written_lines(outputs, stream)
     if res.status != "ok":
