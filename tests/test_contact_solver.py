@@ -226,6 +226,28 @@ def test_a_load_that_a_whole_number_of_pixels_at_h_carries_exactly():
     assert 0.25 < res.area_fraction < 0.27 and 0.24 < res.plastic_fraction < 0.25
 
 
+@pytest.mark.parametrize("boundary,most", [("periodic", 0.65), ("free", 0.8)])
+@pytest.mark.parametrize("holes", [False, True])
+def test_the_preconditioner_cuts_the_iterations_and_keeps_the_solution(monkeypatch, boundary,
+                                                                        most, holes):
+    """Vollebregt's preconditioner (the inverse half-space on the contact set) gives the
+    solution of the plain conjugate gradient to the tolerance in at most ``most`` of its
+    iterations (measured: 34 of 58 periodic, 40 of 56 free, on this map)."""
+    from asperity.contact import solver
+    z = rough128().copy()
+    if holes:
+        z[np.random.default_rng(6).random(z.shape) < 0.05] = np.nan
+    pre = solve_contact(z, 1e-6, 1e11, 0.0025e11, boundary=boundary, tol=1e-10)
+    monkeypatch.setattr(solver, "PRECONDITION", False)
+    plain = solve_contact(z, 1e-6, 1e11, 0.0025e11, boundary=boundary, tol=1e-10)
+    assert pre.converged and plain.converged
+    assert pre.iterations <= most * plain.iterations, (pre.iterations, plain.iterations)
+    diff = np.nanmax(np.abs(pre.pressure - plain.pressure))
+    assert diff < 1e-8 * plain.max_pressure
+    assert max(gap_violation(z, pre)) < 1e-8
+    assert pre.mean_pressure == pytest.approx(0.0025e11, rel=1e-10)
+
+
 # ---- load curves -----------------------------------------------------------------------
 
 @pytest.mark.parametrize("boundary", ["periodic", "free"])
