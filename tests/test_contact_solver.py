@@ -226,13 +226,13 @@ def test_a_load_that_a_whole_number_of_pixels_at_h_carries_exactly():
     assert 0.25 < res.area_fraction < 0.27 and 0.24 < res.plastic_fraction < 0.25
 
 
-@pytest.mark.parametrize("boundary,most", [("periodic", 0.65), ("free", 0.8)])
+@pytest.mark.parametrize("boundary,most", [("periodic", 0.6), ("free", 0.7)])
 @pytest.mark.parametrize("holes", [False, True])
 def test_the_preconditioner_cuts_the_iterations_and_keeps_the_solution(monkeypatch, boundary,
                                                                         most, holes):
     """Vollebregt's preconditioner (the inverse half-space on the contact set) gives the
     solution of the plain conjugate gradient to the tolerance in at most ``most`` of its
-    iterations (measured: 34 of 58 periodic, 40 of 56 free, on this map)."""
+    iterations (measured: 29 of 58 periodic, 32 of 56 free, on this map)."""
     from asperity.contact import solver
     z = rough128().copy()
     if holes:

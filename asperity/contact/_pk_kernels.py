@@ -248,29 +248,27 @@ def masked_gap(u, h, p, H, gbar, w):
 
 
 @njit(cache=True)
-def precond_sums(u, h, p, z, H, gbar):
-    """Over the free set: (sum of z, sum of g z) (g = u - h - gbar, z = M g)."""
-    sz = 0.0
+def precond_sum(u, h, p, z, H, gbar):
+    """Over the free set: sum of g z (g = u - h - gbar, z = M g)."""
     sgz = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
-            sz += z[i]
             sgz += (u[i] - hi - gbar) * z[i]
-    return sz, sgz
+    return sgz
 
 
 @njit(cache=True)
-def precond_direction(u, h, p, t, z, H, gbar, zbar, beta):
-    """t = (z - zbar) + beta t on the free set, 0 elsewhere; returns sum g t."""
+def precond_direction(u, h, p, t, z, H, gbar, beta):
+    """t = z + beta t on the free set, 0 elsewhere; returns sum g t."""
     sgt = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
             g = u[i] - hi - gbar
-            ti = z[i] - zbar + beta * t[i]
+            ti = z[i] + beta * t[i]
             t[i] = ti
             sgt += g * ti
         else:
