@@ -248,6 +248,24 @@ def test_the_preconditioner_cuts_the_iterations_and_keeps_the_solution(monkeypat
     assert pre.mean_pressure == pytest.approx(0.0025e11, rel=1e-10)
 
 
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+def test_pixels_entering_or_leaving_contact_take_the_preconditioned_step(boundary):
+    """Pixels that the gap moves (into contact, off the cap) step by the preconditioned
+    gap, in the units of the preconditioned step: a start at a fifth of the load and a
+    capped solve converge in as few iterations as a cold elastic one (measured: 35 and 47
+    for the load curve's last step, 27 and 28 capped; moved by the bare gap, 37 and 169,
+    530 and 369)."""
+    z = rough128()
+    curve = solve_load_curve(z, 1e-6, 1e11, [0.001e11, 0.004e11, 0.02e11],
+                             boundary=boundary, tol=1e-10)
+    assert curve[-1].iterations <= (45 if boundary == "periodic" else 60)
+    capped = solve_contact(z, 1e-6, 1e11, 0.01e11, boundary=boundary, tol=1e-10,
+                           hardness=0.03e11)
+    assert capped.converged and capped.iterations <= 60
+    assert capped.max_pressure <= 0.03e11 * (1 + 1e-12) and capped.plastic_fraction > 0
+    assert max(gap_violation(z, capped)) < 1e-6
+
+
 # ---- load curves -----------------------------------------------------------------------
 
 @pytest.mark.parametrize("boundary", ["periodic", "free"])
