@@ -25,8 +25,9 @@ What the warm start buys is bounded, and measured (``python benchmarks/load_curv
 At most 3 single solves would leave the 7 warm solves, after the first (cold) one, 2
 single solves: about 10 iterations each, 2.5 decades, hence a start within about 1e-5.5
 of the solution, four to five decades closer than the 0.13 to 0.19 that the new contact
-pixels leave.  The preconditioner (:data:`.solver.PRECONDITION`) takes 2.3 times fewer iterations (1.7 times
-less time at 1024^2), cold and warm alike, so it does not change the ratio.
+pixels leave.  The preconditioner (:data:`.solver.PRECONDITION`) takes 2.3 times fewer
+iterations (1.7 times less time at 1024^2), cold and warm alike, so it does not change
+the ratio.
 """
 from __future__ import annotations
 
