@@ -3,7 +3,8 @@
 
 Each kernel is one pass over the pixels that fuses what NumPy would do in several
 expressions with temporaries: the solver's memory is its arrays (heights, pressure,
-displacement, direction, the product K t) and the transform's buffers, nothing else.
+displacement, direction, the product K t, the preconditioned gap M g) and the transform's
+buffers, nothing else.
 
 Pixel classes, read from the pressure p and the cap H (``inf`` without hardness):
 undefined (the height is NaN: p stays 0), out of contact (p = 0), the *free* set
