@@ -33,8 +33,9 @@ BOUNDARIES = ("periodic", "free")
 PRECONDITIONER_DTYPE = np.float32
 
 #: planned peak bytes per pixel of a solve (the solver's arrays, the transform's buffers
-#: and the result; the caller's heights not counted): measured peaks 61 (periodic) and
-#: 121 (free) bytes per pixel at 1024^2 and 2048^2, with a margin
+#: and the result; the caller's heights not counted): measured peaks 83 (periodic) and
+#: 142 (free) bytes per pixel at 1024^2 with the preconditioner's array and its
+#: single-precision transform (``asperity bench --only contact``), with a margin
 BYTES_PER_PIXEL = {"periodic": 100, "free": 200}
 
 
