@@ -813,6 +813,31 @@ MUTANTS = [
     Mutant("load-curve-order", "contact/curve.py", "waiting[int(k)] = res",
            "waiting[len(waiting) + nxt] = res", CONTACT_SOLVER,
            "a load curve's results in increasing pressure, not in the order given"),
+    # ---- issue 19: the preconditioned iteration, the benchmark's load curve
+    Mutant("contact-precond-laplacian", "contact/elastic.py",
+           "m[i] = np.sqrt(qx[i] * qx[i] + qy * qy) * (0.5 * self.E_star)",
+           "m[i] = (qx[i] * qx[i] + qy * qy) * (0.5 * self.E_star)", CONTACT_SOLVER,
+           "the preconditioner multiplies by q^2 (a Laplacian), not by |q| (the inverse "
+           "half-space)"),
+    Mutant("contact-precond-entering-left-out", "contact/_pk_kernels.py",
+           "if 0.0 < pi < H or (pi <= 0.0 and g < 0.0) or (pi >= H and g > 0.0):\n"
+           "            w[i] = g", "if 0.0 < pi < H:\n            w[i] = g", CONTACT_SOLVER,
+           "the preconditioner's input leaves out the pixels the gap moves (they enter "
+           "or leave contact by M of the free set's gap alone)"),
+    Mutant("contact-precond-moves-by-gap", "contact/_pk_kernels.py",
+           "q = pi - tau * (z[i] if pre else g)", "q = pi - tau * g", CONTACT_SOLVER,
+           "pixels entering contact moved by the gap g, not by the preconditioned gap M g "
+           "(the step tau is in the preconditioned units)"),
+    Mutant("contact-precond-beta-sign", "contact/_pk_kernels.py",
+           "ti = z[i] + beta * t[i]", "ti = z[i] - beta * t[i]",
+           CONTACT_SOLVER, "the preconditioned conjugate direction subtracts the old one"),
+    Mutant("contact-precond-sum-unshifted", "contact/_pk_kernels.py",
+           "sgz += (u[i] - hi - gbar) * z[i]", "sgz += (u[i] - hi) * z[i]", CONTACT_SOLVER,
+           "the preconditioned residual norm Z taken with the gap before its mean shift"),
+    Mutant("bench-curve-pressures-unscaled", "contact/bench.py",
+           'curve(h, PIXEL, E_STAR, [f * E_STAR for f in spec["pressures"]],',
+           'curve(h, PIXEL, E_STAR, spec["pressures"],', ("test_contact_oracle.py",),
+           "the benchmark's load curve solved at p/E* in Pa, not at p"),
     Mutant("saved-pressure-undefined-zero", "cli/contact.py",
            'np.save(f, np.asarray(pic["save"], dtype=np.float64))',
            'np.save(f, np.nan_to_num(pic["save"]))', CONTACT_CLI,

@@ -331,6 +331,25 @@ def test_contact_benchmark_flags_refused(capsys, flags, msg):
     assert code == 1 and out == "" and msg in err and err.count("\n") == 1, err
 
 
+def test_contact_benchmark_curve_is_the_library_load_curve(tmp_path):
+    """asperity's child of the benchmark solves the load curve through iter_load_curve:
+    the 8 pressures in turn, each warm solve cheaper than a cold one at its pressure, the
+    last one's pressure that of a single solve at the highest pressure."""
+    from asperity.contact import bench
+    h = bench.self_affine(64, dx=bench.PIXEL, seed=1)
+    np.save(tmp_path / "map.npy", h)
+    spec = {"map": str(tmp_path / "map.npy"), "boundary": "periodic",
+            "pressures": list(bench.CURVE), "tol": 1e-10, "out": str(tmp_path / "p.npy")}
+    r = bench.run_case(bench.asperity_solver, spec, bench.asperity_curve)
+    assert len(r["iterations_each"]) == len(r["seconds_each"]) == 8
+    assert r["iterations"] == sum(r["iterations_each"])
+    cold = [solve_contact(h, bench.PIXEL, bench.E_STAR, f * bench.E_STAR, tol=1e-10)
+            for f in bench.CURVE]
+    assert all(w < c.iterations for w, c in zip(r["iterations_each"][1:], cold[1:]))
+    last = np.load(tmp_path / "p.npy")
+    assert np.abs(last - cold[-1].pressure).max() < 1e-7 * cold[-1].max_pressure
+
+
 @needs_cm
 @pytest.mark.slow
 def test_contact_benchmark_runs_every_solver_on_the_same_problem(capsys):

@@ -226,6 +226,46 @@ def test_a_load_that_a_whole_number_of_pixels_at_h_carries_exactly():
     assert 0.25 < res.area_fraction < 0.27 and 0.24 < res.plastic_fraction < 0.25
 
 
+@pytest.mark.parametrize("boundary,most", [("periodic", 0.6), ("free", 0.7)])
+@pytest.mark.parametrize("holes", [False, True])
+def test_the_preconditioner_cuts_the_iterations_and_keeps_the_solution(monkeypatch, boundary,
+                                                                        most, holes):
+    """Vollebregt's preconditioner (the inverse half-space on the contact set) gives the
+    solution of the plain conjugate gradient to the tolerance in at most ``most`` of its
+    iterations (measured: 29 of 58 periodic, 32 of 56 free, on this map)."""
+    from asperity.contact import solver
+    z = rough128().copy()
+    if holes:
+        z[np.random.default_rng(6).random(z.shape) < 0.05] = np.nan
+    pre = solve_contact(z, 1e-6, 1e11, 0.0025e11, boundary=boundary, tol=1e-10)
+    monkeypatch.setattr(solver, "PRECONDITION", False)
+    plain = solve_contact(z, 1e-6, 1e11, 0.0025e11, boundary=boundary, tol=1e-10)
+    assert pre.converged and plain.converged
+    assert pre.iterations <= most * plain.iterations, (pre.iterations, plain.iterations)
+    diff = np.nanmax(np.abs(pre.pressure - plain.pressure))
+    assert diff < 1e-8 * plain.max_pressure
+    assert max(gap_violation(z, pre)) < 1e-8
+    assert pre.mean_pressure == pytest.approx(0.0025e11, rel=1e-10)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+def test_pixels_entering_or_leaving_contact_take_the_preconditioned_step(boundary):
+    """Pixels that the gap moves (into contact, off the cap) step by the preconditioned
+    gap, in the units of the preconditioned step: a start at a fifth of the load and a
+    capped solve converge in as few iterations as a cold elastic one (measured: 35 and 47
+    for the load curve's last step, 27 and 28 capped; moved by the bare gap, 37 and 169,
+    530 and 369)."""
+    z = rough128()
+    curve = solve_load_curve(z, 1e-6, 1e11, [0.001e11, 0.004e11, 0.02e11],
+                             boundary=boundary, tol=1e-10)
+    assert curve[-1].iterations <= (45 if boundary == "periodic" else 60)
+    capped = solve_contact(z, 1e-6, 1e11, 0.01e11, boundary=boundary, tol=1e-10,
+                           hardness=0.03e11)
+    assert capped.converged and capped.iterations <= 60
+    assert capped.max_pressure <= 0.03e11 * (1 + 1e-12) and capped.plastic_fraction > 0
+    assert max(gap_violation(z, capped)) < 1e-6
+
+
 # ---- load curves -----------------------------------------------------------------------
 
 @pytest.mark.parametrize("boundary", ["periodic", "free"])

@@ -3,7 +3,8 @@
 
 Each kernel is one pass over the pixels that fuses what NumPy would do in several
 expressions with temporaries: the solver's memory is its arrays (heights, pressure,
-displacement, direction, the product K t) and the transform's buffers, nothing else.
+displacement, direction, the product K t, the preconditioned gap M g) and the transform's
+buffers, nothing else.
 
 Pixel classes, read from the pressure p and the cap H (``inf`` without hardness):
 undefined (the height is NaN: p stays 0), out of contact (p = 0), the *free* set
@@ -87,12 +88,14 @@ def step_sums(u, h, p, t, r, H, gbar):
 
 
 @njit(cache=True)
-def update(u, h, p, t, r, H, gbar, tau):
+def update(u, h, p, t, r, H, gbar, tau, z):
     """The pressure step: p -= tau t on the free set; out of contact where the gap is
     negative (overlap) and plastic where it is positive (release): p -= tau g; then p
     clipped to [0, H].  u becomes u - tau r (exact K p when nothing was clipped or moved
     off the line), r keeps the old pressure (for the change of the iteration).  Returns
-    (the sum of p, the number of pixels clipped, the number moved by the gap)."""
+    (the sum of p, the number of pixels clipped, the number moved by the gap).  With the
+    preconditioner, ``z`` (M g) moves those pixels instead of g (``z`` of size 0: g)."""
+    pre = z.size > 0
     total = 0.0
     clipped = 0
     moved = 0
@@ -109,7 +112,7 @@ def update(u, h, p, t, r, H, gbar, tau):
         else:
             g = u[i] - hi - gbar
             if (pi <= 0.0 and g < 0.0) or (pi >= H and g > 0.0):
-                q = pi - tau * g
+                q = pi - tau * (z[i] if pre else g)
                 moved += 1
             else:
                 q = pi
@@ -227,3 +230,48 @@ def gap_violation(u, h, p, H, gbar):
         elif g > plastic:
             plastic = g
     return free, plastic
+
+
+@njit(cache=True)
+def masked_gap(u, h, p, H, gbar, w):
+    """w = g = u - h - gbar on the free set and on the pixels the gap moves (out of
+    contact with g < 0, plastic with g > 0), 0 elsewhere: the input of the
+    preconditioner."""
+    for i in range(p.size):
+        hi = h[i]
+        w[i] = 0.0
+        if hi != hi:
+            continue
+        pi = p[i]
+        g = u[i] - hi - gbar
+        if 0.0 < pi < H or (pi <= 0.0 and g < 0.0) or (pi >= H and g > 0.0):
+            w[i] = g
+
+
+@njit(cache=True)
+def precond_sum(u, h, p, z, H, gbar):
+    """Over the free set: sum of g z (g = u - h - gbar, z = M g)."""
+    sgz = 0.0
+    for i in range(p.size):
+        pi = p[i]
+        hi = h[i]
+        if hi == hi and 0.0 < pi < H:
+            sgz += (u[i] - hi - gbar) * z[i]
+    return sgz
+
+
+@njit(cache=True)
+def precond_direction(u, h, p, t, z, H, gbar, beta):
+    """t = z + beta t on the free set, 0 elsewhere; returns sum g t."""
+    sgt = 0.0
+    for i in range(p.size):
+        pi = p[i]
+        hi = h[i]
+        if hi == hi and 0.0 < pi < H:
+            g = u[i] - hi - gbar
+            ti = z[i] + beta * t[i]
+            t[i] = ti
+            sgt += g * ti
+        else:
+            t[i] = 0.0
+    return sgt

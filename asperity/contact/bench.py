@@ -95,9 +95,19 @@ def asperity_solver(h, dx, E, p, boundary, tol, initial):
     return r.pressure, r.iterations
 
 
-def run_case(solve, spec: dict) -> dict:
+def asperity_curve(h, dx, E, pressures, boundary, tol):
+    """(pressure, iterations) at each of ``pressures`` in turn, from
+    :func:`iter_load_curve` (one half-space, each solve from the previous solution)."""
+    from .curve import iter_load_curve
+    for r in iter_load_curve(h, dx, E, pressures, boundary=boundary, tol=tol):
+        yield r.pressure, r.iterations
+
+
+def run_case(solve, spec: dict, curve=None) -> dict:
     """Warm up, reset the peak memory, load the map and solve ``spec["pressures"]`` in
-    turn (each from the previous pressure); seconds, iterations and memory."""
+    turn (each from the previous pressure: with ``curve``, a generator of (pressure,
+    iterations) over the pressures, the solver's own load curve); seconds, iterations and
+    memory."""
     warm = self_affine(64, dx=PIXEL, seed=9)
     solve(warm, PIXEL, E_STAR, LOAD * E_STAR, spec["boundary"], spec["tol"], None)
     del warm
@@ -105,11 +115,20 @@ def run_case(solve, spec: dict) -> dict:
     rss0 = _proc_status()["VmRSS"]
     h = np.load(spec["map"])
     seconds, iterations, prev = [], [], None
-    for f in spec["pressures"]:
+    if curve is not None and len(spec["pressures"]) > 1:
         t0 = time.perf_counter()
-        prev, it = solve(h, PIXEL, E_STAR, f * E_STAR, spec["boundary"], spec["tol"], prev)
-        seconds.append(time.perf_counter() - t0)
-        iterations.append(int(it))
+        for prev, it in curve(h, PIXEL, E_STAR, [f * E_STAR for f in spec["pressures"]],
+                              spec["boundary"], spec["tol"]):
+            seconds.append(time.perf_counter() - t0)
+            iterations.append(int(it))
+            t0 = time.perf_counter()
+    else:
+        for f in spec["pressures"]:
+            t0 = time.perf_counter()
+            prev, it = solve(h, PIXEL, E_STAR, f * E_STAR, spec["boundary"], spec["tol"],
+                             prev)
+            seconds.append(time.perf_counter() - t0)
+            iterations.append(int(it))
     peak = _proc_status()["VmHWM"] - rss0
     np.save(spec["out"], np.asarray(prev, float))
     return {"seconds": float(sum(seconds)), "seconds_each": seconds,
@@ -118,12 +137,13 @@ def run_case(solve, spec: dict) -> dict:
             "peak_reset": reset, "pixels": int(h.size)}
 
 
-def worker_main(argv, solvers: dict) -> int:
-    """``--worker NAME --spec JSON``: run one case, print its figures as one JSON line."""
+def worker_main(argv, solvers: dict, curves: dict | None = None) -> int:
+    """``--worker NAME --spec JSON``: run one case, print its figures as one JSON line
+    (``curves``: the solvers' own load curves, by name, where they have one)."""
     from ..lifeline import die_with_parent
     die_with_parent()
     name, spec = argv[argv.index("--worker") + 1], json.loads(argv[argv.index("--spec") + 1])
-    print(json.dumps(run_case(solvers[name], spec)))
+    print(json.dumps(run_case(solvers[name], spec, (curves or {}).get(name))))
     return 0
 
 
@@ -250,6 +270,12 @@ def format_contact(out: dict) -> str:
                    if "rel_l2_vs_asperity" in r else "")
             lines.append(f"{head} {r['seconds']:8.2f} s, {r['iterations']:5d} iterations, "
                          f"{r['bytes_per_pixel']:6.1f} B/pixel{acc}")
+    curve = out["cases"].get("periodic curve", {}).get("asperity", {})
+    single = out["cases"].get("periodic", {}).get("asperity", {})
+    if "iterations_each" in curve and "iterations" in single:
+        lines.append(f"contact, periodic curve, asperity: iterations per pressure "
+                     f"{curve['iterations_each']} against {single['iterations']} for the cold "
+                     f"single solve (why: benchmarks/load_curve_bound.py)")
     for name, v in out["verdict"].items():
         if v["value"] is None:
             lines.append(f"target {name}: not measured")
@@ -260,4 +286,5 @@ def format_contact(out: dict) -> str:
 
 
 if __name__ == "__main__":
-    sys.exit(worker_main(sys.argv[1:], {"asperity": asperity_solver}))
+    sys.exit(worker_main(sys.argv[1:], {"asperity": asperity_solver},
+                         {"asperity": asperity_curve}))

@@ -13,16 +13,21 @@ u = K p (:mod:`.elastic`),
 p = H are plastic: the surface has flowed into the gap).  Undefined (NaN) pixels carry no
 pressure.
 
-Polonsky & Keer (Wear 231, 206, 1999), one iteration:
+Polonsky & Keer (Wear 231, 206, 1999) with Vollebregt's preconditioner, one iteration:
 
 1. the gap g = u - h - gbar on the free set F = {0 < p < H}, gbar its mean there (the
-   gap mean shift: the rigid-body approach is d = -gbar), G = sum_F g^2;
-2. the conjugate direction t = g + delta (G / G_old) t on F, 0 elsewhere; delta = 0 (a
-   steepest-descent restart) after an iteration that changed the contact set through the
-   gap (step 4), else 1;
-3. r = K t, rbar its mean over F, tau = sum_F g t / sum_F (r - rbar) t; p -= tau t on F;
-4. where p = 0 and g < 0 (overlap), and where p = H and g > 0 (a plastic pixel whose gap
-   opened), p -= tau g, and delta = 0 for the next iteration; p clipped to [0, H];
+   gap mean shift: the rigid-body approach is d = -gbar);
+2. the preconditioned gap z = M g (Vollebregt, J. Comput. Phys. 257, 333, 2014): g on F
+   and on the pixels step 4 moves, 0 elsewhere, multiplied by the inverse of the
+   periodic half-space, |q| E* / 2 in Fourier space (single precision: an approximate
+   inverse serves as well); Z = sum_F g z;
+3. the conjugate direction t = z + (Z / Z_old) t on F, 0 elsewhere, restarted (t = z)
+   when sum_F g t < :data:`THETA` Z (after the contact set changed).  t keeps its mean
+   over F: the load control (step 5) takes it out, and the iteration converges faster
+   than with t projected on the constant load (measured: 36 iterations for 43 at 512^2);
+4. r = K t, rbar its mean over F, tau = sum_F g t / sum_F (r - rbar) t; p -= tau t on F;
+   where p = 0 and g < 0 (overlap), and where p = H and g > 0 (a plastic pixel whose gap
+   opened), p -= tau z; p clipped to [0, H];
 5. load control: p scaled by the factor s that gives sum min(s p, H) = the load (plain
    scaling without a cap, as in the paper; with one, Newton steps on that concave,
    piecewise linear function, exact in a few passes);
@@ -52,9 +57,9 @@ from . import elastic
 
 #: iterations between two full products u = K p when u is updated incrementally
 REFRESH = 25
-#: the conjugate direction is restarted (t = g) when sum g t < THETA G: after the contact
-#: set changed, the old direction may have lost its conjugacy (on an unchanged set, with
-#: the exact step of the iteration, sum g t = G)
+#: the conjugate direction is restarted (t = z) when sum g t < THETA Z: after the
+#: contact set changed, the old direction may have lost its conjugacy (on an unchanged
+#: set, with the exact step of the iteration, sum g t = Z)
 THETA = 0.9
 #: largest gap violation of a converged solution over the map's height range (a pixel
 #: out of contact below the half-space, one in contact off it); converged solves stay
@@ -63,6 +68,13 @@ GAP_TOL = 1e-6
 #: iterations a capped solve tries before the outer loop over the plastic set (:mod:`.plastic`;
 #: converged capped solves take 15 to 60, one whose set stalls never converges)
 PLASTIC_FIRST_TRY = 300
+#: the conjugate directions are preconditioned by the inverse of the half-space (the
+#: module's docstring, steps 2 and 3; without: z = g, Polonsky and Keer's iteration).
+#: Measured (self-affine map of the benchmark, p/E* 0.0025, tol 1e-8, one thread, CPU
+#: time): periodic 512^2 36 iterations for 82, 0.55 s for 1.0; 1024^2 44 for 101, 2.95 s
+#: for 5.0; free 512^2 43 for 75, 1.7 s for 2.3 (an iteration takes one transform more,
+#: in single precision, on the unpadded grid)
+PRECONDITION = True
 #: default iteration limit
 MAX_ITERATIONS = 10_000
 #: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
@@ -311,7 +323,9 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     u = np.empty_like(h)
     t = np.zeros_like(h)
     r = np.empty_like(h)
-    hf, pf, uf, tf, rf = (a.reshape(-1) for a in (h, p, u, t, r))
+    zp = np.empty_like(h) if PRECONDITION else np.empty(0)    # M g (the preconditioned gap)
+    nz = np.empty(0)                           # the gap moves the pixels (not M g)
+    hf, pf, uf, tf, rf, zf = (a.reshape(-1) for a in (h, p, u, t, r, zp))
     s, fixed = _scale_factor(pf, load, H)
     if s is None:
         space.apply(p, u)
@@ -329,22 +343,35 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             gbar = c + s1 / n
             G = max(s2 - n * (gbar - c) ** 2, 0.0)
             c = gbar
-            beta = delta * G / G_old if G_old > 0 else 0.0
-            if beta > 0.0 and K.direction(uf, hf, pf, tf, H, gbar, beta) < THETA * G:
-                K.direction(uf, hf, pf, tf, H, gbar, 0.0)     # restart: t = g
-            elif beta == 0.0:
-                K.direction(uf, hf, pf, tf, H, gbar, 0.0)
+            if PRECONDITION:                   # z = M g
+                K.masked_gap(uf, hf, pf, H, gbar, zf)
+                space.precondition(zp, zp)
+                G = K.precond_sum(uf, hf, pf, zf, H, gbar)
+                beta = delta * G / G_old if G_old > 0 and G > 0 else 0.0
+                if beta > 0.0 and K.precond_direction(uf, hf, pf, tf, zf, H, gbar,
+                                                      beta) < THETA * G:
+                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, 0.0)
+                elif beta == 0.0:
+                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, 0.0)
+            else:
+                beta = delta * G / G_old if G_old > 0 else 0.0
+                if beta > 0.0 and K.direction(uf, hf, pf, tf, H, gbar, beta) < THETA * G:
+                    K.direction(uf, hf, pf, tf, H, gbar, 0.0)     # restart: t = g
+                elif beta == 0.0:
+                    K.direction(uf, hf, pf, tf, H, gbar, 0.0)
             space.apply(t, r)
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
             tau = sgt / denom if denom > 0.0 else 0.0
+            moves = zf
         else:                                  # one free pixel or none (all plastic)
             G = 0.0
             gbar = c + s1 if n == 1 else float(np.max(np.where(p >= H, u - h, -np.inf)))
             t[...] = 0.0
             r[...] = 0.0
             tau = 1.0 / space.self_compliance
-        total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau)
+            moves = nz
+        total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau, moves)
         delta = 1
         exact = clipped == 0 and moved == 0 and fresh < REFRESH
         s, fixed = _scale_factor(pf, load, H) if total > 0.0 else (None, False)
@@ -380,7 +407,7 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
         gbar = s1 / n
     else:
         gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
-    del r, rf
+    del r, rf, zp, zf, moves
     plastic = int(np.count_nonzero(p >= H)) if math.isfinite(H) else 0
     gap = t
     free_off, plastic_off = K.gap_violation(uf, hf, pf, H, gbar)
