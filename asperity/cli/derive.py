@@ -72,7 +72,8 @@ def add_parser(sub) -> None:
 def run(args) -> dict:
     """Python API of the command: the JSON object it prints with --json."""
     from ..friction.derive import derive, to_json
-    if _windowed(args):
+    from .derive_windows import windowed
+    if windowed(args):
         from .derive_windows import derive_windows_args
         s = derive_windows_args(args)
         return s, s
@@ -93,18 +94,6 @@ def run(args) -> dict:
     with progress_bar("facets") as progress:
         d = derive(texture, args.contact, args.method, args.directions, model, progress=progress)
     return d, to_json(d)
-
-
-def _windowed(args) -> bool:
-    """--window is given (its companions without it are refused)."""
-    from ..errors import InputError
-    if args.window is None:
-        for d in ("windows", "window_placement", "window_seed"):
-            if getattr(args, d) is not None:
-                raise InputError(f"--{d.replace('_', '-')} needs --window (the window side "
-                                 "in pixels)")
-        return False
-    return True
 
 
 def _scan(args):

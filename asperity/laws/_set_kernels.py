@@ -102,8 +102,9 @@ def ellipse_gauge(par, x0, x1):
 
 
 @njit(cache=True, _nrt=False)
-def star_radial(tab, off, n, phi):
-    """Radial function of the star-shaped polygon: ray-edge intersection."""
+def star_radial_edge(tab, off, n, phi):
+    """Radial function of the star-shaped polygon at phi (ray-edge intersection) and the
+    edge it meets (its first vertex, 0 .. n-1)."""
     a0 = tab[off, 2]
     pm = a0 + (phi - a0) % TWO_PI
     lo = 0
@@ -121,7 +122,13 @@ def star_radial(tab, off, n, phi):
     dy = tab[off + k1, 1] - v0y
     ux = math.cos(pm)
     uy = math.sin(pm)
-    return (v0x * dy - v0y * dx) / (ux * dy - uy * dx)
+    return (v0x * dy - v0y * dx) / (ux * dy - uy * dx), lo
+
+
+@njit(cache=True, _nrt=False)
+def star_radial(tab, off, n, phi):
+    """Radial function of the star-shaped polygon: ray-edge intersection."""
+    return star_radial_edge(tab, off, n, phi)[0]
 
 
 @njit(cache=True, _nrt=False)

@@ -17,7 +17,7 @@ import math
 
 from numba import njit
 
-from ._set_kernels import TWO_PI, star_radial, support_project_full, tan_integral
+from ._set_kernels import TWO_PI, star_radial_edge, support_project_full, tan_integral
 
 #: a warm start of the projection onto a support set (columns of a caller's row): the sample
 #: interval, and the offset t in it with cos psi, sin psi, h, tan delta evaluated there
@@ -254,7 +254,7 @@ def support_radial_warm(tab, off, n, ux, uy, wk, dphi):
 def star_radial_dir(tab, off, n, ux, uy, k0):
     """(rho, k): radial function of the star-shaped polygon along the unit vector u and the
     edge k (from vertex k to k + 1) hit, found from edge k0 by a walk of up to 3 edges
-    (cross products, no angle) or by :func:`star_radial`'s search."""
+    (cross products, no angle) or by :func:`star_radial_edge`'s search."""
     k = k0
     if 0 <= k < n:
         for _ in range(4):
@@ -271,15 +271,4 @@ def star_radial_dir(tab, off, n, ux, uy, k0):
                 dx = v1x - v0x
                 dy = v1y - v0y
                 return (v0x * dy - v0y * dx) / (ux * dy - uy * dx), k
-    phi = math.atan2(uy, ux)
-    a0 = tab[off, 2]
-    pm = a0 + (phi - a0) % TWO_PI
-    lo = 0
-    hi = n - 1
-    while lo < hi:
-        mid = (lo + hi + 1) // 2
-        if tab[off + mid, 2] <= pm:
-            lo = mid
-        else:
-            hi = mid - 1
-    return star_radial(tab, off, n, phi), lo
+    return star_radial_edge(tab, off, n, math.atan2(uy, ux))
