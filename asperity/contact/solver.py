@@ -54,6 +54,7 @@ import numpy as np
 from ..errors import AsperityError, InputError, check_array, check_choice, check_int, \
     check_range
 from . import elastic
+from .loads import fill, scale_factor, start
 
 #: iterations between two full products u = K p when u is updated incrementally
 REFRESH = 25
@@ -258,60 +259,6 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
     return res
 
 
-def _start(z: np.ndarray, h: np.ndarray, load: float, H: float, n_def: int, p0):
-    """The first pressure field: ``p0`` made admissible (0 on undefined pixels, in
-    [0, H]), else uniform over the defined pixels; scaled to the load afterwards."""
-    undefined = np.isnan(h)
-    if p0 is not None:
-        p = np.nan_to_num(p0, nan=0.0, posinf=0.0, neginf=0.0)
-        np.clip(p, 0.0, H, out=p)
-        p[undefined] = 0.0
-        if p.sum() > 0.0:
-            return p
-    p = np.full(z.shape, load / n_def)
-    p[undefined] = 0.0
-    return p
-
-
-def _scale_factor(p: np.ndarray, load: float, H: float):
-    """(s, fixed): the factor s with sum min(s p, H) = load over the pixels below H, those
-    at H kept there (``fixed``); when they alone carry the load or more, every pixel is
-    scaled (``fixed`` False).  s None: the contact set cannot carry the load even at H
-    everywhere."""
-    from . import _pk_kernels as K
-    below, n_at = K.load_sums(p, H)
-    fixed = n_at > 0 and H * n_at < load
-    if not fixed and n_at:
-        below += H * n_at
-    if below <= 0.0:
-        return None, fixed
-    s = (load - (H * n_at if fixed else 0.0)) / below
-    if math.isinf(H):
-        return s, False
-    for _ in range(100):                       # Newton from the left: monotone, finite
-        f, df = K.capped_sums(p, s, H, fixed)
-        if abs(load - f) <= 1e-15 * load:
-            break
-        if df <= 0.0:
-            return None, fixed
-        s += (load - f) / df
-    return s, fixed
-
-
-def _fill(p, u, h, load: float, H: float) -> None:
-    """Every contact pixel at H and the rest of the load on the most penetrating pixels
-    out of contact (the bearing-area step of a plastic solve whose set is too small)."""
-    on = p > 0.0
-    p[on] = H
-    rest = load - H * np.count_nonzero(on)
-    g = np.where((~on) & ~np.isnan(h), u - h, np.inf)
-    k = min(int(math.ceil(rest / H)), g.size)
-    idx = np.argpartition(g, k - 1)[:k] if k < g.size else np.arange(g.size)
-    idx = idx[np.argsort(g[idx])]
-    p[idx] = H
-    p[idx[-1]] = rest - H * (k - 1)
-
-
 def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     from ..progress import report
     from . import _pk_kernels as K
@@ -319,17 +266,17 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     nx, ny = z.shape
     load = pbar * nx * ny                      # sum of the pixel pressures
     h = z - np.nanmax(z)                       # the highest point at 0 (rounding)
-    p = _start(z, h, load, H, n_def, p0)
+    p = start(z, h, load, H, n_def, p0)
     u = np.empty_like(h)
     t = np.zeros_like(h)
     r = np.empty_like(h)
     zp = np.empty_like(h) if PRECONDITION else np.empty(0)    # M g (the preconditioned gap)
     nz = np.empty(0)                           # the gap moves the pixels (not M g)
     hf, pf, uf, tf, rf, zf = (a.reshape(-1) for a in (h, p, u, t, r, zp))
-    s, fixed = _scale_factor(pf, load, H)
+    s, fixed = scale_factor(pf, load, H)
     if s is None:
         space.apply(p, u)
-        _fill(pf, uf, hf, load, H)
+        fill(pf, uf, hf, load, H)
     else:
         K.rescale(pf, uf, rf, s, H, False, fixed)
     space.apply(p, u)
@@ -374,12 +321,12 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
         total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau, moves)
         delta = 1
         exact = clipped == 0 and moved == 0 and fresh < REFRESH
-        s, fixed = _scale_factor(pf, load, H) if total > 0.0 else (None, False)
+        s, fixed = scale_factor(pf, load, H) if total > 0.0 else (None, False)
         if s is None and math.isinf(H):       # every pressure clipped: back to the last
             p[...] = r                         # iterate, restart the directions
             change, delta, exact = math.inf, 0, False
         elif s is None:                        # the set cannot carry the load: widen it
-            _fill(pf, uf, hf, load, H)
+            fill(pf, uf, hf, load, H)
             change = float(np.abs(pf - rf).sum())
             exact = False
         else:

@@ -1,0 +1,62 @@
+"""The load control of the contact iteration (:mod:`asperity.contact.solver`): the first
+pressure field, the factor that scales a field to the load under a hardness cap, and the
+bearing-area fill of a plastic solve whose contact set is too small."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def start(z: np.ndarray, h: np.ndarray, load: float, H: float, n_def: int, p0):
+    """The first pressure field: ``p0`` made admissible (0 on undefined pixels, in
+    [0, H]), else uniform over the defined pixels; scaled to the load afterwards."""
+    undefined = np.isnan(h)
+    if p0 is not None:
+        p = np.nan_to_num(p0, nan=0.0, posinf=0.0, neginf=0.0)
+        np.clip(p, 0.0, H, out=p)
+        p[undefined] = 0.0
+        if p.sum() > 0.0:
+            return p
+    p = np.full(z.shape, load / n_def)
+    p[undefined] = 0.0
+    return p
+
+
+def scale_factor(p: np.ndarray, load: float, H: float):
+    """(s, fixed): the factor s with sum min(s p, H) = load over the pixels below H, those
+    at H kept there (``fixed``); when they alone carry the load or more, every pixel is
+    scaled (``fixed`` False).  s None: the contact set cannot carry the load even at H
+    everywhere."""
+    from . import _pk_kernels as K
+    below, n_at = K.load_sums(p, H)
+    fixed = n_at > 0 and H * n_at < load
+    if not fixed and n_at:
+        below += H * n_at
+    if below <= 0.0:
+        return None, fixed
+    s = (load - (H * n_at if fixed else 0.0)) / below
+    if math.isinf(H):
+        return s, False
+    for _ in range(100):                       # Newton from the left: monotone, finite
+        f, df = K.capped_sums(p, s, H, fixed)
+        if abs(load - f) <= 1e-15 * load:
+            break
+        if df <= 0.0:
+            return None, fixed
+        s += (load - f) / df
+    return s, fixed
+
+
+def fill(p, u, h, load: float, H: float) -> None:
+    """Every contact pixel at H and the rest of the load on the most penetrating pixels
+    out of contact (the bearing-area step of a plastic solve whose set is too small)."""
+    on = p > 0.0
+    p[on] = H
+    rest = load - H * np.count_nonzero(on)
+    g = np.where((~on) & ~np.isnan(h), u - h, np.inf)
+    k = min(int(math.ceil(rest / H)), g.size)
+    idx = np.argpartition(g, k - 1)[:k] if k < g.size else np.arange(g.size)
+    idx = idx[np.argsort(g[idx])]
+    p[idx] = H
+    p[idx[-1]] = rest - H * (k - 1)
