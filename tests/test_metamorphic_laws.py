@@ -158,11 +158,12 @@ ELLIPSE_CASES = {                       # (t_a of each member, deg; heights)
 
 
 @pytest.mark.parametrize("case", list(ELLIPSE_CASES))
-@pytest.mark.parametrize("flip", [False, True])
+@pytest.mark.parametrize("flip", [None, 0, 1])
 def test_ellipse_family_between_members_follows_the_stated_rule(case, flip):
+    """``flip``: that member written with its t_a reversed (a theta of 180 to 360 deg)."""
     laws = member_laws("truncated-ellipse", ELLIPSE_CASES[case])
-    if flip:
-        laws[1] = reversed_ellipse(laws[1])
+    if flip is not None:
+        laws[flip] = reversed_ellipse(laws[flip])
     ps = (2e6, 5e7)
     fam = family(laws, ps)
     e0, e1 = laws[0].law.C, laws[1].law.C
@@ -215,20 +216,35 @@ def test_star_family_between_members_goes_through_the_interpolated_points_across
 
 
 def test_the_ends_of_a_familys_range_and_one_step_past_them(tmp_path, capsys):
-    """Each member's pressure gives that member (the last one too); one ulp outside the
-    range is refused in one line; the command line's law at a pressure is the API's."""
+    """Three members: each member's pressure gives that member (the last one too), the law
+    between two members is theirs (not a neighbour's), continuous at every member from
+    both sides; one ulp outside the range is refused in one line; the command line's law
+    at a pressure is the API's."""
     laws = member_laws("truncated-ellipse", ((172.0, 2e-6), (100.0, 2.8e-6), (14.0, 3.5e-6)))
     ps = (1e6, 1e7, 1e8)
     fam = family(laws, ps)
     for p, m in zip(ps, fam.members):
         assert fam.at(p) is m
+    for k in range(2):
+        e0, e1 = laws[k].law.C, laws[k + 1].law.C
+        for w in (0.2, 0.7):
+            p = ps[k] * (ps[k + 1] / ps[k]) ** w
+            np.testing.assert_allclose(fam.at(p).law.C.radial(PHI),
+                                       hand_ellipse(e0, e1, w).radial(PHI), rtol=1e-9,
+                                       err_msg=f"between members {k} and {k + 1}")
+    for k, m in enumerate(laws):
+        for side in (-1, 1):
+            p = ps[k] * (1 + side * 1e-12)
+            if ps[0] <= p <= ps[-1]:
+                np.testing.assert_allclose(fam.at(p).law.C.radial(PHI), m.law.C.radial(PHI),
+                                           rtol=1e-9, err_msg=f"member {k}, side {side}")
     for p in (np.nextafter(ps[0], 0.0), np.nextafter(ps[-1], np.inf)):
         with pytest.raises(InputError) as exc:
             fam.at(float(p))
         assert "no extrapolation" in str(exc.value) and "\n" not in str(exc.value)
     path = tmp_path / "fam.json"
     write_gauge(path, fam)
-    for p, psi in ((ps[-1], 135.0), (3e7, 250.0), (ps[0], 0.0), (1e7, 360.0)):
+    for p, psi in ((ps[-1], 135.0), (3e7, 250.0), (ps[0], 0.0), (3e6, 360.0)):
         d = run_json(capsys, "law", path, "--pressure", p, "--psi", psi)
         want = fam.at(p).force(np.array([math.radians(psi)]))
         assert d["p"] == pytest.approx(list(want.p[0]), rel=1e-12, abs=1e-15)
