@@ -7,6 +7,7 @@ posed another way must give the same answer, mapped.
   hardness cap; t_a near 90 deg, so that the transposed t_a wraps through 180 deg);
 * an undefined border moves a free map's origin away from zero: nothing changes but the
   nominal pressure over the larger map;
+* full contact (area fraction exactly 1) weighs the facets by the closed-form pressure;
 * units: lengths x 1e-6 (m <-> um) leave the pressures and the law unchanged and scale the
   gap; E*, p and H x k scale the pressures only;
 * a triangle mesh moved far from the origin carries the same force on each triangle, and
@@ -27,6 +28,7 @@ from lays import assert_mapped, isometry, lay
 from asperity.contact import solve_contact
 from asperity.friction.derive import derive
 from asperity.surface.contact_facets import ElasticContact, elastic_facets
+from asperity.surface.facets import heightmap_facets
 from asperity.surface.mesh_grid import face_forces, mesh_heightmap
 from asperity.surface.topography import HeightMap, TriangleMesh
 
@@ -125,6 +127,27 @@ def test_the_command_line_reads_micrometres_as_metres_divided(scan, tmp_path, ca
     assert b["area_fraction"] == a["area_fraction"]
     for k in ("max_pressure_Pa", "mean_gap_m", "pressure_Pa"):
         assert b[k] == pytest.approx(a[k], rel=1e-8), k
+
+
+def test_full_contact_weighs_the_facets_by_the_closed_form_pressure():
+    """Area fraction exactly 1 (an edge value): a periodic map of oblong pixels pressed
+    beyond full contact carries p = p_mean + E* |q| h_q / 2 (u = h - d everywhere), and the
+    law is the facets weighted by that pressure -- not the area-weighted law."""
+    nx, ny = 40, 28
+    z = lay(nx, ny, DX, DY, angle_deg=95.0, seed=1, height=0.3e-6)
+    qx = 2 * np.pi * np.fft.fftfreq(nx, DX)[:, None]
+    qy = 2 * np.pi * np.fft.fftfreq(ny, DY)[None, :]
+    dp = np.fft.ifft2(np.fft.fft2(z) * E * np.hypot(qx, qy) / 2).real
+    p_mean = -1.5 * dp.min()
+    a = weighted(z, DX, DY, "periodic", pressure=p_mean)
+    c = a.texture.elastic
+    assert c["area_fraction"] == 1.0 and c["mean_gap_m"] == 0.0
+    assert c["max_pressure_Pa"] == pytest.approx((p_mean + dp).max(), rel=1e-8)
+    hm = HeightMap(z, DX, DY)
+    ref = derive(heightmap_facets(hm, pressure=p_mean + dp, periodic=True), n_directions=N_DIR)
+    np.testing.assert_allclose(a.reservoir.p, ref.reservoir.p, rtol=0, atol=1e-12)
+    area = derive(heightmap_facets(hm, periodic=True), n_directions=N_DIR)
+    assert np.abs(area.reservoir.p - a.reservoir.p).max() > 1e-6          # it matters
 
 
 # ---- meshes ---------------------------------------------------------------------------
