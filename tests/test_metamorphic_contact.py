@@ -13,12 +13,13 @@ posed another way must give the same answer, mapped.
 * a triangle mesh moved far from the origin carries the same force on each triangle, and
   the forces sum to the load; a mesh of a grid of 2h x h cells pressed on a grid of step h
   is the map with its x-pixels interpolated exactly;
-* windows of a scan of non-square pixels are the solves of its crops, placed at their
-  origins in metres.
+* windows of a scan of non-square pixels are the solves (and derive --window's laws the
+  laws) of its crops, placed at their origins in metres.
 The fixtures have no mirror symmetry (tests/lays.py)."""
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -258,3 +259,32 @@ def test_windows_of_a_non_square_scan_are_the_solves_of_its_crops(scan, tmp_path
                          "--elastic", E, "--pressure", P, "--window", ny + 1)
     assert code == 1 and out == "" and "--window" in err and len(err.strip().splitlines()) == 1
     json.dumps(d)                                            # finite numbers only
+
+
+def test_derive_windows_of_a_non_square_scan_are_the_laws_of_its_crops(scan, tmp_path, capsys):
+    """derive --window: each window's weighted law is that of the scan's crop at its
+    origin with the scan's (dx, dy), its + and - exchanged where it is listed turned to
+    the windows' common t_a (``reversed``)."""
+    path = tmp_path / "scan.npy"
+    np.save(path, scan)
+    d = run_json(capsys, "derive", path, "--unit", "m", "--pixel-size", DX, DY, "--detrend",
+                 "none", "--elastic", E, "--pressure", P, "--window", 20, "--windows", 3,
+                 "--directions", 24)
+    ec = ElasticContact(E, P, boundary="free")
+    seen = set()
+    for w in d["per_window"]:
+        i0, j0 = w["origin_px"]
+        seen.add((i0, j0))
+        crop = HeightMap(np.ascontiguousarray(scan[i0:i0 + 20, j0:j0 + 20]), DX, DY)
+        ref = derive(next(elastic_facets(crop, ec, level_slope=False)), n_directions=24)
+        assert abs(math.remainder(w["principal_direction_deg"]
+                                  - ref.principal_direction_deg, 180.0)) < 1e-9
+        want = dict(ref.axes)
+        if w["reversed"]:
+            want = {"mu_a_plus": want["mu_a_minus"], "mu_a_minus": want["mu_a_plus"],
+                    "mu_b_plus": want["mu_b_minus"], "mu_b_minus": want["mu_b_plus"]}
+        for k, v in want.items():
+            assert w[k] == pytest.approx(v, rel=1e-9), (i0, j0, k)
+        assert w["elastic_contact"]["area_fraction"] == ref.texture.elastic["area_fraction"]
+    assert len(seen) == 3 and any(i0 > 0 and j0 > 0 for i0, j0 in seen)
+
