@@ -111,3 +111,26 @@ def assert_mapped(a, b, Q, what, atol=1e-9):
     want = dict(zip(AXES, T_at(a, back)))
     for k in AXES:
         assert b.axes[k] == pytest.approx(want[k], rel=1e-9, abs=1e-12), (what, k)
+
+
+def assert_same_motion(a, b, Q, what="", rel=1e-9):
+    """Body result b is body result a mapped by Q (a turn or a mirror of the plane):
+    positions and velocities Q x, angles and spins times det Q, to ``rel`` of the motion's
+    size.  A stop decided on the other side of the stick test's margin may shift the
+    rest by one step (the last step's displacement): allowed, nothing more."""
+    sign = round(float(np.linalg.det(Q)))
+    qa, qb = a.q.copy(), b.q.copy()
+    qa[:, :2], qa[:, 2] = qa[:, :2] @ Q.T, sign * qa[:, 2]
+    ua = a.u.copy()
+    ua[:, :2], ua[:, 2] = ua[:, :2] @ Q.T, sign * ua[:, 2]
+    assert abs(a.steps - b.steps) <= 1 and a.t.size == a.steps + 1 == qa.shape[0], what
+    n = min(qa.shape[0], qb.shape[0]) - 1                 # states before the last
+    size = max(float(np.abs(a.q[:, :2] - a.q[0, :2]).max()), 1e-12)
+    speed = max(float(np.abs(a.u[:, :2]).max()), 1e-12)
+    np.testing.assert_allclose(qb[:n, :2], qa[:n, :2], rtol=0, atol=rel * size,
+                               err_msg=f"{what}: positions")
+    np.testing.assert_allclose(qb[:n, 2], qa[:n, 2], rtol=0, atol=rel, err_msg=f"{what}: angle")
+    np.testing.assert_allclose(b.u[:n, :2], ua[:n, :2], rtol=0, atol=rel * speed,
+                               err_msg=f"{what}: velocities")
+    last = rel * size + abs(a.steps - b.steps) * a.dt * speed
+    assert np.abs(qb[-1, :2] - qa[-1, :2]).max() <= last, what

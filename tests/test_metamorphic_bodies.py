@@ -23,6 +23,7 @@ import math
 
 import numpy as np
 import pytest
+from lays import assert_same_motion
 
 from asperity.bodies import footprint as F
 from asperity.bodies.pressure import from_contact, from_pressure
@@ -108,11 +109,7 @@ def test_turning_the_whole_problem_into_the_laws_frame_turns_the_trajectory(plat
     turned = F.Footprint("polygon", plate.points @ R.T, plate.weights, plate.outline @ R.T,
                          plate.area, None, "uniform", plate.inertia_per_mass)
     b = run(turned, law, (*(R @ v), om), force=fb, t_end=c["t_end"])
-    tol = 1e-9 * scale_of(a)
-    assert a.steps == b.steps
-    np.testing.assert_allclose(a.q[:, :2] @ R.T, b.q[:, :2], rtol=0, atol=tol)
-    np.testing.assert_allclose(a.q[:, 2], b.q[:, 2], rtol=0, atol=1e-9)
-    np.testing.assert_allclose(a.u[:, :2] @ R.T, b.u[:, :2], rtol=0, atol=1e-9 * abs(v).max())
+    assert_same_motion(a, b, R, f"turned by {-tex} deg")
     if case == "free":
         assert a.stop_time == pytest.approx(b.stop_time, abs=1.5 * DT)
     assert scale_of(a) > 0.05 and abs(a.q_final[2]) > 1.0       # it slid and turned
@@ -136,9 +133,7 @@ def test_mirroring_the_problem_in_t_a_mirrors_the_trajectory(plate, case):
                            plate.area, None, "uniform", plate.inertia_per_mass)
     law_m = truncated_ellipse_law(MU[0], MU[1], MU[3], MU[2])
     b = run(mirrored, law_m, (v[0], -v[1], -om), tex=-tex, force=fb, t_end=c["t_end"])
-    tol = 1e-9 * scale_of(a)
-    np.testing.assert_allclose(a.q[:, :2] @ M, b.q[:, :2], rtol=0, atol=tol)
-    np.testing.assert_allclose(-a.q[:, 2], b.q[:, 2], rtol=0, atol=1e-9)
+    assert_same_motion(a, b, M, "mirrored in t_a")
     assert abs(a.q_final[1]) > 0.02 and abs(a.q_final[2]) > 0.5
 
 

@@ -90,7 +90,7 @@ def test_an_undefined_border_moves_the_origin_and_changes_nothing(scan, hardness
     a = weighted(scan, DX, DY, "free", hardness)
     b = weighted(big, DX, DY, "free", hardness, pressure=P * scan.size / big.size)
     ca, cb = a.texture.elastic, b.texture.elastic
-    assert cb["area_fraction"] == ca["area_fraction"]        # over the defined pixels
+    assert abs(cb["area_fraction"] - ca["area_fraction"]) * scan.size <= 1.0   # defined px
     for k in ("max_pressure_Pa", "mean_gap_m", "plastic_fraction"):
         assert cb[k] == pytest.approx(ca[k], rel=1e-8, abs=1e-15), k
     np.testing.assert_allclose(b.reservoir.p, a.reservoir.p, rtol=0,
