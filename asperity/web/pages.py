@@ -30,7 +30,6 @@ def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
         (surfaces[0]["id"] if surfaces else "wedge")
     from .elastic import pressure_choices
     ctx.setdefault("pressures", pressure_choices(surfaces))
-    ctx.setdefault("pressure_options", [(v, t) for v, t, _ in ctx["pressures"]])
     ctx.setdefault("default_pressure", next((v for v, _, j in ctx["pressures"]
                                              if j == default), ""))
     return web.page(request, "law.html", status, page="law", sources=sources,

@@ -7,7 +7,7 @@ and the tolerance it is compared with; every height of a colour bar) and gives o
 all of them: the largest prefix that keeps the largest magnitude at or above 1.
 :func:`show` formats a value in a unit so chosen.  The figures, the result pages and the
 job lists all call these two (registered as the Jinja globals ``unit_of``, ``in_unit``,
-``number_in`` and the filter ``cycles``).
+``number_in`` and the filters ``cycles``, ``fixed`` and ``article``).
 """
 from __future__ import annotations
 
@@ -108,7 +108,33 @@ def cycles(n) -> str:
     return f"{float(mant):g} x 10^{int(exp)}"
 
 
+def fixed(x, digits: int = 4) -> str:
+    """A number without an exponent, to ``digits`` significant digits (a fraction of
+    8.011e-05 is ``0.00008011``; at most 12 decimals); None is ``-``."""
+    if x is None:
+        return "-"
+    v = float(x)
+    if not math.isfinite(v):
+        return "infinity" if v > 0 else "-infinity" if v < 0 else "-"
+    if v == 0:
+        return "0"
+    decimals = min(12, max(0, digits - 1 - math.floor(math.log10(abs(v)))))
+    return f"{v:.{decimals}f}"
+
+
+def article(word, capital: bool = False) -> str:
+    """``word`` after its indefinite article: ``an ellipse``, ``a star`` (``capital``:
+    ``An ellipse``)."""
+    text = str(word)
+    low = text.lower()
+    an = low[:1] in "aeio" or (low[:1] == "u" and not low.startswith(("uni", "use", "usu")))
+    a = "an" if an and low else "a"
+    return f"{a.capitalize() if capital else a} {text}"
+
+
 def register(env) -> None:
     """The Jinja globals and filters of this module."""
     env.globals.update(unit_of=choose, in_unit=show, number_in=number)
     env.filters["cycles"] = cycles
+    env.filters["fixed"] = fixed
+    env.filters["article"] = article
