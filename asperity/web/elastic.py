@@ -150,7 +150,7 @@ def describe(e: dict) -> str:
     """The settings line of an elastic contact: ``E* 115 GPa, 3 pressures 1 to 10 MPa``."""
     from .units import choose, show
     ps = e["pressures"]
-    up = choose(ps, "Pa")
+    up = choose(ps, "Pa", smallest=True)
     out = f"elastic contact E* {show(e['E_star'], choose(e['E_star'], 'Pa'))}, "
     out += f"p {show(ps[0], up)}" if len(ps) == 1 else \
         f"{len(ps)} pressures {show(ps[0], up)} to {show(ps[-1], up)}"
@@ -178,7 +178,7 @@ def pressure_choices(jobs: list[dict]) -> list[tuple[str, str, str]]:
             ps = [float(p) for p in e["pressures"]]
         except (TypeError, ValueError):
             continue
-        unit = choose(ps, "Pa")
+        unit = choose(ps, "Pa", smallest=True)
         if len(ps) > 1:
             out.append((f"{j['id']}:{FAMILY}", f"the law family: one law at each of its "
                         f"{len(ps)} pressures, {show(ps[0], unit)} to {show(ps[-1], unit)}",

@@ -39,7 +39,7 @@ def pressure_label(p: float, E_star: float, unit=None) -> str:
 def family_polar(members: list[dict], pressures: list[float], E_star: float) -> dict:
     """p(psi) of each pressure (``members``: the derive JSON of each) in one force plane,
     coloured by pressure, with a legend."""
-    unit = choose(pressures, "Pa")
+    unit = choose(pressures, "Pa", smallest=True)
     traces = []
     for k, (d, p) in enumerate(zip(members, pressures)):
         dirs = d["directions"] + d["directions"][:1]
@@ -61,7 +61,7 @@ def family_polar(members: list[dict], pressures: list[float], E_star: float) -> 
 def axes_figure(rows: list[dict], E_star: float, reference_deg: float | None = None) -> dict:
     """mu_a+ and mu_a- (left) and the contact area fraction (right, dotted) against the
     pressure (log axis; ``rows``: the family's summary rows)."""
-    unit = choose([r["pressure_Pa"] for r in rows], "Pa")
+    unit = choose([r["pressure_Pa"] for r in rows], "Pa", smallest=True)
     x = [round(unit(r["pressure_Pa"]), 9) for r in rows]
     ratio = [f"p/E* = {r['p_over_E_star']:.3g}" for r in rows]
     traces = [{"type": "scatter", "mode": "lines+markers", "x": x, "y": [r[k] for r in rows],
@@ -155,7 +155,7 @@ def contact_map(maps: list[dict], E_star: float) -> dict | None:
                    for m in maps], "Pa")
     side = choose([float(v) for v in maps[0]["extent"]])
     labels = [pressure_label(m["pressure"], E_star, choose([m["pressure"] for m in maps],
-                                                           "Pa")) for m in maps]
+                                                           "Pa", True)) for m in maps]
     if maps[0]["wedge"]:
         traces = []
         for k, (m, lab) in enumerate(zip(maps, labels)):

@@ -150,7 +150,7 @@ def fit_elastic(params: dict, ctx: dict, bar) -> dict:
     if fam is not None:
         out = family_outputs(fam, ctx, source_stem(src))
         out["source"] = describe(src, members[0].texture)
-        u = choose(list(fam.pressures), "Pa")
+        u = choose(list(fam.pressures), "Pa", smallest=True)
         out["note"] = (f"a law family: one {fam.kind} law at each of the {len(fam.members)} "
                        f"pressures of result {jid}, {show(fam.pressures[0], u)} to "
                        f"{show(fam.pressures[-1], u)} (E* = {pressure_words(elastic.E_star)}); "

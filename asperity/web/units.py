@@ -58,16 +58,17 @@ def _magnitudes(values):
     return out
 
 
-def choose(values, base: str = "m") -> Unit:
+def choose(values, base: str = "m", smallest: bool = False) -> Unit:
     """The unit for every value of one quantity (``values``: a number, or numbers nested
     in lists; None, NaN and 0 ignored): the largest prefix of ``base`` in which the largest
     magnitude is at least 1 (to 4 digits; the smallest prefix when none is); ``base``
-    itself when there is no finite non-zero value."""
+    itself when there is no finite non-zero value.  ``smallest``: the smallest magnitude
+    instead (a list of pressures typed, 50 MPa to 1 GPa, reads 50 to 1000 MPa)."""
     prefixes = PREFIXES.get(base, ("",))
     mags = _magnitudes(values)
     if not mags:
         return Unit(base, 1.0)
-    top = max(mags)
+    top = min(mags) if smallest else max(mags)
     pick = prefixes[0]
     for p in prefixes:
         if top / SCALE[p] >= 0.99995:          # what rounds to 1 at 4 digits
