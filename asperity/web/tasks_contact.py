@@ -79,6 +79,7 @@ def _derived(textures, contact: str, n: int, bar) -> list:
         for k, t in enumerate(textures):
             part(bar, k, len(textures))
             out.append(derive(t, contact, "closed-form", n, progress=bar))
+            bar(1.0, f"sliding directions at pressure {k + 1} of {len(textures)}")
     return out
 
 
