@@ -14,7 +14,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from asperity.web import worker
+from asperity.web import job_progress as worker
 from asperity.web.figures_contact import (
     OUT_OF_CONTACT,
     PRESSURE_COLOURS,

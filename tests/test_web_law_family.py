@@ -220,6 +220,11 @@ def test_slide_on_an_uploaded_family_and_a_single_law_needs_no_pressure(site, fi
                "--dt", "1e-4")
     last = c.get(f"/jobs/{jid}/files/path.csv").text.strip().splitlines()[-1].split(",")
     assert [float(x) for x in last[1:3]] == pytest.approx(want["rest"], abs=1e-9)
+    shown = c.get(f"/jobs/{jid}").text                 # the pressure said on its page
+    assert "gauge file cli_family.json at p = 100 MPa" in shown
+    assert re.search(r'id="law-family-pressure">.*interpolated in ln p between its laws at '
+                     r'50 MPa and 200 MPa', shown)
+    assert "_p100MPa_" in c.get(f"/jobs/{jid}/files/path.csv").headers["content-disposition"]
     one = job(c, c.post("/law", data={"source": surf, "law": "star", "directions": "72",
                                       "pressure": f"{surf}:0"}))
     job(c, c.post("/motion/slide", data={"law": f"job:{one}", **SLIDE}))

@@ -145,7 +145,8 @@ async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
             from .elastic import chosen_pressure
             params.update(chosen_pressure(form, rec))
             ps = params["elastic"]["pressures"]
-            what += f" at p = {ps[0]:.4g} Pa" if len(ps) == 1 else \
+            from .labels import pressure_words
+            what += f" at p = {pressure_words(ps[0])}" if len(ps) == 1 else \
                 f", family over {len(ps)} pressures"
     return params, f"{law} law of {what}"
 

@@ -244,7 +244,7 @@ class Store:
 def clock(rec: dict, progress: dict, now: float | None = None) -> dict:
     """How long job ``rec`` has waited or run, from the times stored in its record (so a
     page reloaded shows the same), and the time left: the worker's smoothed estimate
-    (``left_s`` at ``updated`` in its progress, :class:`~asperity.web.worker.JobProgress`)
+    (``left_s`` at ``updated`` in its progress, :class:`~.job_progress.JobProgress`)
     counted down since, None once spent; else the elapsed time scaled by what is left, once
     the job is 2 % done and ran 2 s.
     ``{"elapsed_s", "left_s" (None: no estimate), "since": "queued" | "running"}``."""

@@ -100,7 +100,7 @@ def body_task(params: dict, ctx: dict, bar, law, law_text: str, law_name: str) -
     from .figures_body import body_figures
     from .labels import clean, stem
     spec = params["body"]
-    from .worker import phase
+    from .job_progress import phase
     with phase(bar, 0.0, 0.9, "sliding and spinning"):
         run = simulate(spec, law, u0=params["u0"], angle_deg=params["angle_deg"],
                        mass=params["mass"], g=params["g"], dt=params["dt"], ctx=ctx)

@@ -44,7 +44,7 @@ def not_converged(exc) -> str:
 def elastic_textures_of(src: dict, params: dict, ctx: dict, bar):
     """(textures weighted at each pressure, the MapKeeper of their contact maps); the
     solves fill the first :data:`CONTACT_SHARE` of the job's progress bar."""
-    from .worker import phase
+    from .job_progress import phase
     elastic = contact_of(params)
     with phase(bar, 0.0, CONTACT_SHARE, f"solving the elastic contact at "
                f"{len(elastic.pressures)} pressure(s)"):
@@ -73,7 +73,7 @@ def _derived(textures, contact: str, n: int, bar) -> list:
     """derive() of each contact-weighted texture (what derive_family does), each filling
     its part of the job's progress bar after the contact solves."""
     from ..friction.derive import derive
-    from .worker import part, phase
+    from .job_progress import part, phase
     out = []
     with phase(bar, CONTACT_SHARE, 0.95, "sliding directions"):
         for k, t in enumerate(textures):

@@ -79,7 +79,7 @@ def slide_task(params: dict, ctx: dict, bar) -> dict:
     low = law.min_tangential()
     steps = 1.5 * u0 / (g * low) / dt if low > 0 else MAX_POINTS
     every = max(1, int(steps // MAX_POINTS)) if math.isfinite(steps) else 1
-    from .worker import phase
+    from .job_progress import phase
     with phase(bar, 0.0, 0.95, "sliding"):
         res = slide(law, u0, params["angle_deg"], mass=params["mass"], g=g, dt=dt,
                     record_every=every)
@@ -213,7 +213,7 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
         "the assembly"
     asm = assembly_from_dict(data, ctx["job_dir"] / "assembly.toml")
     contact = None
-    from .worker import phase
+    from .job_progress import phase
     if elastic:
         with phase(bar, 0.0, 0.2):
             texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)

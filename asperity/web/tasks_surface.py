@@ -118,7 +118,7 @@ def _derivation(src: dict, params: dict, ctx: dict, bar):
                              height_scale=opts.get("height_scale", 1.0))
         if tiled is not None:
             return derive_scan(path, **opts, contact=contact, n_directions=n, source=tiled), real
-    from .worker import phase
+    from .job_progress import phase
     with phase(bar, 0.0, READING, "reading the file" if real.get("kind") == "file" else None):
         texture, springs, _ = load_source(real, ctx)
     model = None
@@ -186,7 +186,7 @@ def law_largest(gl, n: int = 3600) -> dict | None:
 
 def fit_task(params: dict, ctx: dict, bar) -> dict:
     from .. import fit_derivation
-    from .worker import phase
+    from .job_progress import phase
     with phase(bar, 0.0, 0.9):
         d, real = _derivation(params["source"], {**params, "method": "closed-form",
                                                  "allow_tiles": False}, ctx, bar)
