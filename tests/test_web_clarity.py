@@ -103,6 +103,10 @@ def test_the_wedge_has_t_a_at_0_and_its_largest_friction_against_it(client):
     text = format_text(derive(WedgeTexture(30.0, 10.0, 0.1, 0.2), n_directions=72))
     assert "largest friction: T = 0.193238, sliding at psi = 180.0 deg from +t_a" in text
     assert "principal direction t_a (largest friction" not in text
+    law = page_of(client, "/law", {**WEDGE, "source": "wedge", "law": "star",
+                                   "directions": "360"})      # from the fitted law itself
+    assert cell(law, "law-largest-T") == "0.193238"
+    assert float(cell(law, "law-largest-deg")) == pytest.approx(180.0)
 
 
 def test_a_scan_names_its_largest_friction_and_its_plastic_share(client, hard):
