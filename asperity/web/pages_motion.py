@@ -7,10 +7,10 @@ from fastapi.responses import HTMLResponse
 from .common import DONE_LIMIT, done_job, post_form, stored_text, wedge_source, wedge_title
 from .forms import Form, FormError, at
 from .labels import label, pressure_words
-from .units import article
 from .pages import CONTACTS, UNITS
 from .pages_body import BODIES
 from .store import UploadError, check_plain_name
+from .units import article
 from .words import STRIP, TWO_NODE
 
 BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a, mu2 along t_b)"),

@@ -20,8 +20,8 @@ from .elastic import contact_of
 from .figures_contact import MapKeeper, axes_figure, contact_map, family_polar
 from .labels import pressure_stem, pressure_words, source_stem
 from .results import rename
-from .units import choose, show
 from .tasks_surface import describe, load_source, source_job, surface_kwargs, upload_file
+from .units import choose, show
 
 #: the share of a job's progress bar that the contact solves take
 CONTACT_SHARE = 0.5
