@@ -36,7 +36,8 @@ def fitted(site):
     surf = job(c, c.post("/surface", data=data,
                          files=[("file", (path.name, path.read_bytes()))]))
     law_page = c.get(f"/law?source={surf}").text
-    assert f'<option value="{surf}:family" selected>' in law_page   # the family, first
+    assert f'<option value="{surf}:family" data-source="{surf}" selected>' in law_page
+    # (the family, first)
     assert "not yet" not in law_page
     fit = job(c, c.post("/law", data={"source": surf, "law": "star", "directions": "72",
                                       "pressure": f"{surf}:family"}))
@@ -88,7 +89,9 @@ def test_the_family_fitted_on_the_page_is_the_command_lines(site, fitted):
     page = c.get(f"/jobs/{fit}").text
     assert "not yet" not in page and 'id="law-family-note"' in page
     rows = re.findall(r'<tr class="member-row"><td class="member-pressure">([^<]+)</td>', page)
-    assert [float(x) for x in rows] == pytest.approx(PS, rel=1e-5)
+    unit = re.search(r'id="family-members"><tr><th>p \((\w+)\)</th>', page).group(1)
+    assert unit == "MPa"                          # 50 to 800 MPa: one unit for the column
+    assert [float(x) * 1e6 for x in rows] == pytest.approx(PS, rel=1e-5)
     fr = [float(x) for x in re.findall(r'class="member-fraction">([^<]+)<', page)]
     assert fr == pytest.approx([m["contact"]["area_fraction"] for m in want["members"]],
                                abs=5e-5)
@@ -132,7 +135,7 @@ def test_one_pressure_chosen_is_that_members_law_alone(site, fitted):
     one = job(c, c.post("/law", data={"source": surf, "law": "star", "directions": "72",
                                       "pressure": f"{surf}:2"}))        # typed third: 2e8
     note = re.search(r'id="law-pressure-note">([^<]+)<', c.get(f"/jobs/{one}").text).group(1)
-    assert "2e+08 Pa" in note and "alone" in note and "not yet" not in note
+    assert "p = 200 MPa" in note and "alone" in note and "not yet" not in note
     raw = json.loads(c.get(f"/jobs/{one}/files/gauge.json").content)
     assert raw["version"] == 1
     ref = read_gauge(out).members[1]
@@ -153,7 +156,7 @@ def test_a_version_2_file_opens_on_the_law_page(site, fitted):
     page = c.get(f"/jobs/{jid}").text
     assert "Traceback" not in page
     rows = re.findall(r'class="member-pressure">([^<]+)<', page)
-    assert [float(x) for x in rows] == pytest.approx(PS, rel=1e-5)
+    assert [float(x) * 1e6 for x in rows] == pytest.approx(PS, rel=1e-5)
     assert len(figure(page, "family")["data"]) == 3
     g = c.get(f"/jobs/{jid}/files/gauge.json")
     assert "cli_family" in g.headers["content-disposition"]
@@ -194,7 +197,8 @@ def test_slide_on_the_family_at_the_pressure_given(site, fitted):
         got = c.get(f"/jobs/{jid}").text
         want = cli("slide", out, "--pressure", f"{p:g}", "--u0", "0.5", "--angle", "30",
                    "--dt", "1e-4")
-        assert f"at p = {p:g} Pa" in got
+        assert f"at p = {p / 1e6:g} MPa" in got and \
+            f'<b id="slide-pressure">p = {p / 1e6:g} MPa</b>' in got
         res = json.loads(c.get(f"/api/jobs/{jid}").content)
         assert res["status"] == "done"
         path = c.get(f"/jobs/{jid}/files/path.csv").text.strip().splitlines()
@@ -216,6 +220,11 @@ def test_slide_on_an_uploaded_family_and_a_single_law_needs_no_pressure(site, fi
                "--dt", "1e-4")
     last = c.get(f"/jobs/{jid}/files/path.csv").text.strip().splitlines()[-1].split(",")
     assert [float(x) for x in last[1:3]] == pytest.approx(want["rest"], abs=1e-9)
+    shown = c.get(f"/jobs/{jid}").text                 # the pressure said on its page
+    assert "gauge file cli_family.json at p = 100 MPa" in shown
+    assert re.search(r'id="law-family-pressure">.*interpolated in ln p between its laws at '
+                     r'50 MPa and 200 MPa', shown)
+    assert "_p100MPa_" in c.get(f"/jobs/{jid}/files/path.csv").headers["content-disposition"]
     one = job(c, c.post("/law", data={"source": surf, "law": "star", "directions": "72",
                                       "pressure": f"{surf}:0"}))
     job(c, c.post("/motion/slide", data={"law": f"job:{one}", **SLIDE}))

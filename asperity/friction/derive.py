@@ -128,10 +128,12 @@ def _elastic_texture(texture, elastic, method):
 
 def principal_direction(res: Reservoir) -> float:
     """Principal direction (radians, in [0, pi)) of a reservoir over a uniform full turn of
-    directions: the axis of largest friction, the phase of the second Fourier harmonic of
-    T(psi) = p . s (a sliding direction and its reverse count alike; self-locking
-    directions count as the largest finite friction).  Across the lay of a textured
-    surface; 0 for the wedge textures' t_a when mu_a > mu_b."""
+    directions: the axis of the second Fourier harmonic of T(psi) = p . s, T ~ c0 + c2
+    cos 2(psi - theta) (a sliding direction and its reverse count alike; self-locking
+    directions count as the largest finite friction) -- the axis along which the friction
+    of both ways together is largest, not the one direction of largest friction
+    (:func:`largest_friction`: with asymmetric friction mu_b+ may exceed mu_a+ and mu_a-).
+    Across the lay of a textured surface; 0 for the wedge textures' t_a when mu_a > mu_b."""
     T = res.tangential
     ok = np.isfinite(T)
     if not ok.any():
@@ -142,6 +144,21 @@ def principal_direction(res: Reservoir) -> float:
         return 0.0
     theta = float(np.mod(0.5 * np.angle(c2), np.pi))
     return 0.0 if np.pi - theta < 1e-12 else theta
+
+
+def largest_friction(res: Reservoir) -> tuple[float, float] | None:
+    """(psi in degrees, T) of the sliding direction of largest finite friction T = p . s
+    among the reservoir's directions; None when every direction self-locks."""
+    T = res.tangential
+    ok = np.isfinite(T)
+    if not ok.any():
+        return None
+    k = int(np.argmax(np.where(ok, T, -np.inf)))
+    return float(np.degrees(res.psi[k]) % 360.0), float(T[k])
+
+
+#: what t_a is, in the words of the printed summaries
+T_A_WORDS = "the axis of the cos 2psi term of T: forwards and backwards together rub most along it"
 
 
 def anisotropy(res: Reservoir) -> float:
@@ -235,7 +252,7 @@ def format_text(d: Derivation) -> str:
         head = [tex.describe(),
                 f"contact: {d.contact}   directions: {d.reservoir.psi.size}",
                 "principal direction t_a, anisotropy: none (no direction slides)" if locked_all
-                else f"principal direction t_a (largest friction, across the lay): {th:.2f} deg "
+                else f"principal direction t_a ({T_A_WORDS}; across the lay): {th:.2f} deg "
                 f"from +x; anisotropy (max T - min T)/mean T = {d.anisotropy:.4f}"]
         dirs = [f"towards {(th + k) % 360:.1f} deg" for k in (0, 180, 90, 270)]
     else:
@@ -250,8 +267,14 @@ def format_text(d: Derivation) -> str:
              f"  mu_a+ (slide {dirs[0]}) = {f(d.axes['mu_a_plus'])}",
              f"  mu_a- (slide {dirs[1]}) = {f(d.axes['mu_a_minus'])}",
              f"  mu_b+ (slide {dirs[2]}) = {f(d.axes['mu_b_plus'])}",
-             f"  mu_b- (slide {dirs[3]}) = {f(d.axes['mu_b_minus'])}",
-             ""]
+             f"  mu_b- (slide {dirs[3]}) = {f(d.axes['mu_b_minus'])}"]
+    top = largest_friction(d.reservoir)
+    if top is not None and not locked_all:
+        where = f"towards {top[0]:.1f} deg from +x" if surface else \
+            f"at psi = {top[0]:.1f} deg from +t_a"
+        lines.append(f"  largest friction{' of the directions that slide' if d.self_locking else ''}"
+                     f": T = {top[1]:.6f}, sliding {where}")
+    lines.append("")
     a = d.admissibility
     if locked_all:
         lines.append("admissible (p.s >= 0 for all directions): nothing to check (no "

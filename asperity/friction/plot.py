@@ -140,7 +140,7 @@ def plot_derivation(d, path, *, other=None) -> None:
 
 def draw_height_preview(ax, surface, principal_deg: float) -> None:
     """Height map (or binned mesh heights) in um, with the principal direction t_a
-    (across the lay, largest friction) drawn through the centre."""
+    (across the lay, the principal axis) drawn through the centre."""
     z = surface.preview
     lx, ly = surface.extent
     im = ax.imshow((z - np.nanmean(z)).T * 1e6, origin="lower", cmap="viridis",

@@ -42,7 +42,7 @@ def friction_from_texture(texture, contact: str = "all-faces", slip_axis_deg=Non
 
     The axis: ``slip_axis_deg`` in the texture's frame (wedges: from t_a towards t_b;
     surfaces: from the file's +x towards +y), by default the principal direction t_a (wedges:
-    0; surfaces: the direction of largest friction found by ``derive``, in [0, 180) deg).
+    0; surfaces: the principal axis found by ``derive``, in [0, 180) deg).
     mu+ = T(psi), mu- = T(psi + 180 deg) for a textured support (swapped for a textured
     part), T = p . s the tangential component of the friction force; the lateral component
     L = p . s_perp is carried by the assembly's guidance and reported only."""

@@ -31,7 +31,8 @@ def section(folder: Path) -> list[str]:
     if not root.is_dir():
         return out + [f"(skipped: {root} is absent)", ""]
     out += ["`asperity derive FILE` with mu = 0.1, plane removed, uniform preload, 360 "
-            "directions. t_a: principal direction (largest friction), degrees from +x; "
+            "directions. t_a: principal direction (the axis of the cos 2psi term of T, "
+            "across the lay), degrees from +x; "
             "anisotropy (max T - min T) / mean T; asymmetry (mu_a+ - mu_a-) / mean.", "",
             "| file | expected | facets | undefined px | contact | t_a (deg) | mu_a+ | mu_a- | "
             "mu_b+ | mu_b- | anisotropy | asymmetry | time (s) |",

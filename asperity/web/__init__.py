@@ -14,7 +14,9 @@ JavaScript build).  The pages call the library's public APIs; nothing is compute
 * :mod:`.worker` -- what a worker process runs: one job through the library, its
   progress hooked into :mod:`asperity.progress`, errors as one line; the tasks in
   :mod:`.tasks_surface`, :mod:`.tasks_motion` and :mod:`.tasks_study`, their figures
-  (Plotly figure dictionaries) in :mod:`.figures`, plain JSON by :mod:`.results`;
+  (Plotly figure dictionaries) in :mod:`.figures`, plain JSON by :mod:`.results`; the
+  job's progress bar, each piece of work in its share and never back, in
+  :mod:`.job_progress`;
 * :mod:`.forms` -- form fields to numbers, with one-line messages; :mod:`.common` --
   what every form shares (uploads, submitting a job, the form again after an error);
 * :mod:`.app` -- the application: errors as one line and a 4xx status, static files,

@@ -150,7 +150,7 @@ def describe(e: dict) -> str:
     """The settings line of an elastic contact: ``E* 115 GPa, 3 pressures 1 to 10 MPa``."""
     from .units import choose, show
     ps = e["pressures"]
-    up = choose(ps, "Pa")
+    up = choose(ps, "Pa", smallest=True)
     out = f"elastic contact E* {show(e['E_star'], choose(e['E_star'], 'Pa'))}, "
     out += f"p {show(ps[0], up)}" if len(ps) == 1 else \
         f"{len(ps)} pressures {show(ps[0], up)} to {show(ps[-1], up)}"
@@ -168,19 +168,24 @@ FAMILY = "family"
 def pressure_choices(jobs: list[dict]) -> list[tuple[str, str, str]]:
     """The Law page's choice of pressure: (value ``JOB:k``, words, job) for every pressure
     of the finished Surface results with an elastic contact."""
+    from .units import choose, show
     out = []
     for j in jobs:
         e = (j.get("params") or {}).get("elastic")
         if not isinstance(e, dict) or not isinstance(e.get("pressures"), list):
             continue
-        if len(e["pressures"]) > 1:
-            out.append((f"{j['id']}:{FAMILY}", f"result {j['id']}: the law family, one law at "
-                        f"each of its {len(e['pressures'])} pressures", j["id"]))
-        for k, p in enumerate(e["pressures"]):
-            try:
-                out.append((f"{j['id']}:{k}", f"result {j['id']}: p = {float(p):.4g} Pa", j["id"]))
-            except (TypeError, ValueError):
-                break
+        try:
+            ps = [float(p) for p in e["pressures"]]
+        except (TypeError, ValueError):
+            continue
+        unit = choose(ps, "Pa", smallest=True)
+        if len(ps) > 1:
+            out.append((f"{j['id']}:{FAMILY}", f"the law family: one law at each of its "
+                        f"{len(ps)} pressures, {show(ps[0], unit)} to {show(ps[-1], unit)}",
+                        j["id"]))
+        out += [(f"{j['id']}:{k}", f"p = {show(p, choose(p, 'Pa'))} alone" if len(ps) > 1
+                 else f"its only pressure, p = {show(p, choose(p, 'Pa'))}", j["id"])
+                for k, p in enumerate(ps)]
     return out
 
 

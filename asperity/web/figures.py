@@ -30,6 +30,27 @@ def _r(x, digits: int = 6):
     return np.round(np.asarray(x, dtype=float), digits).tolist()
 
 
+def largest_friction(obj: dict) -> dict | None:
+    """The sliding direction of largest finite friction T = p . s of a derive JSON
+    (``{"psi_deg", "T", "p"}``), None when no direction slides: named on the page apart
+    from t_a, the axis of T's cos 2psi term (an asymmetric T may peak elsewhere)."""
+    best = None
+    for d in obj.get("directions") or []:
+        t = d.get("tangential")
+        if t is not None and d.get("p") is not None and (best is None or t > best["T"]):
+            best = {"psi_deg": float(d["psi_deg"]) % 360.0, "T": float(t), "p": d["p"]}
+    return best
+
+
+def map_axes(lay: dict, lx: float, ly: float) -> dict:
+    """Axes of a map drawn to scale that span the map itself: with equal scales Plotly
+    widens the range of the roomier axis beyond the data (a 64 um map drawn from -75 to
+    140 um); constraining the domain shrinks the plot instead."""
+    lay["xaxis"].update(range=[0.0, lx], constrain="domain")
+    lay["yaxis"].update(range=[0.0, ly], constrain="domain")
+    return lay
+
+
 def reservoir_figures(obj: dict) -> dict:
     """The force-plane plot p(psi) (hover: psi, p, T, L) and T, L against psi, from the
     JSON of :func:`asperity.friction.derive.to_json`."""
@@ -49,10 +70,18 @@ def reservoir_figures(obj: dict) -> dict:
     theta = math.radians(obj.get("principal_direction_deg") or 0.0)
     mags = [math.hypot(x, y) for x, y in zip(xs, ys) if x is not None]
     r = 1.15 * max(mags) if mags else 1.0
-    traces.append({"type": "scatter", "mode": "lines", "name": "t_a (principal direction)",
+    traces.append({"type": "scatter", "mode": "lines", "name": "t_a (principal axis)",
                    "x": [-r * math.cos(theta), r * math.cos(theta)],
                    "y": [-r * math.sin(theta), r * math.sin(theta)],
                    "line": {"dash": "dash", "width": 1, "color": "#e67e22"}, "hoverinfo": "skip"})
+    top = largest_friction(obj)
+    if top is not None:
+        traces.append({"type": "scatter", "mode": "markers", "x": [round(top["p"][0], 7)],
+                       "y": [round(top["p"][1], 7)],
+                       "name": f"largest friction T = {top['T']:.4f} (psi = "
+                               f"{top['psi_deg']:.1f} deg)",
+                       "marker": {"size": 11, "color": "#d62728", "symbol": "diamond-open",
+                                  "line": {"width": 2}}, "hoverinfo": "skip"})
     a, b = ("p_x", "p_y") if surface else ("p_a (along t_a)", "p_b (along t_b)")
     polar = {"data": traces, "layout": _layout("friction force p(psi) for every sliding "
                                                "direction (hover a point)", a, b, equal=True)}
@@ -106,8 +135,9 @@ def height_figure(surface, principal_deg: float) -> dict | None:
          "text": ["", f"t_a {principal_deg:.1f} deg"], "textposition": "top center",
          "line": {"color": "#e67e22", "width": 3}, "textfont": {"color": "#e67e22"},
          "name": "t_a", "hoverinfo": "skip", "showlegend": False}],
-        "layout": _layout("height map (mean removed) and the principal direction t_a",
-                          f"x ({side.name})", f"y ({side.name})", equal=True)}
+        "layout": map_axes(_layout("height map (mean removed) and the principal direction "
+                                   "t_a", f"x ({side.name})", f"y ({side.name})", equal=True),
+                           lx, ly)}
 
 
 def law_figures(gl) -> dict:

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .figures import _layout, _r
+from .figures import _layout, _r, map_axes
 from .units import choose, show
 
 #: largest side of a contact map on the page (pixels), and of all maps together
@@ -16,6 +16,13 @@ MAP_SIDE = 256
 MAP_PIXELS = 4 * 256 * 256
 #: undefined pixels (no data) in the contact map
 UNDEFINED = "#9e9e9e"
+#: the contact map's colours: out of contact (p = 0) pale blue, not the page's white; the
+#: lightest pressures pale yellow, then yellow, red, black (Plotly's Hot, reversed)
+OUT_OF_CONTACT = "#cfdcea"
+PRESSURE_COLOURS = [[0.0, OUT_OF_CONTACT], [1e-4, "rgb(255,250,205)"], [0.4, "rgb(255,210,0)"],
+                    [0.7, "rgb(230,0,0)"], [1.0, "rgb(0,0,0)"]]
+#: contact fractions all below this are drawn on a log axis
+LOG_FRACTION = 0.2
 
 
 def colour(k: int, n: int) -> str:
@@ -32,7 +39,7 @@ def pressure_label(p: float, E_star: float, unit=None) -> str:
 def family_polar(members: list[dict], pressures: list[float], E_star: float) -> dict:
     """p(psi) of each pressure (``members``: the derive JSON of each) in one force plane,
     coloured by pressure, with a legend."""
-    unit = choose(pressures, "Pa")
+    unit = choose(pressures, "Pa", smallest=True)
     traces = []
     for k, (d, p) in enumerate(zip(members, pressures)):
         dirs = d["directions"] + d["directions"][:1]
@@ -54,7 +61,7 @@ def family_polar(members: list[dict], pressures: list[float], E_star: float) -> 
 def axes_figure(rows: list[dict], E_star: float, reference_deg: float | None = None) -> dict:
     """mu_a+ and mu_a- (left) and the contact area fraction (right, dotted) against the
     pressure (log axis; ``rows``: the family's summary rows)."""
-    unit = choose([r["pressure_Pa"] for r in rows], "Pa")
+    unit = choose([r["pressure_Pa"] for r in rows], "Pa", smallest=True)
     x = [round(unit(r["pressure_Pa"]), 9) for r in rows]
     ratio = [f"p/E* = {r['p_over_E_star']:.3g}" for r in rows]
     traces = [{"type": "scatter", "mode": "lines+markers", "x": x, "y": [r[k] for r in rows],
@@ -74,9 +81,15 @@ def axes_figure(rows: list[dict], E_star: float, reference_deg: float | None = N
     lay = _layout(f"mu_a+ and mu_a- against the pressure ({axis})",
                   f"nominal pressure p ({unit.name})", "friction coefficient")
     lay["xaxis"]["type"] = "log"
-    lay["yaxis2"] = {"title": {"text": "contact area fraction"}, "overlaying": "y",
-                     "side": "right", "range": [0, 1.05], "dtick": 0.2,
-                     "showgrid": False}
+    fr = [r["area_fraction"] for r in rows if r["area_fraction"] > 0]
+    if fr and max(fr) < LOG_FRACTION:          # 1e-4 to 1e-2 are flat on a 0-1 axis
+        lay["yaxis2"] = {"title": {"text": "contact area fraction (log)"}, "type": "log",
+                         "overlaying": "y", "side": "right", "showgrid": False,
+                         "exponentformat": "power"}
+    else:
+        lay["yaxis2"] = {"title": {"text": "contact area fraction"}, "overlaying": "y",
+                         "side": "right", "range": [0, 1.05], "dtick": 0.2,
+                         "showgrid": False}
     lay["margin"] = {**lay["margin"], "r": 60}
     return {"data": traces, "layout": lay}
 
@@ -105,6 +118,8 @@ class MapKeeper:
     def __init__(self, n: int, bar=None):
         self.n, self.bar, self.maps = n, bar, []
         self.side = max(32, min(MAP_SIDE, int(math.sqrt(MAP_PIXELS / n))))
+        if hasattr(bar, "part"):                # each solve fills its n-th of the bar
+            bar.part(0, n)
 
     def __call__(self, res) -> None:
         p = np.asarray(res.pressure, dtype=float)
@@ -118,11 +133,16 @@ class MapKeeper:
             small = block_means(p, self.side)
             extent = (p.shape[0] * dx, p.shape[1] * dy)
         self.maps.append({"pressure": float(res.pressure_asked), "map": small,
-                          "extent": extent, "wedge": wedge, "shape": list(p.shape)})
+                          "extent": extent, "wedge": wedge, "shape": list(p.shape),
+                          "top": float(np.nanmax(p)) if np.isfinite(p).any() else 0.0})
         if self.bar is not None:
             k = len(self.maps)
-            self.bar(0.05 + 0.45 * k / self.n, f"elastic contact solved at pressure {k} of "
-                                               f"{self.n}")
+            label = f"elastic contact solved at pressure {k} of {self.n}"
+            if hasattr(self.bar, "part"):
+                self.bar(1.0, label)
+                self.bar.part(k, self.n)
+            else:
+                self.bar(k / self.n, label)
 
 
 def contact_map(maps: list[dict], E_star: float) -> dict | None:
@@ -135,7 +155,7 @@ def contact_map(maps: list[dict], E_star: float) -> dict | None:
                    for m in maps], "Pa")
     side = choose([float(v) for v in maps[0]["extent"]])
     labels = [pressure_label(m["pressure"], E_star, choose([m["pressure"] for m in maps],
-                                                           "Pa")) for m in maps]
+                                                           "Pa", True)) for m in maps]
     if maps[0]["wedge"]:
         traces = []
         for k, (m, lab) in enumerate(zip(maps, labels)):
@@ -157,11 +177,15 @@ def contact_map(maps: list[dict], E_star: float) -> dict | None:
         y = _r((np.arange(ny) + 0.5) * ly / ny, 6)
         undefined = ~np.isfinite(z)
         shown = k == len(maps) - 1
+        means = list(z.shape) != list(m["shape"])
+        what = "block mean" if means else "pressure"
+        bar = f"block means ({unit.name})<br>pixel max {show(m.get('top', 0.0), unit)}" \
+            if means else f"pressure ({unit.name})"
         traces.append({"type": "heatmap", "x": x, "y": y, "z": _r(unit(z).T, 5),
-                       "name": lab, "visible": shown, "colorscale": "Hot", "reversescale": True,
-                       "zmin": 0.0, "colorbar": {"title": {"text": f"pressure ({unit.name})"}},
+                       "name": lab, "visible": shown, "colorscale": PRESSURE_COLOURS,
+                       "zmin": 0.0, "colorbar": {"title": {"text": bar}},
                        "hovertemplate": f"x = %{{x:.4g}} {side.name}<br>y = %{{y:.4g}} "
-                                        f"{side.name}<br>pressure %{{z:.4g}} {unit.name}"
+                                        f"{side.name}<br>{what} %{{z:.4g}} {unit.name}"
                                         "<extra></extra>"})
         traces.append({"type": "heatmap", "x": x, "y": y, "visible": shown,
                        "z": np.where(undefined, 1.0, np.nan).T.tolist(),
@@ -172,8 +196,9 @@ def contact_map(maps: list[dict], E_star: float) -> dict | None:
         vis = [False] * (2 * len(maps))
         vis[2 * k] = vis[2 * k + 1] = True
         buttons.append({"method": "update", "label": lab, "args": [{"visible": vis}]})
-    lay = _layout("contact pressure (0 out of contact; grey: undefined pixels)",
-                  f"x ({side.name})", f"y ({side.name})", equal=True)
+    lay = map_axes(_layout("contact pressure (pale blue: out of contact, p = 0; grey: "
+                           "undefined pixels)", f"x ({side.name})", f"y ({side.name})",
+                           equal=True), *(side(v) for v in maps[0]["extent"]))
     if len(maps) > 1:
         lay["updatemenus"] = [{"buttons": buttons, "active": len(maps) - 1, "x": 0.0,
                                "xanchor": "left", "y": 1.12, "yanchor": "bottom"}]

@@ -48,6 +48,16 @@ def source_stem(src: dict) -> str:
     return stem(src.get("name") or "surface")
 
 
+def pressure_stem(p) -> str:
+    """A nominal pressure in a file name: ``p10MPa`` (its unit as the pages show it)."""
+    return clean("p" + show(float(p), choose(float(p), "Pa")).replace(" ", ""))
+
+
+def pressure_words(p) -> str:
+    """``10 MPa``: a pressure as the pages write it (one unit chosen for it)."""
+    return show(float(p), choose(float(p), "Pa"))
+
+
 def law_stem(source: str, kind: str) -> str:
     """``<source>_<law kind>`` (the kind not repeated when the source ends with it)."""
     kind = clean(kind)
@@ -134,6 +144,9 @@ def _fit(p: dict) -> list[str]:
 
 def _slide(p: dict) -> list[str]:
     out = [f"u0 {_num(p.get('u0', 0))} m/s", f"towards {_num(p.get('angle_deg', 0))} deg"]
+    law = p.get("law") if isinstance(p.get("law"), dict) else {}
+    if isinstance(law.get("pressure"), (int, float)):
+        out.append(f"law family at p = {pressure_words(law['pressure'])}")
     for key, default, unit in (("mass", 1.0, "kg"), ("g", 9.81, "m/s^2"), ("dt", 1e-4, "s")):
         if p.get(key) not in (None, default):
             out.append(f"{key} {_num(p[key])} {unit}")

@@ -13,7 +13,7 @@ import numpy as np
 from .figures import _layout, _r
 from .figures_contact import colour, pressure_label
 from .results import rename
-from .units import choose
+from .units import choose, show
 
 
 def fit_family(members, pressures, law: str):
@@ -36,7 +36,7 @@ def family_figure(fam) -> dict:
     """The reservoir C of every member in one force plane, coloured by pressure."""
     from ..laws.geometry import unit
     E = fam.elastic["E_star_Pa"]
-    u = choose(list(fam.pressures), "Pa")
+    u = choose(list(fam.pressures), "Pa", smallest=True)
     phi = np.linspace(0.0, 2.0 * np.pi, 721)
     traces = []
     n = len(fam.members)
@@ -97,7 +97,9 @@ def gauge_outputs(gauge, ctx: dict, source: str) -> dict | None:
     if not isinstance(gauge, GaugeFamily):
         return None
     out = family_outputs(gauge, ctx, source)
+    u = choose(list(gauge.pressures), "Pa", smallest=True)
     out["note"] = (f"a law family: {len(gauge.members)} {gauge.kind} laws, one a nominal "
-                   f"pressure from {gauge.pressures[0]:g} to {gauge.pressures[-1]:g} Pa; "
-                   "step 3 takes the law at the pressure you give")
+                   f"pressure from {show(gauge.pressures[0], u)} to "
+                   f"{show(gauge.pressures[-1], u)}; step 3 takes the law at the pressure "
+                   "you give")
     return out

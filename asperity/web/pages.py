@@ -30,7 +30,6 @@ def render_law(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
         (surfaces[0]["id"] if surfaces else "wedge")
     from .elastic import pressure_choices
     ctx.setdefault("pressures", pressure_choices(surfaces))
-    ctx.setdefault("pressure_options", [(v, t) for v, t, _ in ctx["pressures"]])
     ctx.setdefault("default_pressure", next((v for v, _, j in ctx["pressures"]
                                              if j == default), ""))
     return web.page(request, "law.html", status, page="law", sources=sources,
@@ -146,7 +145,8 @@ async def _law_params(web, form: Form, kept: dict) -> tuple[dict, str]:
             from .elastic import chosen_pressure
             params.update(chosen_pressure(form, rec))
             ps = params["elastic"]["pressures"]
-            what += f" at p = {ps[0]:.4g} Pa" if len(ps) == 1 else \
+            from .labels import pressure_words
+            what += f" at p = {pressure_words(ps[0])}" if len(ps) == 1 else \
                 f", family over {len(ps)} pressures"
     return params, f"{law} law of {what}"
 

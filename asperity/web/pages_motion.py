@@ -6,10 +6,11 @@ from fastapi.responses import HTMLResponse
 
 from .common import DONE_LIMIT, done_job, post_form, stored_text, wedge_source, wedge_title
 from .forms import Form, FormError, at
-from .labels import label
+from .labels import label, pressure_words
 from .pages import CONTACTS, UNITS
 from .pages_body import BODIES
 from .store import UploadError, check_plain_name
+from .units import article
 from .words import STRIP, TWO_NODE
 
 BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a, mu2 along t_b)"),
@@ -129,11 +130,12 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         mu2 = form.optional("mu2", label="mu2") if choice == "coulomb" else \
             form.number("mu2", label="mu2")
         spec = {"kind": "builtin", "law": choice, "mu1": mu1, "mu2": mu2}
-        what = f"a {choice} law, mu1 = {mu1:g}" + ("" if mu2 is None else f", mu2 = {mu2:g}")
+        what = f"{article(choice)} law, mu1 = {mu1:g}" + ("" if mu2 is None else
+                                                         f", mu2 = {mu2:g}")
     else:
         raise FormError(f"unknown friction law {choice[:40]!r}; pick one from the list", "law")
     if spec.get("pressure") is not None:
-        what += f" at p = {spec['pressure']:g} Pa"
+        what += f" at p = {pressure_words(spec['pressure'])}"
     params = {"law": spec, "u0": form.number("u0", label="u0 (m/s)"),
               "angle_deg": form.number("angle_deg", label="direction (deg)"),
               "mass": form.number("mass", 1.0, label="mass (kg)"),

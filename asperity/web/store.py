@@ -18,6 +18,7 @@ a client's file name is never used as a path.
 from __future__ import annotations
 
 import json
+import math
 import re
 import secrets
 import time
@@ -242,9 +243,11 @@ class Store:
 
 def clock(rec: dict, progress: dict, now: float | None = None) -> dict:
     """How long job ``rec`` has waited or run, from the times stored in its record (so a
-    page reloaded shows the same), and the time left estimated from its progress: the
-    elapsed time scaled by what is left, once the job is 2 % done and ran 2 s.
-    ``{"elapsed_s", "left_s" (None: no estimate yet), "since": "queued" | "running"}``."""
+    page reloaded shows the same), and the time left: the worker's smoothed estimate
+    (``left_s`` at ``updated`` in its progress, :class:`~.job_progress.JobProgress`)
+    counted down since, None once spent; else the elapsed time scaled by what is left, once
+    the job is 2 % done and ran 2 s.
+    ``{"elapsed_s", "left_s" (None: no estimate), "since": "queued" | "running"}``."""
     now = time.time() if now is None else now
     running = rec.get("status") == "running" and rec.get("started_at")
     t0 = rec.get("started_at") if running else rec.get("created_at")
@@ -259,7 +262,13 @@ def clock(rec: dict, progress: dict, now: float | None = None) -> dict:
         f = float(progress.get("fraction") or 0.0)
     except (TypeError, ValueError):
         f = 0.0
-    if running and 0.02 <= f < 1.0 and elapsed >= 2.0:
+    told, at = progress.get("left_s"), progress.get("updated")
+    if running and "left_s" in progress:
+        if isinstance(told, (int, float)) and isinstance(at, (int, float)) and \
+                math.isfinite(told) and math.isfinite(at):
+            left = told - max(0.0, now - at)
+            left = left if left > 0.5 else None
+    elif running and 0.02 <= f < 1.0 and elapsed >= 2.0:
         left = elapsed * (1.0 - f) / f
     return {"elapsed_s": round(elapsed, 1), "left_s": None if left is None else round(left, 1),
             "since": "running" if running else "queued"}

@@ -77,6 +77,19 @@ def simulate(spec: dict, law, *, u0: float, angle_deg: float, mass: float, g: fl
                       texture_angle_deg=spec.get("texture_angle_deg", 0.0))
 
 
+def terminal_reference(body: dict) -> dict | None:
+    """The closed form's terminal ratio v / (R omega) for this body (``body``: the summary's
+    ``body``): a uniformly loaded disc's 0.653, a thin ring's 1; None for any other body
+    (another pressure profile, a rectangle, a polygon: no closed form to compare with)."""
+    from ..bodies.closed_forms import TERMINAL_RATIO
+    kind, profile = body.get("kind"), body.get("profile")
+    if kind == "disc" and profile == "uniform":
+        return {"ratio": round(TERMINAL_RATIO["disc"], 3), "words": "A uniformly loaded disc"}
+    if kind == "ring":
+        return {"ratio": round(TERMINAL_RATIO["ring"], 3), "words": "A thin ring"}
+    return None
+
+
 def body_task(params: dict, ctx: dict, bar, law, law_text: str, law_name: str) -> dict:
     """The result of a slide job with a body (see the module docstring): the summary of
     ``asperity slide --body --json`` (``body``), the form's body (``spec``), the figures."""
@@ -87,9 +100,10 @@ def body_task(params: dict, ctx: dict, bar, law, law_text: str, law_name: str) -
     from .figures_body import body_figures
     from .labels import clean, stem
     spec = params["body"]
-    bar(0.05, "sliding and spinning")
-    run = simulate(spec, law, u0=params["u0"], angle_deg=params["angle_deg"],
-                   mass=params["mass"], g=params["g"], dt=params["dt"], ctx=ctx)
+    from .job_progress import phase
+    with phase(bar, 0.0, 0.9, "sliding and spinning"):
+        run = simulate(spec, law, u0=params["u0"], angle_deg=params["angle_deg"],
+                       mass=params["mass"], g=params["g"], dt=params["dt"], ctx=ctx)
     bar(0.9, "figures")
     obj = json_ready(run.summary)
     write_text_atomic(ctx["job_dir"] / "path.csv", body_csv(run.result))
@@ -97,6 +111,7 @@ def body_task(params: dict, ctx: dict, bar, law, law_text: str, law_name: str) -
     name = stem(spec["name"]) if spec.get("shape") == "upload" else clean(spec["shape"])
     base = f"{law_name}_{name}"
     return {"slide": obj, "body": obj, "spec": spec, "law_text": law_text,
+            "terminal_reference": terminal_reference(obj["body"]),
             "figures": body_figures(run.body.footprint, run.result, obj),
             "files": ["path.csv", "body.json"],
             "downloads": {"path.csv": f"{base}_body-path.csv", "body.json": f"{base}_body.json"}}

@@ -18,10 +18,13 @@ from ..io import json_ready, write_text_atomic
 from . import tasks_surface
 from .elastic import contact_of
 from .figures_contact import MapKeeper, axes_figure, contact_map, family_polar
-from .labels import source_stem
+from .labels import pressure_stem, pressure_words, source_stem
 from .results import rename
 from .tasks_surface import describe, load_source, source_job, surface_kwargs, upload_file
+from .units import choose, show
 
+#: the share of a job's progress bar that the contact solves take
+CONTACT_SHARE = 0.5
 #: what the weighting assumes and where it stops being right (shown under the results)
 ASSUMES = ("The load shares come from a normal, frictionless elastic contact: the surface "
            "is pressed onto an elastic half-space of modulus E* (Polonsky-Keer solution) and "
@@ -39,44 +42,66 @@ def not_converged(exc) -> str:
 
 
 def elastic_textures_of(src: dict, params: dict, ctx: dict, bar):
-    """(textures weighted at each pressure, the MapKeeper of their contact maps)."""
+    """(textures weighted at each pressure, the MapKeeper of their contact maps); the
+    solves fill the first :data:`CONTACT_SHARE` of the job's progress bar."""
+    from .job_progress import phase
+    elastic = contact_of(params)
+    with phase(bar, 0.0, CONTACT_SHARE, f"solving the elastic contact at "
+               f"{len(elastic.pressures)} pressure(s)"):
+        keep = MapKeeper(len(elastic.pressures), bar)
+        return _solved(src, elastic, keep, ctx), keep
+
+
+def _solved(src: dict, elastic, keep, ctx: dict) -> list:
     from ..contact.solver import ContactNotConverged
     from ..errors import InputError
-    elastic = contact_of(params)
-    keep = MapKeeper(len(elastic.pressures), bar)
-    bar(0.02, f"solving the elastic contact at {len(elastic.pressures)} pressure(s)")
     try:
         if src.get("kind") == "file" and not str(src.get("upload", "")).endswith(".toml"):
             from ..surface.contact_facets import load_elastic
             path = upload_file(ctx, src.get("upload"), str(src.get("name")))
             opts = {k: v for k, v in surface_kwargs(src, ctx).items()
                     if k not in ("rest_level", "bearing_fraction")}
-            return load_elastic(path, elastic, **opts, observe=keep), keep
+            return load_elastic(path, elastic, **opts, observe=keep)
         from ..friction.elastic import elastic_textures
         texture, _, _ = load_source(src, ctx)
-        return elastic_textures(texture, elastic, observe=keep), keep
+        return elastic_textures(texture, elastic, observe=keep)
     except ContactNotConverged as exc:
         raise InputError(not_converged(exc)) from None
 
 
+def _derived(textures, contact: str, n: int, bar) -> list:
+    """derive() of each contact-weighted texture (what derive_family does), each filling
+    its part of the job's progress bar after the contact solves."""
+    from ..friction.derive import derive
+    from .job_progress import part, phase
+    out = []
+    with phase(bar, CONTACT_SHARE, 0.95, "sliding directions"):
+        for k, t in enumerate(textures):
+            part(bar, k, len(textures))
+            out.append(derive(t, contact, "closed-form", n, progress=bar))
+            bar(1.0, f"sliding directions at pressure {k + 1} of {len(textures)}")
+    return out
+
+
 def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
     """The Surface job with an elastic contact (``src``: the source itself, not a job)."""
-    from ..friction.derive import derive, format_text, to_json
-    from ..friction.family import derive_family, family_json, family_text
-    from .figures import height_figure, reservoir_figures
+    from ..friction.derive import format_text, to_json
+    from ..friction.family import LawFamily, family_json, family_text
+    from .figures import height_figure, largest_friction, reservoir_figures
     textures, keep = elastic_textures_of(src, params, ctx, bar)
     elastic = contact_of(params)
     contact, n = params.get("contact", "all-faces"), params.get("directions", 360)
     E = elastic.E_star
     if elastic.family:
-        fam = derive_family(textures, elastic, contact, n, progress=bar)
+        fam = LawFamily(tuple(elastic.pressures), tuple(_derived(textures, contact, n, bar)),
+                        elastic)
         obj = rename(family_json(fam), ctx["names"])
         d, text = fam.members[-1], family_text(fam)
         members = obj["members"]
         figs = {"polar": family_polar(members, list(fam.pressures), E),
                 "axes": axes_figure(obj["summary"], E, obj.get("reference_direction_deg"))}
     else:
-        d = derive(textures[0], contact, "closed-form", n, progress=bar)
+        d = _derived(textures, contact, n, bar)[0]
         obj = rename(to_json(d), ctx["names"])
         text, members = format_text(d), [obj]
         figs = reservoir_figures(obj)
@@ -91,6 +116,7 @@ def derive_elastic(src: dict, params: dict, ctx: dict, bar) -> dict:
     contacts = [m["elastic_contact"] for m in members]
     return {("family" if elastic.family else "derive"): obj,
             "derive": members[-1], "contacts": contacts,
+            "largest": None if elastic.family else largest_friction(obj),
             "maps": [{"pressure": m["pressure"], "shape": m["shape"],
                       "shown": list(m["map"].shape)} for m in keep.maps],
             "assumes": list(ASSUMES), "text": rename(text, ctx["names"]),
@@ -112,31 +138,33 @@ def fit_elastic(params: dict, ctx: dict, bar) -> dict:
     """The Law job for a Surface result with an elastic contact: the law family over all
     its pressures (``params["family"]["index"]`` None), or the law at the one pressure
     chosen (``params["elastic"]["pressures"]``: that one)."""
-    from .. import derive, fit_derivation
+    from .. import fit_derivation
     from .law_family import family_outputs
     src = source_job(ctx, params["source"]["job"])
     textures, _ = elastic_textures_of(src, params, ctx, bar)
     elastic = contact_of(params)
-    members = [derive(t, params.get("contact", "all-faces"), "closed-form",
-                      params.get("directions", 720), progress=bar) for t in textures]
+    members = _derived(textures, params.get("contact", "all-faces"),
+                       params.get("directions", 720), bar)
     bar(0.95, "fitting the law" + ("s" if len(members) > 1 else ""))
     fam = family_law(members, elastic, params.get("law", "star"))
     jid = params["source"]["job"]
     if fam is not None:
         out = family_outputs(fam, ctx, source_stem(src))
         out["source"] = describe(src, members[0].texture)
+        u = choose(list(fam.pressures), "Pa", smallest=True)
         out["note"] = (f"a law family: one {fam.kind} law at each of the {len(fam.members)} "
-                       f"pressures of result {jid}, {fam.pressures[0]:.4g} to "
-                       f"{fam.pressures[-1]:.4g} Pa (E* = {elastic.E_star:.4g} Pa); between "
-                       "them the law is interpolated linearly in ln p")
+                       f"pressures of result {jid}, {show(fam.pressures[0], u)} to "
+                       f"{show(fam.pressures[-1], u)} (E* = {pressure_words(elastic.E_star)}); "
+                       "between them the law is interpolated linearly in ln p")
         return out
     gl = fit_derivation(members[0], params.get("law", "star"))
-    out = tasks_surface.law_outputs(gl, ctx, source_stem(src))
+    p = elastic.pressures[0]
+    out = tasks_surface.law_outputs(gl, ctx, f"{source_stem(src)}_{pressure_stem(p)}")
     out["source"] = describe(src, members[0].texture)
     out["elastic_contact"] = members[0].texture.elastic
     fam = params.get("family") or {}
-    p = elastic.pressures[0]
-    out["note"] = (f"fitted at the pressure p = {p:.4g} Pa (p/E* = {p / elastic.E_star:.3g})"
+    out["note"] = (f"fitted at the pressure p = {pressure_words(p)} (p/E* = "
+                   f"{p / elastic.E_star:.3g})"
                    + (f", one of the {fam['count']} pressures of result {jid}: the law of "
                       "that pressure alone (choose the law family at the pressure to fit "
                       "one law a pressure)" if fam.get("count", 1) > 1 else ""))

@@ -44,7 +44,10 @@ def build_law(spec: dict, ctx: dict):
     if kind in ("job", "upload"):
         path = _gauge_of_job(ctx, spec.get("job")) if kind == "job" else \
             upload_file(ctx, spec.get("upload"), str(spec.get("name")))
-        gl, _ = law_at(read_gauge(path), spec.get("pressure"), PRESSURE, "the law")
+        gauge = read_gauge(path)
+        gl, how = law_at(gauge, spec.get("pressure"), PRESSURE, "the law")
+        if how is not None:             # a law family: the page says at which pressure
+            ctx["family"] = {**how, "range_Pa": [gauge.pressures[0], gauge.pressures[-1]]}
         return law_from_gauge(gl)
     name, mu1, mu2 = spec.get("law"), spec.get("mu1"), spec.get("mu2")
     if name == "coulomb":
@@ -71,19 +74,21 @@ def slide_task(params: dict, ctx: dict, bar) -> dict:
     dt = check_range("dt", params["dt"], 1e-9, 1.0, unit="s")
     if params.get("body"):
         from .tasks_body import body_task
-        return body_task(params, ctx, bar, law, *_law_words(params["law"], law, params, ctx))
+        out = body_task(params, ctx, bar, law, *_law_words(params["law"], law, params, ctx))
+        return {**out, "family": ctx.get("family")}
     low = law.min_tangential()
     steps = 1.5 * u0 / (g * low) / dt if low > 0 else MAX_POINTS
     every = max(1, int(steps // MAX_POINTS)) if math.isfinite(steps) else 1
-    bar(0.05, "sliding")
-    res = slide(law, u0, params["angle_deg"], mass=params["mass"], g=g, dt=dt,
-                record_every=every)
+    from .job_progress import phase
+    with phase(bar, 0.0, 0.95, "sliding"):
+        res = slide(law, u0, params["angle_deg"], mass=params["mass"], g=g, dt=dt,
+                    record_every=every)
     obj = slide_summary(law, res, u0=u0, angle_deg=params["angle_deg"], mass=params["mass"],
                         g=g, dt=dt, t_end=None, tol=Settings().tol)
     write_text_atomic(ctx["job_dir"] / "path.csv", path_csv(res))
     text, name = _law_words(params["law"], law, params, ctx)
     return {"slide": obj, "figure": path_figure(res, params["angle_deg"]),
-            "law_text": text, "files": ["path.csv"],
+            "law_text": text, "family": ctx.get("family"), "files": ["path.csv"],
             "downloads": {"path.csv": f"{name}_slide-path.csv"}}
 
 
@@ -91,14 +96,20 @@ def _law_words(spec: dict, law, params: dict, ctx: dict) -> tuple[str, str]:
     """What the page calls the law of a slide, and the stem of its download names: the
     fitted law's own title (``law_text`` of the form), the gauge file's name, or the
     built-in law with its coefficients."""
-    from .labels import clean, law_stem, stem
+    from .labels import clean, law_stem, pressure_stem, pressure_words, stem
     kind = spec.get("kind")
+    at, tail = "", ""
+    if spec.get("pressure") is not None:          # a law family, taken at a pressure
+        at = f" at p = {pressure_words(spec['pressure'])}"
+        tail = "_" + pressure_stem(spec["pressure"])
     if kind == "job":
-        name = _law_job_stem(ctx, spec.get("job"))
-        return params.get("law_text") or f"the {law.name} law of result {spec['job']}", name
+        name = _law_job_stem(ctx, spec.get("job")) + tail
+        return params.get("law_text") or f"the {law.name} law of result {spec['job']}{at}", \
+            name
     if kind == "upload":
         shown = str(spec.get("name"))
-        return f"the {law.name} law of gauge file {shown}", law_stem(stem(shown), law.name)
+        return f"the {law.name} law of gauge file {shown}{at}", \
+            law_stem(stem(shown), law.name) + tail
     mu = f"mu{spec.get('mu1'):g}" + ("" if spec.get("mu2") is None else f"-{spec['mu2']:g}")
     return law.description, clean(f"{spec.get('law')}-{mu}")
 
@@ -202,15 +213,17 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
         "the assembly"
     asm = assembly_from_dict(data, ctx["job_dir"] / "assembly.toml")
     contact = None
+    from .job_progress import phase
     if elastic:
-        texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)
-    bar(0.1, "friction along the slip axis")
-    friction = assembly_friction(asm, texture, texture_name=name, **opts)
+        with phase(bar, 0.0, 0.2):
+            texture, contact = _elastic_at_assembly(source, elastic, asm, ctx, bar)
+    with phase(bar, 0.2, 0.3, "friction along the slip axis"):
+        friction = assembly_friction(asm, texture, texture_name=name, **opts)
     if contact is not None:
         friction.detail["contact_pressure"] = contact
-    bar(0.3, "load cycles")
-    out = assess_assembly(asm, friction, cycles=params.get("cycles"),
-                          tolerance=params.get("tolerance"))
+    with phase(bar, 0.3, 0.8, "load cycles"):
+        out = assess_assembly(asm, friction, cycles=params.get("cycles"),
+                              tolerance=params.get("tolerance"))
     bar(0.8, "plot")
     hist = assembly_history(out["_chain"], asm.loading)
     plot_assembly_history(out["_chain"], asm.loading, ctx["job_dir"] / "risk.png",
@@ -232,7 +245,9 @@ def risk_task(params: dict, ctx: dict, bar) -> dict:
     base = f"{asm_stem}_{fr_stem}" if fr_stem else asm_stem
     return {"risk": public, "text": rename(text, {str(ctx["job_dir"]) + "/": "",
                                                   **ctx["names"]}), "files": files,
-            "figures": figures,
+            "figures": figures, "elastic": None if contact is None else {
+                "result": spec.get("job"), "result_pressures_Pa": list(elastic["pressures"]),
+                "assembly_pressure_Pa": contact["pressure_Pa"], "from": contact["from"]},
             "notes": [x.strip().removeprefix("NOTE: ") for x in near_symmetric_notes(out)],
             "downloads": {"risk.png": f"{base}_risk.png", "risk.json": f"{base}_risk.json",
                           "assembly.toml": f"{asm_stem}.toml"}}

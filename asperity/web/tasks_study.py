@@ -74,9 +74,11 @@ def study_task(params: dict, ctx: dict, bar) -> dict:
     ctx["names"][str(folder) + "/"] = ""
     study_name = params["study"]["name"]
     study = load_study(inp / study_name, confine=confinement(inp))
+    from .job_progress import phase
     try:            # a job run again after a restart resumes its store: same inputs only
-        summary = run_study_file(study, folder / "study", workers=params.get("workers", 0),
-                                 plot=True)
+        with phase(bar, 0.0, 0.95):
+            summary = run_study_file(study, folder / "study",
+                                     workers=params.get("workers", 0), plot=True)
     except StoreError as exc:
         if exc.changed is None:
             raise

@@ -20,6 +20,8 @@ from .labels import law_downloads, source_stem, stem
 from .results import rename
 from .store import UPLOAD_ID
 
+#: the share of a Surface job's progress bar that reading its file takes
+READING = 0.25
 #: options of a surface file the pages send (keyword arguments of load_surface)
 SURFACE_OPTIONS = ("unit", "pixel_size", "height_scale", "detrend", "mu", "friction_map",
                    "max_slope", "despike", "despike_window", "rest_level", "bearing_fraction")
@@ -116,17 +118,20 @@ def _derivation(src: dict, params: dict, ctx: dict, bar):
                              height_scale=opts.get("height_scale", 1.0))
         if tiled is not None:
             return derive_scan(path, **opts, contact=contact, n_directions=n, source=tiled), real
-    texture, springs, _ = load_source(real, ctx)
+    from .job_progress import phase
+    with phase(bar, 0.0, READING, "reading the file" if real.get("kind") == "file" else None):
+        texture, springs, _ = load_source(real, ctx)
     model = None
     if method == "springs":
         from ..texture.spring_model import SpringModel
         model = SpringModel.from_dict(dict(springs))
-    return derive(texture, contact, method, n, model, progress=bar), real
+    with phase(bar, READING, 1.0, "sliding directions"):
+        return derive(texture, contact, method, n, model, progress=bar), real
 
 
 def derive_task(params: dict, ctx: dict, bar) -> dict:
     from ..friction.derive import format_text, to_json
-    from .figures import height_figure, reservoir_figures
+    from .figures import height_figure, largest_friction, reservoir_figures
     d, real = _derivation(params["source"], params, ctx, bar)
     obj = rename(to_json(d), ctx["names"])
     figs = reservoir_figures(obj)
@@ -138,7 +143,8 @@ def derive_task(params: dict, ctx: dict, bar) -> dict:
 
     from ..io import write_text_atomic
     write_text_atomic(ctx["job_dir"] / "derive.json", json.dumps(json_ready(obj), indent=1))
-    return {"derive": obj, "text": rename(format_text(d), ctx["names"]),
+    return {"derive": obj, "largest": largest_friction(obj),
+            "text": rename(format_text(d), ctx["names"]),
             "source": describe(real, d.texture), "figures": figs, "files": ["derive.json"],
             "downloads": {"derive.json": f"{source_stem(real)}_friction.json"}}
 
@@ -159,17 +165,31 @@ def _law_outputs(gl, ctx: dict, source: str, n_csv: int = 360) -> dict:
     abaqus = abaqus_block(gl)
     write_text_atomic(folder / "law.inp", abaqus)
     a = orthotropic_approximation(gl)
-    return {"summary": summary(gl), "report": format_fit(gl), "figures": law_figures(gl),
+    return {"summary": summary(gl), "largest": law_largest(gl), "report": format_fit(gl), "figures": law_figures(gl),
             "kind": gl.kind, "principal_direction_deg": gl.principal_direction_deg,
             "axes": a.axes, "abaqus": abaqus,
             "files": ["gauge.json", "law.csv", "law.inp"],
             "downloads": law_downloads(source, gl.kind)}
 
 
+def law_largest(gl, n: int = 3600) -> dict | None:
+    """The sliding direction of largest friction T = p . s of the law itself (``{"psi_deg"
+    (from the law's x axis), "T"}``, over ``n`` directions; None if it has none)."""
+    import numpy as np
+    psi = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    f = gl.force(psi)
+    T = np.where(f.set_valued | ~np.isfinite(f.tangential), -np.inf, f.tangential)
+    k = int(np.argmax(T))
+    return None if not np.isfinite(T[k]) else {"psi_deg": float(np.degrees(psi[k])),
+                                                "T": float(T[k])}
+
+
 def fit_task(params: dict, ctx: dict, bar) -> dict:
     from .. import fit_derivation
-    d, real = _derivation(params["source"], {**params, "method": "closed-form",
-                                             "allow_tiles": False}, ctx, bar)
+    from .job_progress import phase
+    with phase(bar, 0.0, 0.9):
+        d, real = _derivation(params["source"], {**params, "method": "closed-form",
+                                                 "allow_tiles": False}, ctx, bar)
     bar(0.95, "fitting the law")
     gl = fit_derivation(d, params.get("law", "star"))
     out = _law_outputs(gl, ctx, source_stem(real))

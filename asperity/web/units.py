@@ -7,7 +7,7 @@ and the tolerance it is compared with; every height of a colour bar) and gives o
 all of them: the largest prefix that keeps the largest magnitude at or above 1.
 :func:`show` formats a value in a unit so chosen.  The figures, the result pages and the
 job lists all call these two (registered as the Jinja globals ``unit_of``, ``in_unit``,
-``number_in`` and the filter ``cycles``).
+``number_in`` and the filters ``cycles``, ``fixed`` and ``article``).
 """
 from __future__ import annotations
 
@@ -58,16 +58,17 @@ def _magnitudes(values):
     return out
 
 
-def choose(values, base: str = "m") -> Unit:
+def choose(values, base: str = "m", smallest: bool = False) -> Unit:
     """The unit for every value of one quantity (``values``: a number, or numbers nested
     in lists; None, NaN and 0 ignored): the largest prefix of ``base`` in which the largest
     magnitude is at least 1 (to 4 digits; the smallest prefix when none is); ``base``
-    itself when there is no finite non-zero value."""
+    itself when there is no finite non-zero value.  ``smallest``: the smallest magnitude
+    instead (a list of pressures typed, 50 MPa to 1 GPa, reads 50 to 1000 MPa)."""
     prefixes = PREFIXES.get(base, ("",))
     mags = _magnitudes(values)
     if not mags:
         return Unit(base, 1.0)
-    top = max(mags)
+    top = min(mags) if smallest else max(mags)
     pick = prefixes[0]
     for p in prefixes:
         if top / SCALE[p] >= 0.99995:          # what rounds to 1 at 4 digits
@@ -108,7 +109,33 @@ def cycles(n) -> str:
     return f"{float(mant):g} x 10^{int(exp)}"
 
 
+def fixed(x, digits: int = 4) -> str:
+    """A number without an exponent, to ``digits`` significant digits (a fraction of
+    8.011e-05 is ``0.00008011``; at most 12 decimals); None is ``-``."""
+    if x is None:
+        return "-"
+    v = float(x)
+    if not math.isfinite(v):
+        return "infinity" if v > 0 else "-infinity" if v < 0 else "-"
+    if v == 0:
+        return "0"
+    decimals = min(12, max(0, digits - 1 - math.floor(math.log10(abs(v)))))
+    return f"{v:.{decimals}f}"
+
+
+def article(word, capital: bool = False) -> str:
+    """``word`` after its indefinite article: ``an ellipse``, ``a star`` (``capital``:
+    ``An ellipse``)."""
+    text = str(word)
+    low = text.lower()
+    an = low[:1] in "aeio" or (low[:1] == "u" and not low.startswith(("uni", "use", "usu")))
+    a = "an" if an and low else "a"
+    return f"{a.capitalize() if capital else a} {text}"
+
+
 def register(env) -> None:
     """The Jinja globals and filters of this module."""
     env.globals.update(unit_of=choose, in_unit=show, number_in=number)
     env.filters["cycles"] = cycles
+    env.filters["fixed"] = fixed
+    env.filters["article"] = article

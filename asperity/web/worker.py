@@ -11,47 +11,14 @@ path), a bug is one line too (the traceback goes to ``traceback.txt`` in the job
 from __future__ import annotations
 
 import json
-import time
 from pathlib import Path
 
 from ..io import json_ready, write_text_atomic
-from ..progress import progress_bar
+from .job_progress import JobProgress
 from .results import one_line
 
-#: seconds between two writes of progress.json
-PROGRESS_EVERY = 0.2
-
-
-class JobProgress(progress_bar):
-    """A progress bar that writes ``{"fraction", "label", "updated"}`` to a file (at most
-    every :data:`PROGRESS_EVERY` s) for the job page to poll; library code reports to
-    it through :func:`asperity.progress.report` or a ``progress`` callable."""
-
-    def __init__(self, path: Path):
-        import io
-        super().__init__("job", stream=io.StringIO())
-        self.path = Path(path)
-        self.last = 0.0
-
-    def __call__(self, fraction: float, label: str | None = None) -> None:
-        try:
-            f = min(max(float(fraction), 0.0), 1.0)
-        except (TypeError, ValueError):
-            return
-        if label is not None:
-            self.phase = str(label)
-        now = time.monotonic()
-        if now - self.last < PROGRESS_EVERY and f < 1.0:
-            return
-        self.last = now
-        self.write(f, self.phase)
-
-    def write(self, fraction: float, label: str) -> None:
-        try:
-            write_text_atomic(self.path, json.dumps({"fraction": fraction, "label": label,
-                                                     "updated": time.time()}))
-        except Exception:                     # progress must never stop the work
-            pass
+#: for older imports: the job's progress bar lives in .job_progress
+__all__ = ["JobProgress", "main", "run_job"]
 
 
 def needs_units(message: str) -> bool:

@@ -27,6 +27,9 @@
     var pct = document.getElementById("progress-pct");
     var status = document.getElementById("progress-status");
     var clock = document.getElementById("progress-time");
+    // the bar never goes back and shows 100 % only once the job is done (the worker's
+    // fraction is monotone already; this holds for an older worker's too)
+    var shown = Number(bar.value) || 0;
     function tick() {
       fetch("/api/jobs/" + id, {headers: {"Accept": "application/json"}})
         .then(function (r) { return r.json(); })
@@ -35,9 +38,9 @@
             window.location.reload();
             return;
           }
-          var f = j.fraction || 0;
-          bar.value = f;
-          pct.textContent = Math.round(100 * f) + " %";
+          shown = Math.max(shown, Math.min(Number(j.fraction) || 0, 0.99));
+          bar.value = shown;
+          pct.textContent = Math.floor(100 * shown) + " %";
           status.textContent = (j.status === "queued" ? "waiting for a free worker" : "computing") +
             (j.label ? ": " + j.label : "");
           clock.textContent = timeText(j);
@@ -73,6 +76,28 @@
         el.hidden = el.getAttribute("data-values").split(" ").indexOf(select.value) < 0;
       }
       select.addEventListener("change", update);
+      update();
+    });
+  }
+
+  // a select whose options belong to the choice of another (the Law page's pressures, each
+  // of one result): only the options of the result chosen are offered
+  function ownOptions() {
+    document.querySelectorAll("select[data-source-of]").forEach(function (sel) {
+      var source = sel.form && sel.form.querySelector("[name='" + sel.getAttribute("data-source-of") + "']");
+      if (!source) { return; }
+      function update() {
+        var first = null;
+        Array.prototype.forEach.call(sel.options, function (o) {
+          var mine = o.getAttribute("data-source") === source.value;
+          o.hidden = !mine;
+          o.disabled = !mine;
+          if (mine && first === null) { first = o; }
+        });
+        var cur = sel.options[sel.selectedIndex];
+        if ((!cur || cur.disabled) && first) { first.selected = true; }
+      }
+      source.addEventListener("change", update);
       update();
     });
   }
@@ -116,6 +141,57 @@
     });
   }
 
+  // a refused field inside a collapsed section (<details>) opens it, and the page scrolls
+  // to the first refused field
+  function openErrors() {
+    var errs = document.querySelectorAll(".field-error");
+    errs.forEach(function (e) {
+      for (var d = e.closest("details"); d; d = d.parentElement && d.parentElement.closest("details")) {
+        d.open = true;
+      }
+    });
+    if (errs.length && errs[0].scrollIntoView) { errs[0].scrollIntoView({block: "center"}); }
+  }
+
+  // the fields of the page's other forms, as chosen, survive the answer to one form (an
+  // error redraws the page with only the submitted form's fields): kept in the tab's
+  // sessionStorage on submit, restored once when the same page comes back
+  var KEEP = "asperity-forms:";
+  function keepOtherForms() {
+    var here = KEEP + window.location.pathname.replace(/\/(slide|risk|open)$/, "");
+    var forms = Array.prototype.slice.call(document.querySelectorAll("form[id]"));
+    forms.forEach(function (form) {
+      form.addEventListener("submit", function () {
+        var kept = {};
+        forms.forEach(function (other) {
+          if (other === form) { return; }
+          var fields = {};
+          Array.prototype.forEach.call(other.elements, function (el) {
+            if (!el.name || el.type === "file" || el.type === "hidden" || el.type === "submit") { return; }
+            fields[el.name + (el.id ? "#" + el.id : "")] = el.value;
+          });
+          kept[other.id] = fields;
+        });
+        try { sessionStorage.setItem(here, JSON.stringify({from: form.id, forms: kept})); } catch (e) { /* private mode */ }
+      });
+    });
+    var saved = null;
+    try { saved = JSON.parse(sessionStorage.getItem(here) || "null"); sessionStorage.removeItem(here); } catch (e) { saved = null; }
+    if (!saved || !document.getElementById("error")) { return; }   // only a form sent back
+    Object.keys(saved.forms || {}).forEach(function (id) {
+      var form = document.getElementById(id);
+      if (!form || id === saved.from) { return; }
+      Array.prototype.forEach.call(form.elements, function (el) {
+        var key = el.name + (el.id ? "#" + el.id : "");
+        if (!el.name || !(key in saved.forms[id]) || el.type === "file" || el.type === "hidden") { return; }
+        if (el.tagName === "SELECT" && !Array.prototype.some.call(el.options, function (o) {
+          return o.value === saved.forms[id][key]; })) { return; }
+        el.value = saved.forms[id][key];
+        el.dispatchEvent(new Event("change"));
+      });
+    });
+  }
+
   function busyButtons() {
     document.querySelectorAll("form").forEach(function (form) {
       form.addEventListener("submit", function () {
@@ -128,7 +204,10 @@
   document.addEventListener("DOMContentLoaded", function () {
     drawFigures();
     pollJob();
+    keepOtherForms();
     dependentFields();
+    ownOptions();
+    openErrors();
     familyUpload();
     unitHint();
     busyButtons();
