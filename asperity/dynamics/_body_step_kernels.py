@@ -248,10 +248,35 @@ def _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tolG, maxit, R, J, ev, wo
 
 
 @njit(cache=True)
+def _accept(f, f2, g0, R, dx, rn, rn2, step, assoc, noise):
+    """Whether the line search takes the step: the merit falls (Armijo, c1 = 1e-4), or, for
+    the convex F of an associated law, where F's change is below its own rounding (it sums
+    n + 3 terms: a Newton step near the solution changes it by ~|R|^2, which vanishes in
+    the rounding long before the residual is within tolerance), the approximate Wolfe
+    conditions of Hager and Zhang (SIAM J. Optim. 16, 2005) on the slope F'(s) = R(s).dx,
+    which is computed without cancellation: 0.9 F'(0) <= F'(s) <= 0.8 |F'(0)| (on a
+    quadratic F these imply Armijo with c1 = 0.1).  A slope that is still at most 1e-4 of
+    the first one (F'(s) <= 1e-4 F'(0)) implies Armijo on a convex F outright:
+    F(s) - F(0) <= s F'(s).  For the residual's merit 1/2 |R|^2 (non-associated laws) a
+    decrease of |R|, which is resolved down to the rounding of R itself."""
+    if not assoc:
+        return rn2 < rn
+    if f2 <= f + 1e-4 * step * g0:
+        return True
+    g2 = R[0] * dx[0] + R[1] * dx[1] + R[2] * dx[2]
+    if g2 <= 1e-4 * g0:
+        return True
+    return abs(f2 - f) <= noise * abs(f) and 0.9 * g0 <= g2 <= -0.8 * g0
+
+
+@njit(cache=True)
 def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J, ev, dx, un):
     """Newton with a backtracking line search on R(u) = 0 from u (overwritten).
     Returns (iterations, converged, final relative residual measure)."""
     f = _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
+    # rounding of the merit: F sums n + 3 positive terms (associated); the residual's
+    # merit is resolved down to the rounding of R itself, far below the tolerance
+    noise = (ox.shape[0] + 4) * 2.3e-16
     rn = 0.0
     for it in range(1, maxit + 1):
         rn = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
@@ -261,6 +286,8 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             R[j] = -R[j]
         if not _solve3(J, R, dx):
             return it, False, rn
+        # slope of the merit along dx at the start: F' = R.dx (associated), |R|^2' = -2|R|^2
+        g0 = -(R[0] * dx[0] + R[1] * dx[1] + R[2] * dx[2])
         step = 1.0
         ok = False
         for _ in range(60):
@@ -268,9 +295,7 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
                 un[j] = u[j] + step * dx[j]
             f2 = _merit(un, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
             rn2 = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
-            # F cannot resolve changes below its rounding (~1e-16 F) while the residual
-            # still can: a full step that lowers the residual is taken too
-            if f2 < f or (f2 <= f + 1e-15 * abs(f) and rn2 < rn):
+            if _accept(f, f2, g0, R, dx, rn, rn2, step, assoc, noise):
                 ok = True
                 break
             step *= 0.5
