@@ -95,7 +95,8 @@ def _eval(kind, par, tab, gx, gy, out):
 @njit(cache=True)
 def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=-1):
     """R(u) = M (u - uf) + sum lam_i W_i c_i (want_hull: the hull's gradient instead of c and
-    its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i."""
+    its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i.
+    skip >= 0: leave out point ``skip`` and every point at the same spot (its group)."""
     for j in range(3):
         R[j] = md[j] * (u[j] - uf[j])
         for k in range(3):
@@ -116,7 +117,7 @@ def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=
         if r2 < rmin:
             rmin = r2
             imin = i
-        if i == skip:
+        if skip >= 0 and oxi == ox[skip] and oyi == oy[skip]:
             continue
         _eval(kind, par, tab, gx, gy, ev)
         li = lam[i]
@@ -214,3 +215,14 @@ def _ray(d, b, md, ox, oy, lam, kind, par, tab, ev):
         _eval(kind, par, tab, gx, gy, ev)
         num -= lam[i] * (ev[0] * gx + ev[1] * gy)
     return num / den
+
+
+@njit(cache=True)
+def _group_load(ox, oy, lam, j):
+    """The normal impulse of point j's group: the points at exactly its spot (they slip and
+    stick together)."""
+    s = 0.0
+    for i in range(ox.shape[0]):
+        if ox[i] == ox[j] and oy[i] == oy[j]:
+            s += lam[i]
+    return s

@@ -9,15 +9,57 @@ import math
 import numpy as np
 from numba import njit
 
-from ._body_law_kernels import _assemble, _eval, _gauge, _merit, _ray, _solve3
+from ._body_law_kernels import (KIND_ELLIPSE, TWO_PI, _assemble, _eval, _gauge, _group_load,
+                                _merit, _ray, _solve3)
 
 
 @njit(cache=True)
-def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
+def _slip_towards(kind, par, tab, cx, cy):
+    """The slip direction psi (rad) whose sliding force c(psi) points along (cx, cy): the
+    normal of the ellipse at its point in that direction (closed form), else the table's
+    direction whose force makes the least angle with it, refined linearly to the crossing
+    of the cross product with its neighbours."""
+    if kind == KIND_ELLIPSE:
+        co, si = par[4], par[5]
+        la = co * cx + si * cy
+        lb = -si * cx + co * cy
+        A = par[0] if la >= 0.0 else par[1]
+        B = par[2] if lb >= 0.0 else par[3]
+        na = la / (A * A)
+        nb = lb / (B * B)
+        return math.atan2(si * na + co * nb, co * na - si * nb)
+    K = tab.shape[0] - 1
+    best = -2.0
+    kb = 0
+    cn = math.sqrt(cx * cx + cy * cy)
+    for k in range(K):
+        a = tab[k, 0]
+        b = tab[k, 1]
+        v = (a * cx + b * cy) / (math.sqrt(a * a + b * b) * cn + 1e-300)
+        if v > best:
+            best = v
+            kb = k
+    dpsi = TWO_PI / K
+    x0 = tab[kb, 0] * cy - tab[kb, 1] * cx
+    for k2 in (kb + 1, kb - 1):
+        kk = k2 % K
+        x1 = tab[kk, 0] * cy - tab[kk, 1] * cx
+        if x0 == 0.0 or (x0 > 0.0) != (x1 > 0.0):
+            t = x0 / (x0 - x1) if x0 != x1 else 0.0
+            return (kb + t * (k2 - kb)) * dpsi
+    return kb * dpsi
+
+
+@njit(cache=True)
+def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     """The step's solution with point j sticking: u = omega (oy_j, -ox_j, 1) (a rotation
     about point j, its slip exactly 0), omega from R(u) . n = 0 by a safeguarded 1D Newton;
-    accepted (u overwritten, True) if point j's reaction c_j = -(R_x, R_y) / lambda_j lies
-    in C.  This is where F is not differentiable: plain Newton cannot converge there."""
+    accepted (u overwritten, True) if the reaction of point j's group (the points at its
+    spot, load lambda_g) c = -(R_x, R_y) / lambda_g lies in C.  This is where F is not
+    differentiable: plain Newton cannot converge there.  Otherwise cw = (c_x, c_y, omega)
+    of that solution with cw[2] NaN if the 1D solve failed: the reaction lies outside C,
+    the group slides slowly and its slip direction is the one whose force points along
+    c (:func:`_polar` starts there)."""
     un = np.empty(3)
     n0 = oy[j]
     n1 = -ox[j]
@@ -53,11 +95,16 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
             ok = True
             break
         w = wn
+    cw[2] = np.nan
     if not ok:
         return False
-    cx = -R[0] / lam[j]
-    cy = -R[1] / lam[j]
+    lg = _group_load(ox, oy, lam, j)
+    cx = -R[0] / lg
+    cy = -R[1] / lg
     if _gauge(kind, par, tab, cx, cy) > 1.0 + 1e-12:
+        cw[0] = cx
+        cw[1] = cy
+        cw[2] = w
         return False
     for k in range(3):
         u[k] = un[k]
@@ -65,12 +112,16 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
 
 
 @njit(cache=True)
-def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
+def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     """The step's solution with point j sliding slowly: unknowns (rho, phi, omega) with
     gamma_j = rho (cos phi, sin phi) and u = (gamma_j + omega (oy_j, -ox_j), omega).  In
-    these coordinates point j's force c(phi) is smooth even at rho = 0, where F has its kink
+    these coordinates the force c(phi) of point j's group (the points at its spot) is smooth
+    even at rho = 0, where F has its kink
     (plain Newton on u then only creeps).  Newton on the three equations R = 0 with a
-    backtracking search on |R|; accepted (u overwritten, True) on convergence with rho >= 0."""
+    backtracking search on |R| that keeps rho >= 0; accepted (u overwritten, True) on
+    convergence.  Starts from the pivot about point j found by :func:`_kink` (cw, rho = 0,
+    phi the slip direction whose force points along the reaction the pivot needs: exact as
+    rho -> 0) when there is one, else from u."""
     un = np.empty(3)
     x = np.empty(3)
     dx = np.empty(3)
@@ -78,12 +129,18 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
     Jp = np.empty((3, 3))
     oxj = ox[j]
     oyj = oy[j]
-    gx = u[0] - u[2] * oyj
-    gy = u[1] + u[2] * oxj
-    x[0] = math.sqrt(gx * gx + gy * gy)
-    x[1] = math.atan2(gy, gx)
-    x[2] = u[2]
-    lj = lam[j]
+    if math.isfinite(cw[2]):
+        # from the pivot about point j, sliding the way its needed reaction points
+        x[0] = 0.0
+        x[1] = _slip_towards(kind, par, tab, cw[0], cw[1])
+        x[2] = cw[2]
+    else:
+        gx = u[0] - u[2] * oyj
+        gy = u[1] + u[2] * oxj
+        x[0] = math.sqrt(gx * gx + gy * gy)
+        x[1] = math.atan2(gy, gx)
+        x[2] = u[2]
+    lj = _group_load(ox, oy, lam, j)
     rn = np.inf
     for it in range(40):
         # residual at x (and its norm), Jacobian
@@ -119,7 +176,12 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
             R[k] = -R[k]
         if not _solve3(Jp, R, dx):
             return False
+        # the slip rho stays >= 0 (a negative one would turn the force along the slip)
         step = 1.0
+        if x[0] + dx[0] < 0.0:
+            step = 0.5 * x[0] / -dx[0]
+            if step <= 0.0:
+                return False
         ok = False
         for _ in range(40):
             for k in range(3):
@@ -286,6 +348,12 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             R[j] = -R[j]
         if not _solve3(J, R, dx):
             return it, False, rn
+        if (abs(dx[0]) <= 4e-16 * abs(u[0]) and abs(dx[1]) <= 4e-16 * abs(u[1])
+                and abs(dx[2]) <= 4e-16 * abs(u[2])):
+            # the Newton step is below the rounding of u: the residual is at its floor
+            # (near a point that almost sticks, dc/dgamma ~ 1/|gamma| amplifies the
+            # rounding of u); within 1e3 of the tolerance that is convergence
+            return it, rn <= 1e3 * tol_r, rn
         # slope of the merit along dx at the start: F' = R.dx (associated), |R|^2' = -2|R|^2
         g0 = -(R[0] * dx[0] + R[1] * dx[1] + R[2] * dx[2])
         step = 1.0
@@ -307,11 +375,12 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             # the Newton step was damped next to a point that (nearly) sticks: try the
             # solution with that point sticking exactly
             jk = int(ev[13])
-            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev):
+            cw = np.empty(3)
+            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
                 return it, True, 0.0
             for k in range(3):
                 dx[k] = un[k]
-            if _polar(dx, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev):
+            if _polar(dx, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
                 for k in range(3):
                     u[k] = dx[k]
                 return it, True, 0.0

@@ -62,7 +62,7 @@ import numpy as np
 from ..errors import InputError, check_array, check_instance, check_int, check_range
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
-from .moreau import LIMITS, MAX_STEPS, Force
+from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
 
 #: most contact points of a footprint (the kernel's memory is a few arrays of this length)
 MAX_POINTS = 1_000_000
@@ -165,6 +165,12 @@ def _check_points(points, weights) -> tuple[np.ndarray, np.ndarray]:
     if np.any(np.abs(p) > 1e3):
         raise InputError(f"points must lie within 1 km of the centre of mass, got "
                          f"{np.abs(p).max():g} m")
+    spread = float(np.ptp(p, axis=0).max())
+    if spread <= 1e-12:
+        raise InputError(f"points must not all lie at one spot (they span {spread:g} m): such "
+                         "a footprint has no friction torque against a rotation about that "
+                         "spot, so its spin never stops; use the point mass (asperity.slide, "
+                         "--body point) or a footprint with an extent")
     w = np.array(check_array("weights", weights, ndim=1), dtype=float)
     if w.shape != (n,):
         raise InputError(f"weights must have shape ({n},) (one per point), got {w.shape}")
@@ -188,26 +194,82 @@ def _turn_force(force: Force, a: float) -> Force:
                  period=force.period, waveform=force.waveform)
 
 
+def slip_ratio(points, weights, rho: float) -> float:
+    """kappa = min over rigid velocities u = (v, omega) of sum_i w_i |gamma_i| / |u|_*, with
+    |u|_* = sqrt(|v|^2 + rho^2 omega^2): the least mean slip per unit of motion.
+
+    A rigid velocity with omega != 0 is a rotation about a point p (the instantaneous
+    centre, v = omega p^perp), so the ratio is f(p) = sum_i w_i |r_i - p| / sqrt(|p|^2 +
+    rho^2); a translation is the limit |p| -> inf (f = 1).  f is minimised over the plane:
+    the centre of mass, the points themselves (f has its kinks there) and a polar grid of
+    p out to 1e3 times the footprint's size, then Nelder-Mead from the best five, on at
+    most 4096 of the points (spread evenly through the list); the value returned is f on
+    every point at the best centre found.  0 iff the points all coincide."""
+    from scipy.optimize import minimize
+    p = np.asarray(points, dtype=float)
+    w = np.asarray(weights, dtype=float)
+
+    def f_all(c, pp=p, ww=w):
+        return float(ww @ np.hypot(pp[:, 0] - c[0], pp[:, 1] - c[1])) / math.hypot(
+            math.hypot(c[0], c[1]), rho)
+
+    sub = np.unique(np.linspace(0, len(p) - 1, min(len(p), 4096)).astype(int))
+    ps, ws = p[sub], w[sub] / w[sub].sum()
+    size = float(np.hypot(p[:, 0], p[:, 1]).max()) + rho
+    ang = np.linspace(0.0, 2 * math.pi, 48, endpoint=False)
+    rad = size * np.geomspace(1e-3, 1e3, 40)
+    grid = np.concatenate([np.zeros((1, 2)), ps[np.linspace(0, len(ps) - 1,
+                                                             min(len(ps), 256)).astype(int)],
+                           (rad[:, None, None] * np.stack([np.cos(ang), np.sin(ang)], -1)
+                            [None]).reshape(-1, 2)])
+    vals = np.empty(len(grid))
+    for k in range(0, len(grid), 256):
+        g = grid[k:k + 256]
+        d = np.hypot(ps[None, :, 0] - g[:, None, 0], ps[None, :, 1] - g[:, None, 1])
+        vals[k:k + 256] = (d @ ws) / np.hypot(np.hypot(g[:, 0], g[:, 1]), rho)
+    best = min(1.0, f_all(grid[0]))
+    for k in np.argsort(vals)[:5]:
+        r = minimize(f_all, grid[k], args=(ps, ws), method="Nelder-Mead",
+                     options=dict(xatol=1e-9 * size, fatol=1e-12, maxiter=400))
+        best = min(best, f_all(r.x), f_all(grid[k]))
+    return best
+
+
+def rest_time(points, weights, law: PlanarLaw, mass: float, inertia: float, u0, g: float,
+              dt: float) -> float:
+    """The end time of a run until rest: HORIZON_FACTOR times :func:`rest_horizon`, plus 10
+    steps.  Refused in one line, with the reason, when that takes more steps than a run
+    may (t_end / dt times the contact points / 16 above MAX_STEPS)."""
+    h = rest_horizon(points, weights, law, mass, inertia, u0, g)
+    t = HORIZON_FACTOR * h + 10 * dt
+    n = len(points)
+    if t <= LIMITS["t_end"][1] and t / dt * max(1.0, n / 16.0) <= MAX_STEPS:
+        return t
+    span = float(np.ptp(np.asarray(points), axis=0).max())
+    why = ""
+    if slip_ratio(points, weights, math.sqrt(inertia / mass)) < 1e-2:
+        why = (f" (its contact points span only {span:.3g} m, so little friction torque "
+               "stops its spin)")
+    raise InputError(f"t_end must be given: this body may need up to {t:.3g} s to come to "
+                     f"rest ({t / dt:.3g} steps of dt = {dt:g} s for {n} contact points, "
+                     f"beyond the limit of {MAX_STEPS:.0e} / (points / 16)){why}; give t_end to "
+                     "follow part of the motion, or raise dt")
+
+
 def rest_horizon(points, weights, law: PlanarLaw, mass: float, inertia: float, u0, g: float
                  ) -> float:
     """A time by which a body with no external force is surely at rest.
 
     With |u|_* = sqrt(v^2 + (I/m) omega^2) the friction power is at least
-    m g mu_min sum_i w_i |gamma_i| >= m g mu_min kappa |u|_*, kappa = min over unit u of
-    sum_i w_i |W_i^T u| (sampled on 2000 directions, then halved for safety), so
-    d|u|_*/dt <= -g mu_min kappa and the body stops before |u0|_* / (g mu_min kappa)."""
+    m g mu_min sum_i w_i |gamma_i| >= m g mu_min kappa |u|_* (kappa: :func:`slip_ratio`,
+    halved here for the search's misses), so d|u|_*/dt <= -g mu_min kappa and the body
+    stops before |u0|_* / (g mu_min kappa)."""
     u0 = np.asarray(u0, dtype=float)
     rho2 = inertia / mass
-    n = 2000
-    k = np.arange(n) + 0.5
-    z = 1.0 - 2.0 * k / n
-    ph = math.pi * (1.0 + 5 ** 0.5) * k
-    r = np.sqrt(1.0 - z * z)
-    d = np.column_stack([r * np.cos(ph), r * np.sin(ph), z / math.sqrt(rho2)])  # |d|_* = 1
-    gx = d[:, 0:1] - d[:, 2:3] * points[None, :, 1]
-    gy = d[:, 1:2] + d[:, 2:3] * points[None, :, 0]
-    kappa = 0.5 * float((np.hypot(gx, gy) @ weights).min())
+    kappa = 0.5 * slip_ratio(points, weights, math.sqrt(rho2))
     speed = math.sqrt(u0[0] ** 2 + u0[1] ** 2 + rho2 * u0[2] ** 2)
+    if speed == 0.0:
+        return 0.0
     return speed / (g * law.min_tangential() * kappa)
 
 
@@ -216,12 +278,15 @@ def rest_horizon(points, weights, law: PlanarLaw, mass: float, inertia: float, u
 def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: float,
                   u0=(0.0, 0.0, 0.0), q0=(0.0, 0.0, 0.0), dt: float, t_end: float | None = None,
                   force: Force | None = None, g: float = 9.81, texture_angle_deg: float = 0.0,
-                  settings: BodySettings = BodySettings(), record_every: int = 1) -> BodyResult:
+                  settings: BodySettings = BodySettings(), record_every: int = 1,
+                  until_rest: bool = False) -> BodyResult:
     """Slide and spin a rigid body with its footprint sampled at ``points`` (n, 2) (body frame,
     m, origin at the centre of mass) carrying ``weights`` (n,) of the load (> 0, sum 1).
 
     mass (kg), inertia (kg m^2 about the centre of mass), u0 = (vx, vy, omega) (m/s, rad/s),
-    q0 = (x, y, theta), dt (s); t_end None: until rest (needs no external force);
+    q0 = (x, y, theta), dt (s); t_end None: until rest (needs no external force; the end
+    time is :func:`rest_time`, refused when too long); until_rest: with t_end, also stop
+    there if the body comes to rest first (without a force);
     force: a :class:`~asperity.dynamics.moreau.Force` (fx, fy, torque), constant or periodic;
     texture_angle_deg: angle of the law's t_a axis from x.  Returns a :class:`BodyResult`."""
     check_instance("law", law, PlanarLaw)
@@ -243,15 +308,14 @@ def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: floa
     a = math.radians(check_range("texture_angle_deg", texture_angle_deg, -360.0, 360.0,
                                  unit="deg"))
     record_every = check_int("record_every", record_every, 1, int(MAX_STEPS))
-    halt = t_end is None
+    halt = t_end is None or (bool(until_rest) and force is None)
     if t_end is None:
         if force is not None:
             raise InputError("t_end must be given with an external force (the body need not "
                              "come to rest)")
-        t_end = HORIZON_FACTOR * rest_horizon(pts, w, law, mass, inertia, u0, g) + 10 * dt
-        t_end = min(t_end, LIMITS["t_end"][1])
+        t_end = rest_time(pts, w, law, mass, inertia, u0, g, dt)
     else:
-        t_end = check_range("t_end", t_end, *LIMITS["t_end"], unit="s")
+        t_end = check_t_end("t_end", t_end, dt)
     n_steps = int(round(t_end / dt))
     check_work(n_steps * max(1.0, pts.shape[0] / 16.0), MAX_STEPS,
                "this simulation (t_end / dt times the contact points / 16)",
