@@ -90,6 +90,9 @@ WEB_BODY = ("test_web_body.py",)
 BODY_CLI = ("test_slide_body_cli.py",)
 REPORT_BODIES = ("test_report_bodies.py",)
 BODY = ("test_dynamics_body.py",)
+METAMORPHIC_CONTACT = ("test_metamorphic_contact.py",)
+METAMORPHIC_LAWS = ("test_metamorphic_laws.py",)
+METAMORPHIC_BODIES = ("test_metamorphic_bodies.py", "test_option_pairs.py")
 
 
 @dataclass(frozen=True)
@@ -1099,6 +1102,38 @@ MUTANTS = [
     Mutant("window-contact-derives", "friction/elastic_windows.py",
            "    if not plan.derive:", "    if False:", WINDOWS_MORE,
            "contact --window derives friction it does not report (and its cost)"),
+    # ---- the silent bugs of issue 25 (item 5) and their kin: the metamorphic tests'
+    Mutant("mesh-forces-origin-zero", "surface/mesh_grid.py",
+           "    x0, y0 = mg.origin\n", "    x0, y0 = 0.0, 0.0\n", METAMORPHIC_CONTACT,
+           "a mesh's triangle forces looked up on a grid at the origin: load lost when the "
+           "mesh's lowest corner is elsewhere"),
+    Mutant("mesh-grid-origin-zero", "surface/mesh_grid.py",
+           "np.ascontiguousarray(f), float(lo[0]), float(lo[1]),",
+           "np.ascontiguousarray(f), 0.0, 0.0,", METAMORPHIC_CONTACT,
+           "a mesh's height grid laid from the origin, not from its lowest corner"),
+    Mutant("contact-footprint-squeezed-y", "bodies/pressure.py",
+           "pts = np.column_stack([i * dx, j * dy])", "pts = np.column_stack([i * dx, j * dx])",
+           METAMORPHIC_BODIES, "a footprint from a contact of oblong pixels squeezed along y"),
+    Mutant("family-ellipse-turn-long-way", "laws/family.py",
+           "        theta = e0.theta + w * turn\n",
+           "        theta = e0.theta + w * (e1.theta - e0.theta)\n", METAMORPHIC_LAWS,
+           "a family's ellipse t_a turned the long way between members"),
+    Mutant("family-ellipse-turn-no-remainder", "laws/family.py",
+           "        turn = math.remainder(e1.theta - e0.theta, 2 * math.pi)\n",
+           "        turn = e1.theta - e0.theta\n", METAMORPHIC_LAWS,
+           "a family's ellipse turn not reduced (a member written with t_a reversed)"),
+    Mutant("family-star-turn-no-remainder", "laws/family.py",
+           "turn = math.remainder(g1.principal_direction_deg - g0.principal_direction_deg, "
+           "180.0)", "turn = g1.principal_direction_deg - g0.principal_direction_deg",
+           METAMORPHIC_LAWS, "a family's star t_a interpolated the long way across 0/180 deg"),
+    Mutant("family-bracket-next-pair", "laws/family.py",
+           'k = int(np.searchsorted(ps, p, side="right")) - 1',
+           'k = min(int(np.searchsorted(ps, p, side="right")), len(ps) - 2)',
+           METAMORPHIC_LAWS, "a family's law between members 0 and 1 taken from members 1, 2"),
+    Mutant("body-force-turned-wrong-way", "dynamics/body.py",
+           "    R = _rot(-a)\n    c = np.asarray(force.constant)",
+           "    R = _rot(a)\n    c = np.asarray(force.constant)", METAMORPHIC_BODIES,
+           "an external force turned the wrong way into the frame of a turned law"),
 ]
 
 
