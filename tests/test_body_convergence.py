@@ -31,7 +31,8 @@ from cli_run import run
 from pairwise import covering_array, ids
 
 from asperity.bodies import footprint as F
-from asperity.dynamics.body import BodySettings, simulate_body, slip_ratio
+from asperity.dynamics.body import simulate_body
+from asperity.dynamics.body_horizon import slip_ratio
 from asperity.dynamics.body_api import slide_body
 from asperity.dynamics.moreau import slide
 from asperity.errors import InputError

@@ -32,12 +32,21 @@ One step solves for the three velocities, not for 2N impulses (:mod:`._body_kern
   points, O(1/N).
 * **Sliding.**  Newton with a backtracking line search on
   R(u) = M (u - u_free) + sum_i lambda_i W_i c(gamma_i / |gamma_i|) = 0 (c the law's sliding
-  force per unit normal load, ``PlanarLaw.force``), merit F for associated laws (globally
-  convergent: F is convex), 1/2 |R|^2_M^-1 for non-associated ones, started from the
-  extrapolation 2 u_A - u_{A-1} (one or two iterations a step on a smooth motion).  Where
-  one point nearly sticks, F has a kink that Newton only creeps towards: the kernel then
-  solves with that point sticking exactly (a rotation about it, accepted if its reaction
-  lies in C) or in polar coordinates of that point's slip (smooth through the kink).
+  force per unit normal load, ``PlanarLaw.force``), started from the extrapolation
+  2 u_A - u_{A-1} (one or two iterations a step on a smooth motion).  Merit: the convex F for
+  associated laws, 1/2 |R|^2_M^-1 for non-associated ones.  F sums n + 3 positive terms, so
+  near the solution a Newton step changes it by ~|R|^2, far below its rounding: within that
+  band the step is judged by F's slope R.dx (Hager and Zhang's approximate Wolfe
+  conditions), which has no cancellation (F alone made a no-spin disc creep, 65 iterations
+  a step).  A Newton step below the rounding of u ends the solve (within 1e3 tol).
+* **Pivots.**  Where one point (with every point at exactly its spot: a group) nearly
+  sticks, F has a kink that Newton only creeps towards.  The kernel solves with that group
+  sticking exactly (a rotation about it), accepted if the group's reaction lies in conv C;
+  otherwise the group slides slowly, and the step is solved in polar coordinates of its
+  slip (smooth through the kink) from the pivot, in the slip direction whose force points
+  along the reaction the pivot needed (exact as the slip -> 0), the slip kept >= 0.  A moving
+  rigid body has at most one such spot (two would stop it).  Footprints whose points all
+  coincide are refused: nothing stops their spin.
 * **Laws.**  Closed forms for the associated disc and (truncated) ellipse; for every other
   law tables of c(psi) and of the normal point of conv C on TABLE_SIZE = 8192 uniform
   directions, linearly interpolated: the error is at most dpsi^2/8 max|c''| = 7e-8 max|c''|
@@ -47,6 +56,8 @@ One step solves for the three velocities, not for 2N impulses (:mod:`._body_kern
   (dE = -P.gamma_E - 1/2 P^T W^T M^-1 W P <= 0): the kinetic energy never increases without
   an external force (tested on random footprints, starts and laws).
 
+Until rest: the run ends at :func:`~asperity.dynamics.body_horizon.rest_time`, a bound
+from the least slip per unit of motion (refused, saying why, when too long to compute).
 Stop times: ``stop_time`` is exact (u_E = 0 bit for bit); a uniformly loaded disc and a ring
 stop sliding and spinning at the same step (tested).  ``slide_stop_time`` and
 ``spin_stop_time`` use STOP_FRACTION of the initial velocity scale (a spin from rest keeps
@@ -62,6 +73,7 @@ import numpy as np
 from ..errors import InputError, check_array, check_instance, check_int, check_range
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
+from .body_horizon import rest_time
 from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
 
 #: most contact points of a footprint (the kernel's memory is a few arrays of this length)
@@ -69,8 +81,6 @@ MAX_POINTS = 1_000_000
 #: velocities below this fraction of the initial velocity scale count as zero for the
 #: separate slide / spin stop times (the joint stop time is exact: u_E = 0 bit for bit)
 STOP_FRACTION = 1e-10
-#: safety factor of the horizon used when t_end is None (see :func:`rest_horizon`)
-HORIZON_FACTOR = 1.5
 
 
 @dataclass(frozen=True)
@@ -194,85 +204,6 @@ def _turn_force(force: Force, a: float) -> Force:
                  period=force.period, waveform=force.waveform)
 
 
-def slip_ratio(points, weights, rho: float) -> float:
-    """kappa = min over rigid velocities u = (v, omega) of sum_i w_i |gamma_i| / |u|_*, with
-    |u|_* = sqrt(|v|^2 + rho^2 omega^2): the least mean slip per unit of motion.
-
-    A rigid velocity with omega != 0 is a rotation about a point p (the instantaneous
-    centre, v = omega p^perp), so the ratio is f(p) = sum_i w_i |r_i - p| / sqrt(|p|^2 +
-    rho^2); a translation is the limit |p| -> inf (f = 1).  f is minimised over the plane:
-    the centre of mass, the points themselves (f has its kinks there) and a polar grid of
-    p out to 1e3 times the footprint's size, then Nelder-Mead from the best five, on at
-    most 4096 of the points (spread evenly through the list); the value returned is f on
-    every point at the best centre found.  0 iff the points all coincide."""
-    from scipy.optimize import minimize
-    p = np.asarray(points, dtype=float)
-    w = np.asarray(weights, dtype=float)
-
-    def f_all(c, pp=p, ww=w):
-        return float(ww @ np.hypot(pp[:, 0] - c[0], pp[:, 1] - c[1])) / math.hypot(
-            math.hypot(c[0], c[1]), rho)
-
-    sub = np.unique(np.linspace(0, len(p) - 1, min(len(p), 4096)).astype(int))
-    ps, ws = p[sub], w[sub] / w[sub].sum()
-    size = float(np.hypot(p[:, 0], p[:, 1]).max()) + rho
-    ang = np.linspace(0.0, 2 * math.pi, 48, endpoint=False)
-    rad = size * np.geomspace(1e-3, 1e3, 40)
-    grid = np.concatenate([np.zeros((1, 2)), ps[np.linspace(0, len(ps) - 1,
-                                                             min(len(ps), 256)).astype(int)],
-                           (rad[:, None, None] * np.stack([np.cos(ang), np.sin(ang)], -1)
-                            [None]).reshape(-1, 2)])
-    vals = np.empty(len(grid))
-    for k in range(0, len(grid), 256):
-        g = grid[k:k + 256]
-        d = np.hypot(ps[None, :, 0] - g[:, None, 0], ps[None, :, 1] - g[:, None, 1])
-        vals[k:k + 256] = (d @ ws) / np.hypot(np.hypot(g[:, 0], g[:, 1]), rho)
-    best = min(1.0, f_all(grid[0]))
-    for k in np.argsort(vals)[:5]:
-        r = minimize(f_all, grid[k], args=(ps, ws), method="Nelder-Mead",
-                     options=dict(xatol=1e-9 * size, fatol=1e-12, maxiter=400))
-        best = min(best, f_all(r.x), f_all(grid[k]))
-    return best
-
-
-def rest_time(points, weights, law: PlanarLaw, mass: float, inertia: float, u0, g: float,
-              dt: float) -> float:
-    """The end time of a run until rest: HORIZON_FACTOR times :func:`rest_horizon`, plus 10
-    steps.  Refused in one line, with the reason, when that takes more steps than a run
-    may (t_end / dt times the contact points / 16 above MAX_STEPS)."""
-    h = rest_horizon(points, weights, law, mass, inertia, u0, g)
-    t = HORIZON_FACTOR * h + 10 * dt
-    n = len(points)
-    if t <= LIMITS["t_end"][1] and t / dt * max(1.0, n / 16.0) <= MAX_STEPS:
-        return t
-    span = float(np.ptp(np.asarray(points), axis=0).max())
-    why = ""
-    if slip_ratio(points, weights, math.sqrt(inertia / mass)) < 1e-2:
-        why = (f" (its contact points span only {span:.3g} m, so little friction torque "
-               "stops its spin)")
-    raise InputError(f"t_end must be given: this body may need up to {t:.3g} s to come to "
-                     f"rest ({t / dt:.3g} steps of dt = {dt:g} s for {n} contact points, "
-                     f"beyond the limit of {MAX_STEPS:.0e} / (points / 16)){why}; give t_end to "
-                     "follow part of the motion, or raise dt")
-
-
-def rest_horizon(points, weights, law: PlanarLaw, mass: float, inertia: float, u0, g: float
-                 ) -> float:
-    """A time by which a body with no external force is surely at rest.
-
-    With |u|_* = sqrt(v^2 + (I/m) omega^2) the friction power is at least
-    m g mu_min sum_i w_i |gamma_i| >= m g mu_min kappa |u|_* (kappa: :func:`slip_ratio`,
-    halved here for the search's misses), so d|u|_*/dt <= -g mu_min kappa and the body
-    stops before |u0|_* / (g mu_min kappa)."""
-    u0 = np.asarray(u0, dtype=float)
-    rho2 = inertia / mass
-    kappa = 0.5 * slip_ratio(points, weights, math.sqrt(rho2))
-    speed = math.sqrt(u0[0] ** 2 + u0[1] ** 2 + rho2 * u0[2] ** 2)
-    if speed == 0.0:
-        return 0.0
-    return speed / (g * law.min_tangential() * kappa)
-
-
 # ----------------------------------------------------------------------------- solver
 
 def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: float,
@@ -285,7 +216,7 @@ def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: floa
 
     mass (kg), inertia (kg m^2 about the centre of mass), u0 = (vx, vy, omega) (m/s, rad/s),
     q0 = (x, y, theta), dt (s); t_end None: until rest (needs no external force; the end
-    time is :func:`rest_time`, refused when too long); until_rest: with t_end, also stop
+    time is :func:`~asperity.dynamics.body_horizon.rest_time`, refused when too long); until_rest: with t_end, also stop
     there if the body comes to rest first (without a force);
     force: a :class:`~asperity.dynamics.moreau.Force` (fx, fy, torque), constant or periodic;
     texture_angle_deg: angle of the law's t_a axis from x.  Returns a :class:`BodyResult`."""

@@ -229,7 +229,8 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
     Returns a :class:`BodySlide` (its ``summary`` is the JSON of ``asperity slide --body``).
     """
     from ..laws.planar import PlanarLaw
-    from .body import BodySettings, rest_time, simulate_body
+    from .body import BodySettings, simulate_body
+    from .body_horizon import rest_time
     from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
     check_instance("law", law, PlanarLaw)
     b = _as_body(body, mass, inertia)

@@ -63,8 +63,7 @@ WAVEFORMS = {"none": 0, "square": 1, "sine": 2}
 
 
 def check_t_end(name: str, t_end, dt: float) -> float:
-    """``t_end`` (s) in (0, 1e9] and at least one step ``dt``, else one line naming ``name``
-    (a run of zero steps has nothing to report)."""
+    """``t_end`` (s) in (0, 1e9] and at least one step ``dt``, else one line naming ``name``."""
     t = check_range(name, t_end, 0.0, LIMITS["t_end"][1], low_open=True, unit="s")
     if t < dt * (1.0 - 1e-12):
         raise InputError(f"{name} must be at least one time step (dt = {dt:g} s), got {t:g} s")
