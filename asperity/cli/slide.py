@@ -177,7 +177,7 @@ def _build(args):
 
 def run(args):
     """Python API of the command: (law, Result, the JSON object printed with --json)."""
-    from ..dynamics.moreau import LIMITS, MAX_STEPS, Settings, point_mass, simulate
+    from ..dynamics.moreau import LIMITS, MAX_STEPS, Settings, check_t_end, point_mass, simulate
     from ..dynamics.summary import path_csv, slide_summary
     from ..errors import InputError, check_int, check_range
     u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
@@ -196,7 +196,7 @@ def run(args):
     if halt:
         t_end = 1.5 * u0 / (g * law.min_tangential()) + 10 * dt
     else:
-        t_end = check_range("--t-end", args.t_end, 0.0, 1e9, unit="s")
+        t_end = check_t_end("--t-end", args.t_end, dt)
     n = int(round(t_end / dt))
     if n > MAX_STEPS:
         raise InputError(f"--t-end / --dt gives {n:.3g} steps, at most {MAX_STEPS:.0e}: raise "
@@ -278,7 +278,7 @@ def run_body(args):
     :func:`asperity.dynamics.body_api.slide_body`."""
     from ..dynamics.body import BodySettings
     from ..dynamics.body_api import make_body, slide_body
-    from ..dynamics.moreau import LIMITS
+    from ..dynamics.moreau import LIMITS, check_t_end
     from ..errors import InputError, check_int, check_range
     u0 = check_range("--u0", args.u0, 0.0, 1e4, unit="m/s")
     angle = check_range("--angle", args.angle, -360.0, 360.0, unit="deg")
@@ -291,7 +291,7 @@ def run_body(args):
     tex = 0.0 if args.texture_angle is None else \
         check_range("--texture-angle", args.texture_angle, -360.0, 360.0, unit="deg")
     t_end = None if args.t_end is None else \
-        check_range("--t-end", args.t_end, *LIMITS["t_end"], unit="s")
+        check_t_end("--t-end", args.t_end, dt)
     force = _force(args)
     law, how = _build(args)
     body = make_body(args.body, radius=args.radius, size=args.size,

@@ -95,7 +95,8 @@ def _eval(kind, par, tab, gx, gy, out):
 @njit(cache=True)
 def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=-1):
     """R(u) = M (u - uf) + sum lam_i W_i c_i (want_hull: the hull's gradient instead of c and
-    its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i."""
+    its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i.
+    skip >= 0: leave out point ``skip`` and every point at the same spot (its group)."""
     for j in range(3):
         R[j] = md[j] * (u[j] - uf[j])
         for k in range(3):
@@ -116,7 +117,7 @@ def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=
         if r2 < rmin:
             rmin = r2
             imin = i
-        if i == skip:
+        if skip >= 0 and oxi == ox[skip] and oyi == oy[skip]:
             continue
         _eval(kind, par, tab, gx, gy, ev)
         li = lam[i]
@@ -214,3 +215,51 @@ def _ray(d, b, md, ox, oy, lam, kind, par, tab, ev):
         _eval(kind, par, tab, gx, gy, ev)
         num -= lam[i] * (ev[0] * gx + ev[1] * gy)
     return num / den
+
+
+@njit(cache=True)
+def _group_load(ox, oy, lam, j):
+    """The normal impulse of point j's group: the points at exactly its spot (they slip and
+    stick together)."""
+    s = 0.0
+    for i in range(ox.shape[0]):
+        if ox[i] == ox[j] and oy[i] == oy[j]:
+            s += lam[i]
+    return s
+
+
+@njit(cache=True)
+def _slip_towards(kind, par, tab, cx, cy):
+    """The slip direction psi (rad) whose sliding force c(psi) points along (cx, cy): the
+    normal of the ellipse at its point in that direction (closed form), else the table's
+    direction whose force makes the least angle with it, refined linearly to the crossing
+    of the cross product with its neighbours."""
+    if kind == KIND_ELLIPSE:
+        co, si = par[4], par[5]
+        la = co * cx + si * cy
+        lb = -si * cx + co * cy
+        A = par[0] if la >= 0.0 else par[1]
+        B = par[2] if lb >= 0.0 else par[3]
+        na = la / (A * A)
+        nb = lb / (B * B)
+        return math.atan2(si * na + co * nb, co * na - si * nb)
+    K = tab.shape[0] - 1
+    best = -2.0
+    kb = 0
+    cn = math.sqrt(cx * cx + cy * cy)
+    for k in range(K):
+        a = tab[k, 0]
+        b = tab[k, 1]
+        v = (a * cx + b * cy) / (math.sqrt(a * a + b * b) * cn + 1e-300)
+        if v > best:
+            best = v
+            kb = k
+    dpsi = TWO_PI / K
+    x0 = tab[kb, 0] * cy - tab[kb, 1] * cx
+    for k2 in (kb + 1, kb - 1):
+        kk = k2 % K
+        x1 = tab[kk, 0] * cy - tab[kk, 1] * cx
+        if x0 == 0.0 or (x0 > 0.0) != (x1 > 0.0):
+            t = x0 / (x0 - x1) if x0 != x1 else 0.0
+            return (kb + t * (k2 - kb)) * dpsi
+    return kb * dpsi

@@ -9,15 +9,20 @@ import math
 import numpy as np
 from numba import njit
 
-from ._body_law_kernels import _assemble, _eval, _gauge, _merit, _ray, _solve3
+from ._body_law_kernels import (_assemble, _eval, _gauge, _group_load, _merit, _ray,
+                                _slip_towards, _solve3)
 
 
 @njit(cache=True)
-def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
+def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     """The step's solution with point j sticking: u = omega (oy_j, -ox_j, 1) (a rotation
     about point j, its slip exactly 0), omega from R(u) . n = 0 by a safeguarded 1D Newton;
-    accepted (u overwritten, True) if point j's reaction c_j = -(R_x, R_y) / lambda_j lies
-    in C.  This is where F is not differentiable: plain Newton cannot converge there."""
+    accepted (u overwritten, True) if the reaction of point j's group (the points at its
+    spot, load lambda_g) c = -(R_x, R_y) / lambda_g lies in C.  This is where F is not
+    differentiable: plain Newton cannot converge there.  Otherwise cw = (c_x, c_y, omega)
+    of that solution with cw[2] NaN if the 1D solve failed: the reaction lies outside C,
+    the group slides slowly and its slip direction is the one whose force points along
+    c (:func:`_polar` starts there)."""
     un = np.empty(3)
     n0 = oy[j]
     n1 = -ox[j]
@@ -53,11 +58,16 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
             ok = True
             break
         w = wn
+    cw[2] = np.nan
     if not ok:
         return False
-    cx = -R[0] / lam[j]
-    cy = -R[1] / lam[j]
+    lg = _group_load(ox, oy, lam, j)
+    cx = -R[0] / lg
+    cy = -R[1] / lg
     if _gauge(kind, par, tab, cx, cy) > 1.0 + 1e-12:
+        cw[0] = cx
+        cw[1] = cy
+        cw[2] = w
         return False
     for k in range(3):
         u[k] = un[k]
@@ -65,12 +75,16 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
 
 
 @njit(cache=True)
-def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
+def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     """The step's solution with point j sliding slowly: unknowns (rho, phi, omega) with
     gamma_j = rho (cos phi, sin phi) and u = (gamma_j + omega (oy_j, -ox_j), omega).  In
-    these coordinates point j's force c(phi) is smooth even at rho = 0, where F has its kink
+    these coordinates the force c(phi) of point j's group (the points at its spot) is smooth
+    even at rho = 0, where F has its kink
     (plain Newton on u then only creeps).  Newton on the three equations R = 0 with a
-    backtracking search on |R|; accepted (u overwritten, True) on convergence with rho >= 0."""
+    backtracking search on |R| that keeps rho >= 0; accepted (u overwritten, True) on
+    convergence.  Starts from the pivot about point j found by :func:`_kink` (cw, rho = 0,
+    phi the slip direction whose force points along the reaction the pivot needs: exact as
+    rho -> 0) when there is one, else from u."""
     un = np.empty(3)
     x = np.empty(3)
     dx = np.empty(3)
@@ -78,12 +92,18 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
     Jp = np.empty((3, 3))
     oxj = ox[j]
     oyj = oy[j]
-    gx = u[0] - u[2] * oyj
-    gy = u[1] + u[2] * oxj
-    x[0] = math.sqrt(gx * gx + gy * gy)
-    x[1] = math.atan2(gy, gx)
-    x[2] = u[2]
-    lj = lam[j]
+    if math.isfinite(cw[2]):
+        # from the pivot about point j, sliding the way its needed reaction points
+        x[0] = 0.0
+        x[1] = _slip_towards(kind, par, tab, cw[0], cw[1])
+        x[2] = cw[2]
+    else:
+        gx = u[0] - u[2] * oyj
+        gy = u[1] + u[2] * oxj
+        x[0] = math.sqrt(gx * gx + gy * gy)
+        x[1] = math.atan2(gy, gx)
+        x[2] = u[2]
+    lj = _group_load(ox, oy, lam, j)
     rn = np.inf
     for it in range(40):
         # residual at x (and its norm), Jacobian
@@ -119,7 +139,12 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev):
             R[k] = -R[k]
         if not _solve3(Jp, R, dx):
             return False
+        # the slip rho stays >= 0 (a negative one would turn the force along the slip)
         step = 1.0
+        if x[0] + dx[0] < 0.0:
+            step = 0.5 * x[0] / -dx[0]
+            if step <= 0.0:
+                return False
         ok = False
         for _ in range(40):
             for k in range(3):
@@ -248,10 +273,35 @@ def _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tolG, maxit, R, J, ev, wo
 
 
 @njit(cache=True)
+def _accept(f, f2, g0, R, dx, rn, rn2, step, assoc, noise):
+    """Whether the line search takes the step: the merit falls (Armijo, c1 = 1e-4), or, for
+    the convex F of an associated law, where F's change is below its own rounding (it sums
+    n + 3 terms: a Newton step near the solution changes it by ~|R|^2, which vanishes in
+    the rounding long before the residual is within tolerance), the approximate Wolfe
+    conditions of Hager and Zhang (SIAM J. Optim. 16, 2005) on the slope F'(s) = R(s).dx,
+    which is computed without cancellation: 0.9 F'(0) <= F'(s) <= 0.8 |F'(0)| (on a
+    quadratic F these imply Armijo with c1 = 0.1).  A slope that is still at most 1e-4 of
+    the first one (F'(s) <= 1e-4 F'(0)) implies Armijo on a convex F outright:
+    F(s) - F(0) <= s F'(s).  For the residual's merit 1/2 |R|^2 (non-associated laws) a
+    decrease of |R|, which is resolved down to the rounding of R itself."""
+    if not assoc:
+        return rn2 < rn
+    if f2 <= f + 1e-4 * step * g0:
+        return True
+    g2 = R[0] * dx[0] + R[1] * dx[1] + R[2] * dx[2]
+    if g2 <= 1e-4 * g0:
+        return True
+    return abs(f2 - f) <= noise * abs(f) and 0.9 * g0 <= g2 <= -0.8 * g0
+
+
+@njit(cache=True)
 def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J, ev, dx, un):
     """Newton with a backtracking line search on R(u) = 0 from u (overwritten).
     Returns (iterations, converged, final relative residual measure)."""
     f = _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
+    # rounding of the merit: F sums n + 3 positive terms (associated); the residual's
+    # merit is resolved down to the rounding of R itself, far below the tolerance
+    noise = (ox.shape[0] + 4) * 2.3e-16
     rn = 0.0
     for it in range(1, maxit + 1):
         rn = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
@@ -261,6 +311,14 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             R[j] = -R[j]
         if not _solve3(J, R, dx):
             return it, False, rn
+        if (abs(dx[0]) <= 4e-16 * abs(u[0]) and abs(dx[1]) <= 4e-16 * abs(u[1])
+                and abs(dx[2]) <= 4e-16 * abs(u[2])):
+            # the Newton step is below the rounding of u: the residual is at its floor
+            # (near a point that almost sticks, dc/dgamma ~ 1/|gamma| amplifies the
+            # rounding of u); within 1e3 of the tolerance that is convergence
+            return it, rn <= 1e3 * tol_r, rn
+        # slope of the merit along dx at the start: F' = R.dx (associated), |R|^2' = -2|R|^2
+        g0 = -(R[0] * dx[0] + R[1] * dx[1] + R[2] * dx[2])
         step = 1.0
         ok = False
         for _ in range(60):
@@ -268,9 +326,7 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
                 un[j] = u[j] + step * dx[j]
             f2 = _merit(un, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
             rn2 = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
-            # F cannot resolve changes below its rounding (~1e-16 F) while the residual
-            # still can: a full step that lowers the residual is taken too
-            if f2 < f or (f2 <= f + 1e-15 * abs(f) and rn2 < rn):
+            if _accept(f, f2, g0, R, dx, rn, rn2, step, assoc, noise):
                 ok = True
                 break
             step *= 0.5
@@ -282,11 +338,12 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             # the Newton step was damped next to a point that (nearly) sticks: try the
             # solution with that point sticking exactly
             jk = int(ev[13])
-            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev):
+            cw = np.empty(3)
+            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
                 return it, True, 0.0
             for k in range(3):
                 dx[k] = un[k]
-            if _polar(dx, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev):
+            if _polar(dx, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
                 for k in range(3):
                     u[k] = dx[k]
                 return it, True, 0.0

@@ -32,12 +32,21 @@ One step solves for the three velocities, not for 2N impulses (:mod:`._body_kern
   points, O(1/N).
 * **Sliding.**  Newton with a backtracking line search on
   R(u) = M (u - u_free) + sum_i lambda_i W_i c(gamma_i / |gamma_i|) = 0 (c the law's sliding
-  force per unit normal load, ``PlanarLaw.force``), merit F for associated laws (globally
-  convergent: F is convex), 1/2 |R|^2_M^-1 for non-associated ones, started from the
-  extrapolation 2 u_A - u_{A-1} (one or two iterations a step on a smooth motion).  Where
-  one point nearly sticks, F has a kink that Newton only creeps towards: the kernel then
-  solves with that point sticking exactly (a rotation about it, accepted if its reaction
-  lies in C) or in polar coordinates of that point's slip (smooth through the kink).
+  force per unit normal load, ``PlanarLaw.force``), started from the extrapolation
+  2 u_A - u_{A-1} (one or two iterations a step on a smooth motion).  Merit: the convex F for
+  associated laws, 1/2 |R|^2_M^-1 for non-associated ones.  F sums n + 3 positive terms, so
+  near the solution a Newton step changes it by ~|R|^2, far below its rounding: within that
+  band the step is judged by F's slope R.dx (Hager and Zhang's approximate Wolfe
+  conditions), which has no cancellation (F alone made a no-spin disc creep, 65 iterations
+  a step).  A Newton step below the rounding of u ends the solve (within 1e3 tol).
+* **Pivots.**  Where one point (with every point at exactly its spot: a group) nearly
+  sticks, F has a kink that Newton only creeps towards.  The kernel solves with that group
+  sticking exactly (a rotation about it), accepted if the group's reaction lies in conv C;
+  otherwise the group slides slowly, and the step is solved in polar coordinates of its
+  slip (smooth through the kink) from the pivot, in the slip direction whose force points
+  along the reaction the pivot needed (exact as the slip -> 0), the slip kept >= 0.  A moving
+  rigid body has at most one such spot (two would stop it).  Footprints whose points all
+  coincide are refused: nothing stops their spin.
 * **Laws.**  Closed forms for the associated disc and (truncated) ellipse; for every other
   law tables of c(psi) and of the normal point of conv C on TABLE_SIZE = 8192 uniform
   directions, linearly interpolated: the error is at most dpsi^2/8 max|c''| = 7e-8 max|c''|
@@ -47,6 +56,8 @@ One step solves for the three velocities, not for 2N impulses (:mod:`._body_kern
   (dE = -P.gamma_E - 1/2 P^T W^T M^-1 W P <= 0): the kinetic energy never increases without
   an external force (tested on random footprints, starts and laws).
 
+Until rest: the run ends at :func:`~asperity.dynamics.body_horizon.rest_time`, a bound
+from the least slip per unit of motion (refused, saying why, when too long to compute).
 Stop times: ``stop_time`` is exact (u_E = 0 bit for bit); a uniformly loaded disc and a ring
 stop sliding and spinning at the same step (tested).  ``slide_stop_time`` and
 ``spin_stop_time`` use STOP_FRACTION of the initial velocity scale (a spin from rest keeps
@@ -62,15 +73,14 @@ import numpy as np
 from ..errors import InputError, check_array, check_instance, check_int, check_range
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
-from .moreau import LIMITS, MAX_STEPS, Force
+from .body_horizon import rest_time
+from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
 
 #: most contact points of a footprint (the kernel's memory is a few arrays of this length)
 MAX_POINTS = 1_000_000
 #: velocities below this fraction of the initial velocity scale count as zero for the
 #: separate slide / spin stop times (the joint stop time is exact: u_E = 0 bit for bit)
 STOP_FRACTION = 1e-10
-#: safety factor of the horizon used when t_end is None (see :func:`rest_horizon`)
-HORIZON_FACTOR = 1.5
 
 
 @dataclass(frozen=True)
@@ -165,6 +175,12 @@ def _check_points(points, weights) -> tuple[np.ndarray, np.ndarray]:
     if np.any(np.abs(p) > 1e3):
         raise InputError(f"points must lie within 1 km of the centre of mass, got "
                          f"{np.abs(p).max():g} m")
+    spread = float(np.ptp(p, axis=0).max())
+    if spread <= 1e-12:
+        raise InputError(f"points must not all lie at one spot (they span {spread:g} m): such "
+                         "a footprint has no friction torque against a rotation about that "
+                         "spot, so its spin never stops; use the point mass (asperity.slide, "
+                         "--body point) or a footprint with an extent")
     w = np.array(check_array("weights", weights, ndim=1), dtype=float)
     if w.shape != (n,):
         raise InputError(f"weights must have shape ({n},) (one per point), got {w.shape}")
@@ -188,40 +204,20 @@ def _turn_force(force: Force, a: float) -> Force:
                  period=force.period, waveform=force.waveform)
 
 
-def rest_horizon(points, weights, law: PlanarLaw, mass: float, inertia: float, u0, g: float
-                 ) -> float:
-    """A time by which a body with no external force is surely at rest.
-
-    With |u|_* = sqrt(v^2 + (I/m) omega^2) the friction power is at least
-    m g mu_min sum_i w_i |gamma_i| >= m g mu_min kappa |u|_*, kappa = min over unit u of
-    sum_i w_i |W_i^T u| (sampled on 2000 directions, then halved for safety), so
-    d|u|_*/dt <= -g mu_min kappa and the body stops before |u0|_* / (g mu_min kappa)."""
-    u0 = np.asarray(u0, dtype=float)
-    rho2 = inertia / mass
-    n = 2000
-    k = np.arange(n) + 0.5
-    z = 1.0 - 2.0 * k / n
-    ph = math.pi * (1.0 + 5 ** 0.5) * k
-    r = np.sqrt(1.0 - z * z)
-    d = np.column_stack([r * np.cos(ph), r * np.sin(ph), z / math.sqrt(rho2)])  # |d|_* = 1
-    gx = d[:, 0:1] - d[:, 2:3] * points[None, :, 1]
-    gy = d[:, 1:2] + d[:, 2:3] * points[None, :, 0]
-    kappa = 0.5 * float((np.hypot(gx, gy) @ weights).min())
-    speed = math.sqrt(u0[0] ** 2 + u0[1] ** 2 + rho2 * u0[2] ** 2)
-    return speed / (g * law.min_tangential() * kappa)
-
-
 # ----------------------------------------------------------------------------- solver
 
 def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: float,
                   u0=(0.0, 0.0, 0.0), q0=(0.0, 0.0, 0.0), dt: float, t_end: float | None = None,
                   force: Force | None = None, g: float = 9.81, texture_angle_deg: float = 0.0,
-                  settings: BodySettings = BodySettings(), record_every: int = 1) -> BodyResult:
+                  settings: BodySettings = BodySettings(), record_every: int = 1,
+                  until_rest: bool = False) -> BodyResult:
     """Slide and spin a rigid body with its footprint sampled at ``points`` (n, 2) (body frame,
     m, origin at the centre of mass) carrying ``weights`` (n,) of the load (> 0, sum 1).
 
     mass (kg), inertia (kg m^2 about the centre of mass), u0 = (vx, vy, omega) (m/s, rad/s),
-    q0 = (x, y, theta), dt (s); t_end None: until rest (needs no external force);
+    q0 = (x, y, theta), dt (s); t_end None: until rest (needs no external force; the end
+    time is :func:`~asperity.dynamics.body_horizon.rest_time`, refused when too long); until_rest: with t_end, also stop
+    there if the body comes to rest first (without a force);
     force: a :class:`~asperity.dynamics.moreau.Force` (fx, fy, torque), constant or periodic;
     texture_angle_deg: angle of the law's t_a axis from x.  Returns a :class:`BodyResult`."""
     check_instance("law", law, PlanarLaw)
@@ -243,15 +239,14 @@ def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: floa
     a = math.radians(check_range("texture_angle_deg", texture_angle_deg, -360.0, 360.0,
                                  unit="deg"))
     record_every = check_int("record_every", record_every, 1, int(MAX_STEPS))
-    halt = t_end is None
+    halt = t_end is None or (bool(until_rest) and force is None)
     if t_end is None:
         if force is not None:
             raise InputError("t_end must be given with an external force (the body need not "
                              "come to rest)")
-        t_end = HORIZON_FACTOR * rest_horizon(pts, w, law, mass, inertia, u0, g) + 10 * dt
-        t_end = min(t_end, LIMITS["t_end"][1])
+        t_end = rest_time(pts, w, law, mass, inertia, u0, g, dt)
     else:
-        t_end = check_range("t_end", t_end, *LIMITS["t_end"], unit="s")
+        t_end = check_t_end("t_end", t_end, dt)
     n_steps = int(round(t_end / dt))
     check_work(n_steps * max(1.0, pts.shape[0] / 16.0), MAX_STEPS,
                "this simulation (t_end / dt times the contact points / 16)",

@@ -229,8 +229,9 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
     Returns a :class:`BodySlide` (its ``summary`` is the JSON of ``asperity slide --body``).
     """
     from ..laws.planar import PlanarLaw
-    from .body import HORIZON_FACTOR, BodySettings, rest_horizon, simulate_body
-    from .moreau import LIMITS, MAX_STEPS, Force
+    from .body import BodySettings, simulate_body
+    from .body_horizon import rest_time
+    from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
     check_instance("law", law, PlanarLaw)
     b = _as_body(body, mass, inertia)
     u0 = check_range("u0", u0, *LIMITS["u0"], unit="m/s")
@@ -250,19 +251,19 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
     a = math.radians(angle)
     u_start = (u0 * math.cos(a), u0 * math.sin(a), omega0)
     if t_end is None:
-        horizon = min(HORIZON_FACTOR * rest_horizon(fp.points, fp.weights, law, b.mass,
-                                                    b.inertia, np.array(u_start), g)
-                      + 10 * dt, LIMITS["t_end"][1])
+        horizon = rest_time(fp.points, fp.weights, law, b.mass, b.inertia,
+                            np.array(u_start), g, dt)
     else:
-        horizon = t_end = check_range("t_end", t_end, *LIMITS["t_end"], unit="s")
+        horizon = t_end = check_t_end("t_end", t_end, dt)
     n = round(horizon / dt)
     if n > MAX_STEPS:
         raise InputError(f"t_end / dt gives {n:.3g} steps, at most {MAX_STEPS:.0e}: raise dt "
                          "or lower t_end")
     rec = max(1, -(-n // MAX_RECORDS))
     res = simulate_body(fp.points, fp.weights, law, mass=b.mass, inertia=b.inertia,
-                        u0=u_start, dt=dt, t_end=t_end, force=force, g=g,
-                        texture_angle_deg=tex, settings=settings, record_every=rec)
+                        u0=u_start, dt=dt, t_end=horizon, force=force, g=g,
+                        texture_angle_deg=tex, settings=settings, record_every=rec,
+                        until_rest=t_end is None)
     summary = body_summary(law, b, res, u0=u0, angle_deg=angle, omega0=omega0, g=g, dt=dt,
                            t_end=t_end, force=force, texture_angle_deg=tex,
                            tol=settings.tol, record_every=rec)

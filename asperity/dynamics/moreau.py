@@ -62,6 +62,14 @@ STEPS_PER_PIECE = 50_000
 WAVEFORMS = {"none": 0, "square": 1, "sine": 2}
 
 
+def check_t_end(name: str, t_end, dt: float) -> float:
+    """``t_end`` (s) in (0, 1e9] and at least one step ``dt``, else one line naming ``name``."""
+    t = check_range(name, t_end, 0.0, LIMITS["t_end"][1], low_open=True, unit="s")
+    if t < dt * (1.0 - 1e-12):
+        raise InputError(f"{name} must be at least one time step (dt = {dt:g} s), got {t:g} s")
+    return t
+
+
 @dataclass(frozen=True)
 class Settings:
     """Fixed-point iteration settings.
@@ -287,7 +295,7 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
     if np.any(np.abs(q0) > 1e9):
         raise InputError(f"q0 must be positions within +-1e9 m, got {q0}")
     dt = check_range("dt", dt, *LIMITS["dt"], unit="s")
-    t_end = check_range("t_end", t_end, 0.0, LIMITS["t_end"][1], unit="s")
+    t_end = check_t_end("t_end", t_end, dt)
     g = check_range("g", g, *LIMITS["g"], unit="m/s^2")
     n_steps = int(round(t_end / dt))
     check_work(n_steps, MAX_STEPS, "this simulation (t_end / dt)", "raise dt or lower t_end")
