@@ -83,6 +83,7 @@ _LAZY = {
     "spin_drift_force": "asperity.bodies.closed_forms",
     "disc_reference": "asperity.bodies.closed_forms",
     "slide_body": "asperity.dynamics.body_api",
+    "Force": "asperity.dynamics.force",
     "AsperityError": "asperity.errors",
     "InputError": "asperity.errors",
 }

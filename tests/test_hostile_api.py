@@ -118,6 +118,7 @@ def api_table(folder: Path) -> list[Row]:
     shape_args = dict(contact_points=16, profile="linear", centre_of_pressure=(0.0, 0.0))
     shape_words = {"profile": ("pressure_profile",)}
     disc_fp = A.disc_footprint(1.0, contact_points=16)
+    force_part = array(-1e12, 1e12, extra=[("shape", "4 values", [1.0, 2.0, 3.0, 4.0])])
     rows = [
         Row("Footprint", A.Footprint,
             dict(kind="disc", points=disc_fp.points, weights=disc_fp.weights,
@@ -184,6 +185,11 @@ def api_table(folder: Path) -> list[Row]:
                  force=instance(none=True, extra=[
                      ("range", "a load without t_end", Force(constant=(1.0, 0.0, 0.0)))]),
                  texture_angle_deg=number(-360.0, 360.0), settings=instance(none=True))),
+        Row("Force", A.Force,
+            dict(constant=(1.0, 0.0, 0.0), amplitude=(0.0, 0.5, 0.01), period=1.0,
+                 waveform="sine"),
+            dict(constant=force_part, amplitude=force_part, period=number(1e-9, 1e9),
+                 waveform=choice())),
         Row("WedgeTexture", A.WedgeTexture,
             dict(alpha_deg=30, beta_deg=10, mu_alpha=0.1, mu_beta=0.2, height=1e-6),
             dict(alpha_deg=angle_deg, beta_deg=angle_deg, mu_alpha=mu, mu_beta=mu,

@@ -51,7 +51,7 @@ def test_python_api_blocks_run_as_written(in_project, capsys):
     assert out[1] == "t_a at 0.0 deg, mu_a+ = 0.185697"              # the mesh: same wedge
     assert out[2].startswith("max radial error") and (in_project / "wedge-star.json").is_file()
     assert re.match(r"rest at \(0\.\d+, 0\.\d+\) m after 0\.\d+ s, deflected [+-]\d", out[3])
-    assert out[4].startswith("ratchet: +0.27") and "364 cycles" in out[4]   # as Set-up says
+    assert out[4].startswith("ratchet: 364 cycles to 0.1 mm") and "+0.27" in out[4]  # Set-up
 
 
 def test_the_documented_commands_exist():

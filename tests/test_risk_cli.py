@@ -67,6 +67,47 @@ def test_shipped_examples_give_both_verdicts(capsys, asm, verdict):
     assert d2["verdict"] == verdict and d2["mu_plus"] == pytest.approx(d["mu_plus"])
 
 
+@pytest.mark.parametrize("argv", [
+    ("wedge-asymmetric.toml", "bushing-strip.toml"),                  # 0.27 m for a 40 mm part
+    ("wedge-asymmetric.toml", "bushing-strip.toml", "--cycles", "100"),          # 28 um: short
+    ("wedge-asymmetric.toml", "bushing-strip.toml", "--cycles", "1"),            # marched
+    ("bushing-strip-mild.toml",),                                      # no drift: never
+    ("two-node-spec.toml", "--tolerance", "1"),                        # towards -x
+])
+def test_the_verdict_leads_with_the_cycles_to_the_tolerance(capsys, argv):
+    """As the web page: the verdict's words, then its first number is the cycles until the
+    tolerance is used up, then the drift per cycle and the drift over the life; that drift
+    is flagged when longer than the part (l or l0), and an extrapolated one says what the
+    extrapolation ignores."""
+    args = [SURF / a if a.endswith(".toml") else a for a in argv]
+    d = risk_json(capsys, *args)
+    code, out, _ = run(capsys, "risk", *args)
+    assert code == 0
+    lines = out.splitlines()
+    k = next(i for i, x in enumerate(lines) if x.startswith("verdict: "))
+    assert not any(ch.isdigit() for ch in lines[k]), lines[k]
+    block = lines[k + 1:]
+    first = next(x for x in block if any(ch.isdigit() for ch in x))
+    c = d["cycles_to_tolerance"]
+    assert first == f"  cycles to tolerance: {'never' if c is None else f'{c:,}'} (until a " \
+                    f"drift of {d['tolerance_m'] * 1e3:g} mm)", first
+    heads = [x.split(":")[0] for x in block]
+    cycles = f"{int(d['cycles']):,} cycle" + "s" * (d["cycles"] != 1)
+    assert heads[:3] == ["  cycles to tolerance", "  drift per cycle",
+                         f"  drift after {cycles}"], heads
+    length = d["assembly"]["l"] if "l" in d["assembly"] else d["assembly"]["l0"]
+    beyond = abs(d["drift_after_cycles_m"]) > length
+    assert ("MORE THAN THE PART'S LENGTH" in block[2]) == beyond, (block[2], length)
+    ignores = [x for x in block if "ignores what changes over a life (wear, friction, "
+               "temperatures) and any stop or clearance that holds the part" in x]
+    assert len(ignores) == int(d["extrapolated"]), block
+    if ignores:
+        assert block.index(ignores[0]) == 3
+        assert ("more than the part's length" in ignores[0]) == beyond
+    assert "extrapolated" in block[2] if d["extrapolated"] else "marched cycle by cycle" \
+        in block[2]
+
+
 def test_two_node_json_against_spec(capsys):
     t0 = time.perf_counter()
     d = risk_json(capsys, SURF / "two-node-spec.toml", "--cycles", "1e6", "--tolerance", "1")

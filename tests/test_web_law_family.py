@@ -189,7 +189,8 @@ def test_slide_on_the_family_at_the_pressure_given(site, fitted):
     for v in ("", "abc", "nan", "inf", "-1", "0", "1e999", "4.9e7", "8.01e8"):
         where, msg = slide_error(c, {"law": f"job:{fit}", **SLIDE, FIELD: v})
         assert where == FIELD and "nominal pressure" in msg, (v, where, msg)
-    assert "5e+07 to 8e+08 Pa" in slide_error(c, {"law": f"job:{fit}", **SLIDE})[1]
+    assert "50 MPa to 800 MPa" in slide_error(c, {"law": f"job:{fit}", **SLIDE})[1]
+    assert "(got 49 MPa)" in slide_error(c, {"law": f"job:{fit}", **SLIDE, FIELD: "4.9e7"})[1]
     rests = []
     for p in (2e8, 8e8):
         jid = job(c, c.post("/motion/slide", data={"law": f"job:{fit}", **SLIDE,
@@ -213,7 +214,7 @@ def test_slide_on_an_uploaded_family_and_a_single_law_needs_no_pressure(site, fi
     surf, _, out, _ = fitted
     files = [("gauge", ("cli_family.json", out.read_bytes()))]
     where, msg = slide_error(c, {"law": "upload", **SLIDE}, files)
-    assert where == FIELD and "5e+07 to 8e+08 Pa" in msg
+    assert where == FIELD and "50 MPa to 800 MPa" in msg
     jid = job(c, c.post("/motion/slide", data={"law": "upload", **SLIDE, FIELD: "1e8"},
                         files=files))                 # between two members: interpolated
     want = cli("slide", out, "--pressure", "1e8", "--u0", "0.5", "--angle", "30",

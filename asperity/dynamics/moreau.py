@@ -45,11 +45,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_array, check_choice, check_instance, check_int, check_range
-from ..laws.planar import PlanarLaw
 from .. import progress
+from ..errors import InputError, check_array, check_instance, check_int, check_range
+from ..laws.planar import PlanarLaw
 from ..progress import chunks
 from ..resources import check_memory, check_work
+from .force import Force
 
 STATUS_NAMES = {0: "ok", 1: "not-converged", 2: "non-finite"}
 #: physically meaningful ranges (SI units) of the solver's inputs
@@ -59,7 +60,6 @@ LIMITS = {"dt": (1e-9, 1.0), "t_end": (0.0, 1e9), "g": (1e-6, 1e4), "mass": (1e-
 MAX_STEPS = 5e8
 #: steps per kernel call for one contact (about 0.1 s with the slowest, star-shaped, law)
 STEPS_PER_PIECE = 50_000
-WAVEFORMS = {"none": 0, "square": 1, "sine": 2}
 
 
 def check_t_end(name: str, t_end, dt: float) -> float:
@@ -181,44 +181,6 @@ class Body:
 def point_mass(law: PlanarLaw, mass: float = 1.0) -> Body:
     """A point mass on one contact."""
     return Body(mass=mass, laws=(law,))
-
-
-@dataclass(frozen=True)
-class Force:
-    """External force (N; torque N m for a rigid body): f(t) = constant + amplitude w(t),
-    w the square wave (+1 on the first half of each period, -1 on the second), sin(2 pi t / T)
-    or 0 (waveform "none").  Evaluated at the step midpoints."""
-
-    constant: tuple = (0.0, 0.0, 0.0)
-    amplitude: tuple = (0.0, 0.0, 0.0)
-    period: float = 1.0
-    waveform: str = "none"
-
-    def __post_init__(self):
-        check_choice("waveform", self.waveform, tuple(WAVEFORMS))
-        check_range("period", self.period, 1e-9, 1e9, unit="s")
-        for name in ("constant", "amplitude"):
-            v = np.zeros(3)
-            a = check_array(name, getattr(self, name)).ravel()
-            if a.size > 3 or np.any(np.abs(a) > 1e12):
-                raise InputError(f"{name} must be up to 3 numbers (fx, fy, torque) within "
-                                 f"+-1e12, got {a}")
-            v[:a.size] = a
-            object.__setattr__(self, name, tuple(float(x) for x in v))
-
-    def params(self) -> np.ndarray:
-        return np.array([WAVEFORMS[self.waveform], self.period, *self.constant, *self.amplitude])
-
-    def __call__(self, t) -> np.ndarray:
-        """(m, 3) force at the times t."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        if self.waveform == "square":
-            w = np.where(np.mod(t / self.period, 1.0) < 0.5, 1.0, -1.0)
-        elif self.waveform == "sine":
-            w = np.sin(2 * np.pi * t / self.period)
-        else:
-            w = np.zeros_like(t)
-        return np.asarray(self.constant)[None, :] + w[:, None] * np.asarray(self.amplitude)[None, :]
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,12 @@ def _len(x) -> str:
     return f"{x * 1e6:+.4g} um"
 
 
+def _cycles(n) -> str:
+    """A number of cycles as the web page writes it (1,000,000; 364; 2.5e+09)."""
+    x = float(n)
+    return f"{int(x):,}" if x.is_integer() and abs(x) < 1e9 else f"{x:.4g}"
+
+
 def format_text(out: dict) -> str:
     a = out["assembly"]
     f = out["friction"]
@@ -56,26 +62,7 @@ def format_text(out: dict) -> str:
     if v == "slides-off":
         lines.append(f"verdict: SLIDES OFF -- {out['reason']}")
     else:
-        d = out["drift_per_cycle_m"]
-        st = out["stabilised_at_cycle"]
-        stab = f"stabilised from cycle {st}" if st else "NOT stabilised"
-        if v == "ratchet":
-            lines.append(f"verdict: RATCHET -- {_len(d)} per cycle (towards "
-                         f"{out['drift_direction']}), {stab}")
-        elif v == "alternating-slip":
-            lines.append(f"verdict: ALTERNATING SLIP -- sliders slip back and forth every "
-                         f"cycle (fretting), no net drift, {stab}")
-        else:
-            lines.append(f"verdict: SHAKEDOWN -- no slip after the first cycles, no drift, "
-                         f"{stab}")
-        how = (f"extrapolated from {out['cycles_marched']} marched cycles"
-               if out.get("extrapolated") else "marched")
-        lines.append(f"  displacement after {out['cycles']:g} cycles: "
-                     f"{_len(out['drift_after_cycles_m'])} ({how})")
-        if out["tolerance_m"] is not None:
-            c = out["cycles_to_tolerance"]
-            lines.append(f"  tolerance {out['tolerance_m'] * 1e3:g} mm: " +
-                         ("never reached" if c is None else f"reached after {c:,} cycles"))
+        lines += verdict_lines(out, v)
         if out.get("warning"):
             lines.append(f"  WARNING: {out['warning']}")
         if a["model"] == "strip" and v == "alternating-slip" and out["margin"] > 1:
@@ -94,6 +81,45 @@ def format_text(out: dict) -> str:
     return "\n".join(lines)
 
 
+def verdict_lines(out: dict, v: str) -> list:
+    """The verdict in the web page's order: what it means, then the cycles to the tolerance,
+    the drift per cycle, the drift after the cycles assessed (flagged when it is longer
+    than the part) and what its extrapolation ignores."""
+    st = out["stabilised_at_cycle"]
+    a = out["assembly"]
+    lines = [{"ratchet": f"verdict: RATCHET -- the assembly walks a little in every load "
+                         f"cycle, always the same way (towards {out['drift_direction']}): the "
+                         "drift adds up over its life",
+              "alternating-slip": "verdict: ALTERNATING SLIP -- sliders slip back and forth "
+                                  "every cycle (fretting), no net drift: wear at the ends, "
+                                  "no walk",
+              "shakedown": "verdict: SHAKEDOWN -- no slip after the first cycles, no drift: "
+                           "the assembly settles and stays"}[v]]
+    tol, c = out["tolerance_m"], out["cycles_to_tolerance"]
+    lines.append("  cycles to tolerance: " + (
+        "- (no tolerance given: --tolerance MM or the file's loading.tolerance)" if tol is None
+        else f"{'never' if c is None else _cycles(c)} (until a drift of {tol * 1e3:g} mm)"))
+    lines.append(f"  drift per cycle: {_len(out['drift_per_cycle_m'])} ("
+                 + (f"of the stabilised cycle, from cycle {st}" if st else
+                    "of the last cycle marched: NOT stabilised") + "; + is towards +x)")
+    n = _cycles(out["cycles"]) + (" cycle" if out["cycles"] == 1 else " cycles")
+    after = out["drift_after_cycles_m"]
+    length = a.get("l", a.get("l0"))
+    beyond = bool(length) and abs(after) > length
+    lines.append(f"  drift after {n}: {_len(after)} ("
+                 + (f"extrapolated from {out['cycles_marched']} marched cycles: see below"
+                    if out.get("extrapolated") else "marched cycle by cycle") + ")"
+                 + (f"; MORE THAN THE PART'S LENGTH ({_len(length)[1:]})" if beyond else ""))
+    if out.get("extrapolated"):
+        lines.append(f"  (the drift after {n} carries the stabilised cycle's drift on: "
+                     "it ignores what changes over a life (wear, friction, temperatures) and "
+                     "any stop or clearance that holds the part"
+                     + (f"; at {_len(after)} it is more than the part's length "
+                        f"({_len(length)[1:]}): the tolerance is used up long before, so read "
+                        "it as a rate only" if beyond else "") + ")")
+    return lines
+
+
 def near_symmetric_notes(out: dict) -> list:
     """Notes on what nearly symmetric friction means for the verdict."""
     r = out.get("asymmetry")
@@ -110,10 +136,10 @@ def near_symmetric_notes(out: dict) -> list:
                 f"{res['nodes_to_resolve']} resolves it"]
     if r and abs(r) < 1e-3 and out["verdict"] == "ratchet" \
             and out["assembly"]["model"] == "two-node":
-        return [f"  NOTE: mu+ and mu- differ by only {abs(r):.2g} of their value; the "
+        return [(f"  NOTE: mu+ and mu- differ by only {abs(r):.2g} of their value; the "
                 f"two-node model ratchets by the full amount for any difference (the weaker "
                 f"slider caps the bar force), so the direction rests on the sign of that "
-                f"difference: check it against the scatter of the measurement"]
+                f"difference: check it against the scatter of the measurement")]
     return []
 
 
@@ -121,9 +147,9 @@ def format_map(out: dict) -> str:
     m = out["map"]
     px, py = m["x"]["parameter"], m["y"]["parameter"]
     head = f"{py} \\ {px}"
-    lines = [f"risk map: {out['assembly']['name']}, drift per cycle (um; S = shakedown, "
+    lines = [(f"risk map: {out['assembly']['name']}, drift per cycle (um; S = shakedown, "
              f"A = alternating slip, X = slides off), {out['contact']}, texture on the "
-             f"{out['textured']}",
+             f"{out['textured']}"),
              f"{head:>14s} " + " ".join(f"{x:>9.4g}" for x in m["x"]["values"])]
     for y, vs, ds in zip(m["y"]["values"], m["verdict"], m["drift_per_cycle_m"]):
         cells = []

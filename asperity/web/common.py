@@ -10,6 +10,7 @@ from fastapi.responses import HTMLResponse, RedirectResponse
 
 from ..errors import AsperityError
 from .forms import Form, FormError, at, field_of
+from .labels import page_pressures
 from .security import TooLarge
 from .store import JOB_ID, UploadError, display_name
 from .words import FILE_FIELDS, MULTIPLE, WEDGE, page_words
@@ -131,7 +132,7 @@ async def post_form(web, request: Request, kind: str, build, render):
             for meta in saved:
                 drop_upload(web, meta["id"])
         return render(web, request, status=status_of(exc), values=values, kept=kept,
-                      error=str(exc), error_field=field_of(exc))
+                      error=page_pressures(str(exc)), error_field=field_of(exc))
     params.update(form=values, kept=kept)
     return await submit(web, request, kind, params, title)
 

@@ -85,7 +85,7 @@ def pressures(form: Form) -> list[float]:
         n = form.whole("p_count", low=2, high=MAX_PRESSURES, label=LABELS["p_count"])
         if hi <= lo:
             raise FormError(f"pressures to (Pa) must be above pressures from (Pa) "
-                            f"({lo:g}), got {hi:g}", "p_max")
+                            f"({lo:g} Pa), got {hi:g} Pa", "p_max")
         r = math.log(hi / lo)
         return [lo * math.exp(r * k / (n - 1)) for k in range(n)]
     parts = form.text("pressure").replace(",", " ").split()
@@ -129,7 +129,7 @@ def elastic_params(form: Form, texture: bool, method: str = "closed-form",
     H = _positive(form, "hardness", required=False)
     if H is not None and H <= max(ps):
         raise FormError(f"hardness (Pa) must be above the pressure ({max(ps):g} Pa), got "
-                        f"{H:g}", "hardness")
+                        f"{H:g} Pa", "hardness")
     ElasticContact(E, tuple(ps), boundary=boundary, hardness=H)    # the library's checks
     return {"E_star": E, "pressures": ps, "boundary": boundary, "hardness": H,
             "materials": mat}

@@ -58,6 +58,38 @@ def pressure_words(p) -> str:
     return show(float(p), choose(float(p), "Pa"))
 
 
+#: a number as %g and Python write it, and " Pa" after it (not Pa/m, not Pa^2)
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_PA = r" Pa(?![\w/^])"
+_PRESSURES = re.compile(rf"\[(?P<lo>{_NUM}), (?P<hi>{_NUM})\]{_PA}"
+                        rf"|(?<![\w.+-])(?P<a>{_NUM}) (?P<w>to|and) (?P<b>{_NUM}){_PA}"
+                        rf"|(?<![\w.+-])(?P<x>{_NUM}){_PA}")
+
+
+def _pressures(m: re.Match) -> str:
+    if m["x"] is not None:
+        xs = [float(m["x"])]
+        u = choose(xs, "Pa")
+        out = show(xs[0], u)
+    else:
+        xs = [float(m["lo"]), float(m["hi"])] if m["lo"] is not None else \
+            [float(m["a"]), float(m["b"])]
+        u = choose(xs, "Pa", smallest=True)
+        out = (f"[{show(xs[0], u)}, {show(xs[1], u)}]" if m["lo"] is not None else
+               f"{show(xs[0], u)} {m['w']} {show(xs[1], u)}")
+    # a value the unit cannot show without an exponent (a modulus range of 1 to 1e13 Pa)
+    # reads better as it was
+    return m[0] if "x 10^" in out or "inf" in out else out
+
+
+def page_pressures(text: str) -> str:
+    """``text`` (a refusal, the form's or the library's) with its pressures written as the
+    pages write them: ``2e+07 Pa`` -> ``20 MPa``; a range or a pair (``5e+07 to 8e+08 Pa``,
+    ``[5e+07, 8e+08] Pa``, ``1e+07 and 2e+07 Pa``) in one unit, that of the smallest, as a
+    column of pressures on a page (``50 MPa to 800 MPa``)."""
+    return _PRESSURES.sub(_pressures, text)
+
+
 def law_stem(source: str, kind: str) -> str:
     """``<source>_<law kind>`` (the kind not repeated when the source ends with it)."""
     kind = clean(kind)

@@ -72,7 +72,7 @@ def family_pressure(form: Form, path, field: str, shown: str) -> dict:
     if p is None or not lo <= p <= hi:
         raise FormError(f"{PRESSURE}: the law is a family over the pressures {lo:g} to "
                         f"{hi:g} Pa; give the nominal contact pressure within them"
-                        + ("" if p is None else f" (got {p:g})"), "law_pressure")
+                        + ("" if p is None else f" (got {p:g} Pa)"), "law_pressure")
     try:
         gauge.at(p, PRESSURE)
     except InputError as exc:

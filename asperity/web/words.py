@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import re
 
+from .labels import page_pressures
+
 #: form fields of a wedge -> label
 WEDGE = {"alpha_deg": "alpha (deg)", "beta_deg": "beta (deg)", "mu_alpha": "mu_alpha",
          "mu_beta": "mu_beta"}
@@ -159,7 +161,7 @@ def page_words(message: str, kind: str, params: dict) -> tuple[str, str | None]:
             message = re.sub(rf"(^|(?<![\w.-]))({alt})(?![\w])", label, message)
     if field is None:
         field = _file_field(message, params)
-    return message, field
+    return page_pressures(message), field
 
 
 def _file_field(message: str, params: dict) -> str | None:
