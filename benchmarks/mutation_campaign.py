@@ -39,6 +39,7 @@ solver's rewrite) are listed with the reason in benchmarks/mutation_triage.py.  
 from __future__ import annotations
 
 import argparse
+import fcntl
 import hashlib
 import json
 import os
@@ -260,7 +261,7 @@ def run_mutant(root: Path, m: dict, files, timeout: float) -> dict:
         drop_dependents(root, m["module"])
     dt = time.perf_counter() - t0
     diff = [ln for ln in (r.diff or "").splitlines()
-            if ln[:1] in "+-" and not ln.startswith(("---", "+++"))]
+            if ln[:1] in "+-" and ln[1:].strip() and not ln.startswith(("---", "+++"))]
     if r.worker_outcome == WorkerOutcome.NO_TEST:
         status = "stale"
     elif r.worker_outcome != WorkerOutcome.NORMAL:
@@ -345,14 +346,26 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="+", default=(), metavar="MODULE",
                     help="only these modules (paths under asperity/)")
     ap.add_argument("--fresh", action="store_true", help="run again what is cached")
+    ap.add_argument("--ids", nargs="+", default=(), metavar="ID",
+                    help="only these mutants of the sample, run again (e.g. to check a new "
+                         "test: with another --scratch and --cache while a campaign runs)")
     ap.add_argument("--plan", action="store_true", help="population and sample, no run")
     ap.add_argument("--table", action="store_true", help="the table from the cache, no run")
     ap.add_argument("--survivors", action="store_true", help="list survivors with their diffs")
     ap.add_argument("--json", type=Path, help="also write the table and results as JSON")
     a = ap.parse_args(argv)
     ensure_library()
-    root = sync_scratch(a.scratch)
-    sample = plan(root, a.n, a.seed, set(a.only))
+    run = not (a.plan or a.table or a.survivors)
+    if run:
+        a.scratch.mkdir(parents=True, exist_ok=True)
+        lock = open(a.scratch / ".lock", "w")   # noqa: SIM115 (held until the process ends)
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            sys.exit(f"another campaign runs in {a.scratch}; stopping")
+    root = sync_scratch(a.scratch) if run else REPO   # reading needs no copy
+    only = set(a.only) | {i.split(":")[0] for i in a.ids}
+    sample = plan(root, a.n, a.seed, only)
     data = json.loads(a.cache.read_text()) if a.cache.is_file() else {}
     results, base = data.setdefault("results", {}), data.setdefault("baselines", {})
     if a.plan:
@@ -360,14 +373,15 @@ def main(argv=None) -> int:
             print(f"{m:34s} {n:5d} mutants ({dropped} equivalent by construction), "
                   f"{len(pick)} sampled, tests: {' '.join(tests_of(m, root))}")
         return 0
-    if not (a.table or a.survivors):
+    if run:
         os.chdir(root)
         os.environ["PYTHONPATH"] = str(root)
         for m, (_, _, pick) in sample.items():
             files = tests_of(m, root)
             mh = sha((root / "asperity" / m).read_text())
             th = tests_hash(files, root)
-            todo = [x for x in pick if a.fresh or not reusable(results.get(x["id"]), mh, th)]
+            todo = [x for x in pick if (x["id"] in a.ids if a.ids else
+                                        a.fresh or not reusable(results.get(x["id"]), mh, th))]
             if not todo:
                 continue
             bkey = sha(th, *[(root / "asperity" / p).read_bytes()
@@ -388,7 +402,7 @@ def main(argv=None) -> int:
                 if r and r["status"] == "survived":
                     why = EQUIVALENT.get(x["id"]) or LEFT.get(x["id"]) or "NOT TRIAGED"
                     print(f"{x['id']}  (line {r['line']}): {why}\n    " +
-                          "\n    ".join(r["diff"]))
+                          "\n    ".join(d for d in r["diff"] if d[1:].strip()))
     print_table(rows, tot)
     if a.json:
         save(a.json, {"table": rows + [tot], "seed": a.seed, "n": a.n,

