@@ -22,6 +22,9 @@ EQUIVALENT: dict[str, str] = {
     "bodies/polygon.py:ReplaceComparisonOperator_LtE_Lt:ad4474fca1":
         "near <= tol -> near < tol in _inside_polygon: differs only for a point exactly "
         "1e-9 x span from the boundary (tol > 0 always), a float coincidence",
+    "bodies/footprint.py:ReplaceBinaryOperator_Sub_Add:dccd2f304d":
+        "_lamina's grid origin shifted by +c[1] instead of -c[1]: only rectangle() passes a "
+        "grid, and its vertices are symmetric about the origin, so its centroid c is 0",
 }
 
 LEFT: dict[str, str] = {

@@ -53,3 +53,25 @@ def test_pure_spin_torque_is_the_mean_distance_and_a_point_at_rest_carries_nothi
     (err,) = fpa.sampling_errors(fp, [0.0], directions=8)
     assert math.isfinite(err["force"]) and err["force"] < 1e-12
     assert err["torque"] == pytest.approx(w0, rel=1e-12)
+
+
+@pytest.mark.parametrize("kind", ["disc", "ring"])
+def test_pressure_on_a_disc_or_ring_keeps_load_and_centre_and_takes_its_rim(kind):
+    """A pressure given on a disc's (ring's) points: each point's share is its pressure
+    (equal cells), so the centre of pressure is sum p x / sum p; points on the rim belong
+    to the body, a point 1e-3 R outside does not."""
+    from asperity.bodies import pressure as fpp
+    from asperity.errors import InputError
+    R = 0.02
+    shape = fpm.disc(R, contact_points=64) if kind == "disc" else fpm.ring(R, contact_points=8)
+    phi = np.linspace(0, 2 * math.pi, 24, endpoint=False)
+    rim = R * np.column_stack([np.cos(phi), np.sin(phi)])
+    pts = np.vstack([rim, 0.5 * rim, [[0.0, 0.0]]]) if kind == "disc" else rim
+    p = 1e5 * (1.0 + 0.6 * pts[:, 0] / R - 0.3 * pts[:, 1] / R)
+    fp = fpp.from_pressure(pts, p, shape=shape)
+    assert fp.kind == kind and fp.n == len(pts)
+    np.testing.assert_allclose(fp.weights, p / p.sum(), rtol=1e-12)
+    np.testing.assert_allclose(fp.centre_of_pressure, p @ pts / p.sum(), rtol=1e-12)
+    out = np.vstack([pts, [[R * 1.001, 0.0]]])
+    with pytest.raises(InputError, match=f"outside the body's {kind}"):
+        fpp.from_pressure(out, np.r_[p, 1e5], shape=shape)
