@@ -28,3 +28,60 @@ def test_load_curve_of_one_pressure_with_the_defaults_is_the_single_solve(bounda
                                atol=1e-9 * single.max_pressure)
     assert curve.iterations == single.iterations
     assert curve.mean_pressure == pytest.approx(p, rel=1e-8)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+@pytest.mark.parametrize("shape", [(12, 10), (9, 7)], ids=["even", "odd"])
+def test_self_compliance_is_the_operators_diagonal(boundary, shape):
+    """HalfSpace.self_compliance, the displacement of a pixel under unit pressure on it
+    alone, is K's diagonal: apply K to a unit pressure at any pixel and read it there."""
+    from asperity.contact.elastic import HalfSpace
+    space = HalfSpace(shape, 1e-6, 2.5e-6, E, boundary)
+    for i, j in ((0, 0), (shape[0] // 2, shape[1] - 1), (3, 2)):
+        p = np.zeros(shape)
+        p[i, j] = 1.0
+        u = space.apply(p, np.empty(shape))
+        assert u[i, j] == pytest.approx(space.self_compliance, rel=1e-10)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+def test_memory_refusal_counts_every_pixel(boundary, monkeypatch):
+    """The solve plans its bytes a pixel times the pixels: 10 % less free memory than that
+    is refused in one line before any work, 10 % more is solved."""
+    from asperity import resources
+    from asperity.contact import elastic
+    from asperity.errors import ResourceError
+    z, px = scan()
+    need = elastic.BYTES_PER_PIXEL[boundary] * z.size
+    monkeypatch.setattr(resources, "available_memory",
+                        lambda: int(0.9 * need / resources.MEMORY_SHARE))
+    with pytest.raises(ResourceError, match=f"{z.shape[0]} x {z.shape[1]} pixels"):
+        solve_contact(z, px, E, 0.003 * E, boundary=boundary)
+    monkeypatch.setattr(resources, "available_memory",
+                        lambda: int(1.1 * need / resources.MEMORY_SHARE))
+    assert solve_contact(z, px, E, 0.003 * E, boundary=boundary).converged
+
+
+def test_bearing_area_fill_keeps_the_load_under_the_cap():
+    """The plastic solve's fill: the contact pixels at H and the rest of the load on the
+    most penetrating pixels out of contact (smallest u - h), the load exact, nothing
+    above H, nothing on undefined pixels (on the flat views the solver passes)."""
+    from asperity.contact.loads import fill
+    rng = np.random.default_rng(4)
+    shape, H = (1200,), 2.0
+    h = rng.normal(size=shape)
+    h[rng.random(shape) < 0.1] = np.nan
+    u = rng.normal(size=shape)
+    p = np.where(rng.random(shape) < 0.05, rng.uniform(0.1, H, shape), 0.0)
+    p[np.isnan(h)] = 0.0
+    on = p > 0
+    for extra in (0.5, 7.25, 100.0):
+        load = H * (on.sum() + extra)
+        q = p.copy()
+        fill(q, u, h, load, H)
+        assert q.sum() == pytest.approx(load, rel=1e-12)
+        assert q.max() <= H and q.min() >= 0.0 and not q[np.isnan(h)].any()
+        assert np.all(q[on] == H)
+        k = int(np.ceil(extra))
+        g = np.where(~on & ~np.isnan(h), u - h, np.inf)
+        assert set(np.flatnonzero((q > 0) & ~on)) == set(np.argsort(g, kind="stable")[:k])
