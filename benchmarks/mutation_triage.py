@@ -25,6 +25,11 @@ EQUIVALENT: dict[str, str] = {
     "bodies/footprint.py:ReplaceBinaryOperator_Sub_Add:dccd2f304d":
         "_lamina's grid origin shifted by +c[1] instead of -c[1]: only rectangle() passes a "
         "grid, and its vertices are symmetric about the origin, so its centroid c is 0",
+    "contact/plastic.py:ReplaceComparisonOperator_Gt_Is:5080eed35a":
+        "release never (array 'is' float): at one load the outer loop's plastic set only "
+        "grows -- no release in 36 capped solves that reached the outer loop (4 maps, "
+        "periodic and free, H / p 1.01-1.2, non-square pixels); a wrong plastic pixel would "
+        "show as a gap at H, which test_contact_solver's complementarity checks",
 }
 
 LEFT: dict[str, str] = {

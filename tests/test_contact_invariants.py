@@ -85,3 +85,24 @@ def test_bearing_area_fill_keeps_the_load_under_the_cap():
         k = int(np.ceil(extra))
         g = np.where(~on & ~np.isnan(h), u - h, np.inf)
         assert set(np.flatnonzero((q > 0) & ~on)) == set(np.argsort(g, kind="stable")[:k])
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+@pytest.mark.parametrize("ratio", [None, 1.6], ids=["elastic", "capped"])
+def test_gap_is_displacement_minus_heights_plus_approach(boundary, ratio):
+    """g = u - h + d (the result's displacement and approach): zero on the contact
+    pixels, positive off them, and the mean gap its mean over the defined pixels; with a
+    cap, no pressure above it."""
+    z, px = scan()
+    p = 0.003 * E
+    res = solve_contact(z, px, E, p, boundary=boundary,
+                        hardness=None if ratio is None else ratio * p)
+    assert res.converged and (ratio is None or res.plastic_fraction > 0)
+    g = res.displacement - z + res.approach
+    span = np.ptp(z)
+    off = ~res.contact
+    np.testing.assert_allclose(res.gap[off], g[off], rtol=0, atol=1e-9 * span)
+    assert np.all(res.gap[res.contact] == 0.0) and res.gap[off].min() > -1e-9 * span
+    assert res.mean_gap == pytest.approx(res.gap.mean(), rel=1e-12)
+    if ratio is not None:
+        assert np.nanmax(res.pressure) <= ratio * p * (1 + 1e-12)
