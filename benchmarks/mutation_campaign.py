@@ -67,7 +67,7 @@ _BODIES = ("test_bodies_footprint.py", "test_footprint_invariants.py")
 _BODY = ("test_slide_body_cli.py", "test_dynamics_body.py", "test_body_invariants.py")
 TESTS = (
     ("contact/bench.py", ("test_contact_bench_limits.py", "test_contact_oracle.py")),
-    ("contact/plot.py", ("test_contact_cli.py",)),
+    ("contact/plot.py", ("test_contact_plot.py", "test_contact_cli.py")),
     ("contact/curve.py", _CONTACT + ("test_contact_oracle.py",)),
     ("contact/*.py", _CONTACT),
     ("bodies/body_file.py", _BODIES + ("test_slide_body_cli.py",)),

@@ -30,6 +30,8 @@ EQUIVALENT: dict[str, str] = {
         "grows -- no release in 36 capped solves that reached the outer loop (4 maps, "
         "periodic and free, H / p 1.01-1.2, non-square pixels); a wrong plastic pixel would "
         "show as a gap at H, which test_contact_solver's complementarity checks",
+    "contact/plot.py:NumberReplacer:75b2a143ea":
+        "the profile figure 9 x 6 inches instead of 8 x 6: a figure's size, no number shown",
 }
 
 LEFT: dict[str, str] = {
