@@ -32,6 +32,9 @@ EQUIVALENT: dict[str, str] = {
         "show as a gap at H, which test_contact_solver's complementarity checks",
     "contact/plot.py:NumberReplacer:75b2a143ea":
         "the profile figure 9 x 6 inches instead of 8 x 6: a figure's size, no number shown",
+    "contact/solver.py:ReplaceBinaryOperator_Pow_Mul:e9e9038b83":
+        "G of the plain (unpreconditioned) iteration: with PRECONDITION = True (a constant) "
+        "G is overwritten by the preconditioned sum on the next line before any use",
 }
 
 LEFT: dict[str, str] = {

@@ -111,3 +111,18 @@ def test_gap_is_displacement_minus_heights_plus_approach(boundary, ratio, outer,
     assert res.mean_gap == pytest.approx(res.gap.mean(), rel=1e-12, abs=0)
     if ratio is not None:
         assert np.nanmax(res.pressure) <= ratio * p * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("args,field", [
+    ((0.0, 0.3), "E1"), ((-5e9, 0.3), "E1"), ((-0.5, 0.3), "E1"), ((1e9, -1.0), "nu1"),
+    ((1e9, 0.51), "nu1"), ((1e9, 0.3, 0.0, 0.3), "E2"), ((1e9, 0.3, 1e9, 0.6), "nu2"),
+    ((1e9, 0.3, 1e9, None), "E2 and nu2 together")])
+def test_effective_modulus_takes_only_physical_materials(args, field):
+    """E > 0 and -1 < nu <= 0.5 (the edge nu = 0.5, incompressible, is allowed: E* =
+    E / 0.75 on a rigid counterface); anything else is one line naming the field."""
+    from asperity.contact.solver import effective_modulus
+    from asperity.errors import InputError
+    assert effective_modulus(3e9, 0.5) == pytest.approx(4e9, rel=1e-14)
+    with pytest.raises(InputError) as e:
+        effective_modulus(*args)
+    assert field in str(e.value) and "\n" not in str(e.value)
