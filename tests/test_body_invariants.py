@@ -31,3 +31,27 @@ def test_rest_horizon_bounds_the_closed_form_stopping_times(mu, g):
     # both at once stop no later than the bound of the combined speed
     both = rest_horizon(fp.points, fp.weights, law, m, inertia, (v0, 0.0, w0), g)
     assert both == pytest.approx(math.hypot(slide, spin), rel=1e-12)
+
+
+@pytest.mark.parametrize("u0", [(0.03, 0.0, 2.0), (0.004, -0.002, 0.05), (0.5, 0.2, 1.0)])
+def test_slide_and_spin_stop_times_are_where_the_motion_stays_below_the_threshold(u0):
+    """BodyResult's slide (spin) stop time: from then on |v| (rho |omega|, rho = sqrt(I/m))
+    stays below STOP_FRACTION of |v0| + rho |omega0| + g dt, and the step before was above
+    -- read off the recorded states (every step), a body of 4 kg (m != 1), slow starts
+    (a velocity scale below 1) included."""
+    import numpy as np
+
+    from asperity.dynamics.body import STOP_FRACTION, simulate_body
+    fp = fpm.disc(0.05, contact_points=64)
+    m, dt = 4.0, 2e-4
+    inertia = m * fp.inertia_per_mass
+    res = simulate_body(fp.points, fp.weights, coulomb_law(0.4), mass=m, inertia=inertia,
+                        u0=u0, dt=dt)
+    assert res.ok and res.rest
+    rho = math.sqrt(inertia / m)
+    thr = STOP_FRACTION * (math.hypot(u0[0], u0[1]) + rho * abs(u0[2]) + G * dt)
+    for stop, speed in ((res.slide_stop_time, np.hypot(res.u[:, 0], res.u[:, 1])),
+                        (res.spin_stop_time, rho * np.abs(res.u[:, 2]))):
+        assert stop is not None and 0 < stop <= res.stop_time + 1e-12
+        after = res.t >= stop - 1e-12
+        assert np.all(speed[after] <= thr) and speed[~after][-1] > thr
