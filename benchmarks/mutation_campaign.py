@@ -64,7 +64,8 @@ SCOPE = ("contact/*.py", "bodies/*.py", "dynamics/body*.py", "dynamics/_body*_ke
 #: test files (globs in tests/, missing ones ignored) per module glob: the first match wins
 _CONTACT = ("test_contact_solver.py", "test_contact_invariants.py")
 _BODIES = ("test_bodies_footprint.py", "test_footprint_invariants.py")
-_BODY = ("test_slide_body_cli.py", "test_dynamics_body.py", "test_body_invariants.py")
+_BODY = ("test_body_invariants.py", "test_body_limits.py", "test_slide_body_cli.py",
+         "test_dynamics_body.py")
 TESTS = (
     ("contact/bench.py", ("test_contact_bench_limits.py", "test_contact_oracle.py")),
     ("contact/plot.py", ("test_contact_plot.py", "test_contact_cli.py")),
@@ -74,7 +75,8 @@ TESTS = (
     ("bodies/closed_forms.py", ("test_bodies_closed_forms.py",)),
     ("bodies/*.py", _BODIES),
     ("dynamics/body_bench.py", ("test_bench_body.py",)),
-    ("dynamics/body_api.py", ("test_slide_body_cli.py", "test_dynamics_body.py")),
+    ("dynamics/body_api.py", ("test_body_limits.py", "test_slide_body_cli.py",
+                              "test_dynamics_body.py")),
     ("dynamics/*.py", _BODY),
     ("laws/family_report.py", ("test_family_axes.py", "test_law_family_cli.py")),
     ("laws/family.py", ("test_law_family.py", "test_law_family_cli.py",
