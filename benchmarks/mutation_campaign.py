@@ -74,7 +74,7 @@ TESTS = (
     ("bodies/body_file.py", _BODIES + ("test_slide_body_cli.py",)),
     ("bodies/closed_forms.py", ("test_bodies_closed_forms.py",)),
     ("bodies/*.py", _BODIES),
-    ("dynamics/body_bench.py", ("test_bench_body.py",)),
+    ("dynamics/body_bench.py", ("test_body_bench_measures.py", "test_bench_body.py")),
     ("dynamics/body_api.py", ("test_body_limits.py", "test_slide_body_cli.py",
                               "test_dynamics_body.py")),
     ("dynamics/*.py", _BODY),
