@@ -82,7 +82,8 @@ TESTS = (
     ("laws/family.py", ("test_law_family.py", "test_law_family_cli.py",
                         "test_family_invariants.py")),
     ("friction/elastic_windows.py", ("test_contact_windows.py", "test_contact_windows_more.py")),
-    ("friction/elastic.py", ("test_contact_friction.py", "test_contact_friction_cli.py")),
+    ("friction/elastic.py", ("test_wedge_resolution.py", "test_contact_friction.py",
+                             "test_contact_friction_cli.py")),
     ("surface/contact_facets.py", ("test_contact_friction.py", "test_contact_mesh.py")),
     ("surface/mesh_grid.py", ("test_contact_mesh.py",)),
 )
