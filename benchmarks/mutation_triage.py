@@ -43,6 +43,14 @@ EQUIVALENT: dict[str, str] = {
         "w > -1 in the 'no face carries load' guard: a converged solve's forces sum to the "
         "load > 0 over segments that are faces or flats, so a face or the gap always carries "
         "some; the guard is never reached and w >= 0, so > -1 changes nothing reachable",
+    "dynamics/body.py:ReplaceBinaryOperator_Div_Mul:766695afe7":
+        "rho = sqrt(I m) for sqrt(I / m) in the stop threshold (1e-10 of the velocity "
+        "scale): it only separates a velocity exactly 0 (a sticking body's, bit for bit) "
+        "from one of order deceleration x dt, far above it, so the stop steps stay the same "
+        "(test_body_invariants checks them on a 4 kg body)",
+    "friction/elastic_windows.py:NumberReplacer:4808fc64b3":
+        "report(-1.0) for report(0.0) at the windows' start: both progress bars (terminal, "
+        "web job) clamp the fraction to [0, 1], so the same 0 % is shown",
 }
 
 LEFT: dict[str, str] = {
