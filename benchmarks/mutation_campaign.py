@@ -78,7 +78,7 @@ TESTS = (
     ("dynamics/body_api.py", ("test_body_limits.py", "test_slide_body_cli.py",
                               "test_dynamics_body.py")),
     ("dynamics/*.py", _BODY),
-    ("laws/family_report.py", ("test_family_plot.py", "test_family_axes.py",
+    ("laws/family_report.py", ("test_family_report.py", "test_family_axes.py",
                                "test_law_family_cli.py")),
     ("laws/family.py", ("test_family_members_and_range.py", "test_law_family.py",
                         "test_law_family_cli.py")),
