@@ -358,6 +358,8 @@ def main(argv=None) -> int:
     ap.add_argument("--table", action="store_true", help="the table from the cache, no run")
     ap.add_argument("--survivors", action="store_true", help="list survivors with their diffs")
     ap.add_argument("--json", type=Path, help="also write the table and results as JSON")
+    ap.add_argument("--merge", type=Path, metavar="CACHE",
+                    help="first take the kills recorded in another cache file")
     a = ap.parse_args(argv)
     ensure_library()
     run = not (a.plan or a.table or a.survivors)
@@ -373,6 +375,9 @@ def main(argv=None) -> int:
     sample = plan(root, a.n, a.seed, only)
     data = json.loads(a.cache.read_text()) if a.cache.is_file() else {}
     results, base = data.setdefault("results", {}), data.setdefault("baselines", {})
+    if a.merge:
+        print(f"{merge(data, a.merge)} kills taken from {a.merge}", flush=True)
+        save(a.cache, data)
     if a.plan:
         for m, (n, dropped, pick) in sample.items():
             print(f"{m:34s} {n:5d} mutants ({dropped} equivalent by construction), "
@@ -417,9 +422,26 @@ def main(argv=None) -> int:
 
 
 def reusable(r: dict | None, module_hash: str, tests_hash_: str) -> bool:
+    """A cached result still holds: the module unchanged and the mutant killed, or judged
+    equivalent (a property of the code, not of the tests), or run with these tests."""
     if r is None or r.get("module_hash") != module_hash:
         return False
-    return r["status"] in ("killed", "timeout") or r.get("tests_hash") == tests_hash_
+    return r["status"] in ("killed", "timeout") or r.get("tests_hash") == tests_hash_ or \
+        (r["status"] == "survived" and r["id"] in EQUIVALENT)
+
+
+def merge(data: dict, other: Path) -> int:
+    """Take the kills of another cache (a campaign run elsewhere, e.g. in a second scratch
+    to check new tests) for mutants this one has not killed; returns how many."""
+    got = 0
+    for mid, r in json.loads(other.read_text()).get("results", {}).items():
+        mine = data["results"].get(mid)
+        if r["status"] in ("killed", "timeout") and (mine is None or mine["status"] not in (
+                "killed", "timeout")) and (mine is None or
+                                           mine["module_hash"] == r["module_hash"]):
+            data["results"][mid] = r
+            got += 1
+    return got
 
 
 if __name__ == "__main__":
