@@ -86,8 +86,9 @@ TESTS = (
                                      "test_contact_windows_more.py")),
     ("friction/elastic.py", ("test_wedge_resolution.py", "test_contact_friction.py",
                              "test_contact_friction_cli.py")),
-    ("surface/contact_facets.py", ("test_contact_friction.py", "test_contact_mesh.py")),
-    ("surface/mesh_grid.py", ("test_contact_mesh.py",)),
+    ("surface/contact_facets.py", ("test_elastic_contact_inputs.py", "test_contact_friction.py",
+                                   "test_contact_mesh.py")),
+    ("surface/mesh_grid.py", ("test_mesh_grid_invariants.py", "test_contact_mesh.py")),
 )
 #: seconds a kernel module's mutant may spend compiling its kernels and their dependents again
 COMPILE_ALLOWANCE = 150.0
