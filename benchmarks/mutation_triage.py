@@ -54,6 +54,10 @@ EQUIVALENT: dict[str, str] = {
     "surface/mesh_grid.py:NumberReplacer:5879fa1eb6":
         "the dummy arrays of the grid walk's mode 0 shaped (1, 0) instead of (1, 1): mode 0 "
         "never reads them, and the kernel's signature (float64, 2 dimensions) is the same",
+    "contact/_pk_kernels.py:ReplaceComparisonOperator_Lt_NotEq:9839fa2216":
+        "0 < p < H -> 0 < p != H in the pressure step: they differ only for p > H, and every "
+        "pressure the step sees was capped at H (start, rescale, fill and the step itself "
+        "clip to [0, H]; H = inf without a cap)",
 }
 
 LEFT: dict[str, str] = {
