@@ -1,7 +1,9 @@
-"""Bounds of the body solver that any correct solver keeps, checked without running one:
-the rest horizon (the time by which a body with no external force is surely at rest) is
-at least the exact stopping time of a uniformly loaded disc's pure slide (v0 / (mu g)) and
-pure spin (3 R omega0 / (4 mu g)), for friction coefficients below and above 1."""
+"""What any correct body solver keeps: the rest horizon (the time by which a body with no
+external force is surely at rest) bounds the exact stopping times of a uniformly loaded
+disc's pure slide (v0 / (mu g)) and pure spin (3 R omega0 / (4 mu g)), for mu below and
+above 1; the reported stop times match the recorded motion; a disc launched exactly along
+an axis slides the point mass's distance; a force across t_a moves a body at rest only
+beyond the limit set."""
 from __future__ import annotations
 
 import math
@@ -55,3 +57,41 @@ def test_slide_and_spin_stop_times_are_where_the_motion_stays_below_the_threshol
         assert stop is not None and 0 < stop <= res.stop_time + 1e-12
         after = res.t >= stop - 1e-12
         assert np.all(speed[after] <= thr) and speed[~after][-1] > thr
+
+
+@pytest.mark.parametrize("u0", [(0.0, 0.8, 0.0), (-0.8, 0.0, 0.0), (0.0, -0.5, 0.0)])
+def test_disc_launched_along_an_axis_slides_the_point_mass_distance(u0):
+    """No spin, launched exactly along x or y (the other components exactly 0): the disc
+    slides v0^2 / (2 mu g) and stops at v0 / (mu g), as a point mass on Coulomb friction."""
+    from asperity.dynamics.body import simulate_body
+    fp = fpm.disc(0.05, contact_points=64)
+    mu, dt = 0.4, 1e-4
+    res = simulate_body(fp.points, fp.weights, coulomb_law(mu), mass=1.0,
+                        inertia=fp.inertia_per_mass, u0=u0, dt=dt)
+    v0 = math.hypot(u0[0], u0[1])
+    assert res.ok and res.rest
+    assert res.stop_time == pytest.approx(v0 / (mu * G), abs=2 * dt)
+    travel = math.hypot(res.q_final[0], res.q_final[1])
+    assert travel == pytest.approx(v0 ** 2 / (2 * mu * G), rel=2e-3)
+    assert abs(res.q_final[2]) < 1e-9                  # no spin appears
+
+
+@pytest.mark.parametrize("mu_t_b,moves", [(0.2, True), (0.4, False)])
+def test_force_across_t_a_moves_the_body_only_beyond_mu_t_b(mu_t_b, moves):
+    """An ellipse law, mu 0.6 along t_a (x) and mu_t_b along t_b (y); a body at rest pushed
+    along y by 0.3 m g: beyond the limit set when mu_t_b = 0.2 (then it accelerates at
+    (0.3 - 0.2) g along y), inside it when mu_t_b = 0.4 (then it never moves)."""
+    from asperity.dynamics.body import simulate_body
+    from asperity.dynamics.moreau import Force
+    from asperity.laws.planar import ellipse_law
+    fp = fpm.disc(0.05, contact_points=64)
+    m, t = 2.0, 0.2
+    res = simulate_body(fp.points, fp.weights, ellipse_law(0.6, mu_t_b), mass=m,
+                        inertia=m * fp.inertia_per_mass, dt=1e-3, t_end=t,
+                        force=Force(constant=(0.0, 0.3 * m * G, 0.0)))
+    assert res.ok
+    if moves:
+        assert res.u_final[1] == pytest.approx(0.1 * G * t, rel=1e-3)
+        assert abs(res.u_final[0]) < 1e-9 and abs(res.u_final[2]) < 1e-9
+    else:
+        assert not res.u_final.any() and not res.q_final.any()
