@@ -58,6 +58,10 @@ EQUIVALENT: dict[str, str] = {
         "0 < p < H -> 0 < p != H in the pressure step: they differ only for p > H, and every "
         "pressure the step sees was capped at H (start, rescale, fill and the step itself "
         "clip to [0, H]; H = inf without a cap)",
+    "dynamics/_body_kernels.py:NumberReplacer:df15432c20":
+        "rec_t[-1] = 0 for rec_t[0] = 0 at the start: rec_t is np.zeros (body.py), so its "
+        "first time is 0 anyway, and the last slot is written by the last record or cut "
+        "off by [:k]",
 }
 
 LEFT: dict[str, str] = {
@@ -66,4 +70,11 @@ LEFT: dict[str, str] = {
         "do not have (test_bench_body checks its figures when it is installed)",
     "dynamics/body_bench.py:NumberReplacer:1e7360cfe9":
         "MuJoCo's disc (DISC t_max): as above, only with mujoco installed",
+    "dynamics/_body_kernels.py:NumberReplacer:73667ba982":
+        "step_velocity writes d[3] past its 3 elements (numba checks no bounds): a memory "
+        "error no result shows; in the Newton iteration the lead is rewriting",
+    "dynamics/_body_law_kernels.py:ReplaceBinaryOperator_Mul_Add:eca72e9622":
+        "the law table's derivative along t_b (e * py -> e + py) only feeds the Newton "
+        "Jacobian: fewer or more iterations, the same converged step; Newton iteration "
+        "being rewritten by the lead",
 }
