@@ -62,6 +62,10 @@ EQUIVALENT: dict[str, str] = {
         "rec_t[-1] = 0 for rec_t[0] = 0 at the start: rec_t is np.zeros (body.py), so its "
         "first time is 0 anyway, and the last slot is written by the last record or cut "
         "off by [:k]",
+    "contact/_pk_kernels.py:ReplaceComparisonOperator_Lt_IsNot:1609509913":
+        "pi < H -> pi is not H in gap_violation: numba compares two floats' values for "
+        "'is' (checked: 1.0 is not 1.0 is False there), and p <= H always (clipped), so it "
+        "is p != H, the same as p < H",
 }
 
 LEFT: dict[str, str] = {
@@ -77,4 +81,22 @@ LEFT: dict[str, str] = {
         "the law table's derivative along t_b (e * py -> e + py) only feeds the Newton "
         "Jacobian: fewer or more iterations, the same converged step; Newton iteration "
         "being rewritten by the lead",
+    "dynamics/_body_kernels.py:NumberReplacer:b4683ec0c6":
+        "the step loop's rest flag from (vx, vx, omega) instead of (vx, vy, omega): a disc "
+        "launched exactly along y still slides the point mass's distance "
+        "(test_body_invariants), so the flag only steers the warm start; step loop being "
+        "rewritten",
+    "dynamics/_body_law_kernels.py:ReplaceBinaryOperator_Add_Mod:dd9252b04b":
+        "the ellipse's gauge without its t_b coordinate: a force across t_a still moves a "
+        "body only beyond mu_t_b (test_body_invariants), so this gauge only steers the "
+        "Newton iteration (the stick test is decided elsewhere); being rewritten",
+    "dynamics/_body_step_kernels.py:ReplaceBinaryOperator_Add_Sub:9e93b6c778":
+        "the sphere search's tangent gradient (a2 sign): its stopping test only; the "
+        "Newton iteration the lead is rewriting",
+    "dynamics/_body_step_kernels.py:NumberReplacer:591a90fd3e":
+        "the sphere search's tangent gradient (a1 from t1[-1]): as above",
+    "dynamics/_body_step_kernels.py:ReplaceBinaryOperator_Pow_FloorDiv:5b58919a32":
+        "the 2 x 2 eigenvalue discriminant of the sphere search (** 2 -> // 2): as above",
+    "dynamics/_body_step_kernels.py:NumberReplacer:d64a376bb5":
+        "the line search's residual norm (R[2] R[1] / md[1] for R[1]^2 / md[1]): as above",
 }
