@@ -20,6 +20,13 @@ when they pass.  Before the mutants, the same test files run on the unmutated co
 (``--no-baseline`` skips it): a failing baseline makes every "caught" meaningless and
 stops the run.  Tests run serially (one core) with ``-x``; the whole list takes about
 five minutes on a quiet machine (kernel mutants recompile their numba kernels).
+
+Generated mutants are measured by ``benchmarks/mutation_campaign.py`` (cosmic-ray): this
+list keeps what the library cannot make (a dropped or moved statement, swapped arguments
+or variables, a changed string or key, a new value) and the modules outside the
+campaign's scope; the seven hand mutants that were exactly one of cosmic-ray's in its
+scope (sign and operator swaps in the body solver, the contact solver and the disc's spin
+drift) were left to it.
 """
 from __future__ import annotations
 
@@ -168,9 +175,6 @@ MUTANTS = [
            "return [e - kI * f / m, dt, e * w * dt, w / R * dt]",
            "return [e - f / m, dt, e * w * dt, w / R * dt]", BODIES,
            "reference ODE: d eps/d lambda without k_I (the disc's I = m R^2 / 2 ignored)"),
-    Mutant("spin-drift-sign", "bodies/closed_forms.py",
-           "return -np.mean(law.force(psi), axis=0)", "return np.mean(law.force(psi), axis=0)",
-           BODIES, "spin drift: +mean p instead of -mean p (drifts the wrong way)"),
     Mutant("disc-ring-weight-no-r", "bodies/footprint.py",
            "W = w * r                                        # int 2 r g dr",
            "W = w                                            # int 2 r g dr", BODIES,
@@ -221,9 +225,6 @@ MUTANTS = [
     Mutant("texture-angle-dropped", "cli/slide.py",
            "texture_angle_deg=tex,\n", "texture_angle_deg=0.0,\n", BODY_CLI,
            "--texture-angle read but not passed to the solver"),
-    Mutant("together-any-gap", "dynamics/body_api.py",
-           "together = abs(ts - tw) <= TOGETHER_STEPS", "together = abs(ts - tw) >= TOGETHER_STEPS",
-           BODY_CLI, "slide and spin 'together' when their stops are apart"),
     # ---- the five that the suite missed in issue 11
     Mutant("admissibility-hard-wired", "friction/diagnostics.py",
            "return Admissibility(dmin >= -ADMISSIBILITY_TOL, dmin,",
@@ -354,9 +355,6 @@ MUTANTS = [
            "ue[2] -= minv[2] * (ow[i, 0] * P[i, 1] + ow[i, 1] * P[i, 0])", DYNAMICS,
            "rigid body: torque of a contact impulse with a sign error (r x P)"),
     # ---- rigid body with a footprint (issue 20)
-    Mutant("body-torque-sign", "dynamics/_body_law_kernels.py",
-           "R[2] += li * (oxi * cy - oyi * cx)", "R[2] += li * (oxi * cy + oyi * cx)", BODY,
-           "body solver: torque of a point's friction force with a sign error (r x c)"),
     Mutant("body-midpoint-full-step", "dynamics/_body_kernels.py",
            "            q[j] += 0.5 * dt * u[j]\n        _force(fpar, tM, f)",
            "            q[j] += dt * u[j]\n        _force(fpar, tM, f)", BODY,
@@ -374,10 +372,6 @@ MUTANTS = [
            "if _gauge(kind, par, tab, cx, cy) > 1.0 + 1e-12:",
            "if _gauge(kind, par, tab, cx, cy) > 1.1:", BODY,
            "body solver: a point held sticking with a force outside its friction set"),
-    Mutant("body-texture-angle-sign", "dynamics/body.py",
-           "ql = np.array([*(Rm @ q0[:2]), q0[2] - a])",
-           "ql = np.array([*(Rm @ q0[:2]), q0[2] + a])", BODY,
-           "body solver: body angle turned the wrong way into the frame of the texture"),
     Mutant("stop-distance-factor-2", "dynamics/references.py",
            "return u0 * u0 / (2.0 * mu * g)", "return u0 * u0 / (mu * g)", DYNAMICS,
            "closed-form Coulomb stop distance u0^2/(mu g) (factor 2 missing)"),
@@ -786,18 +780,11 @@ MUTANTS = [
            'out["elastic_contact"] = dict(d.texture.elastic)', "pass", CONTACT_FRICTION,
            "derive's JSON loses its elastic_contact block"),
     # ---- issue 19: the contact solver against closed forms, load curves, asperity contact
-    Mutant("love-coefficient-sign", "contact/elastic.py",
-           "s = (love_primitive(x + a, y + b) - love_primitive(x + a, y - b)",
-           "s = (love_primitive(x + a, y + b) + love_primitive(x + a, y - b)", CONTACT_SOLVER,
-           "a corner of Love's rectangle added instead of subtracted (free boundary)"),
     Mutant("free-padding-half", "contact/elastic.py",
            "ix = np.where(ix <= nx, ix, ix - 2 * nx) * self.dx",
            "ix = np.where(ix <= nx // 2, ix, ix - 2 * nx) * self.dx", CONTACT_SOLVER,
            "the padded free kernel's offsets wrap at half the map: far pixels interact as "
            "near ones on the other side"),
-    Mutant("periodic-kernel-half", "contact/elastic.py",
-           "k[i] = 2.0 / (self.E_star * q)", "k[i] = 1.0 / (self.E_star * q)", CONTACT_SOLVER,
-           "the periodic half-space twice as stiff (u_q = p_q / (E* |q|))"),
     Mutant("contact-load-over-defined-pixels", "contact/solver.py",
            "load = pbar * nx * ny ", "load = pbar * n_def ", CONTACT_SOLVER,
            "the nominal pressure taken over the defined pixels, not the map's area"),
@@ -831,9 +818,6 @@ MUTANTS = [
            "q = pi - tau * (z[i] if pre else g)", "q = pi - tau * g", CONTACT_SOLVER,
            "pixels entering contact moved by the gap g, not by the preconditioned gap M g "
            "(the step tau is in the preconditioned units)"),
-    Mutant("contact-precond-beta-sign", "contact/_pk_kernels.py",
-           "ti = z[i] + beta * t[i]", "ti = z[i] - beta * t[i]",
-           CONTACT_SOLVER, "the preconditioned conjugate direction subtracts the old one"),
     Mutant("contact-precond-sum-unshifted", "contact/_pk_kernels.py",
            "sgz += (u[i] - hi - gbar) * z[i]", "sgz += (u[i] - hi) * z[i]", CONTACT_SOLVER,
            "the preconditioned residual norm Z taken with the gap before its mean shift"),

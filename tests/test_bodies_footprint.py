@@ -165,6 +165,19 @@ def test_polygon_refusals(vertices, words):
     assert words in str(e.value) and "\n" not in str(e.value)
 
 
+def test_polygon_vertex_limit_is_inclusive(monkeypatch):
+    """At most MAX_VERTICES vertices: the limit itself passes, one more is refused (the
+    limit made small here: the crossing check of 10 000 vertices takes seconds)."""
+    from asperity.bodies import polygon as fpg
+    monkeypatch.setattr(fpg, "MAX_VERTICES", 8)
+
+    def ring(k):
+        return [[math.cos(2 * math.pi * i / k), math.sin(2 * math.pi * i / k)] for i in range(k)]
+    assert fpg.check_polygon(ring(8)).shape == (8, 2)
+    with pytest.raises(InputError, match="at most 8 points, got 9"):
+        fpg.check_polygon(ring(9))
+
+
 # ----------------------------------------------------------------------------- bad input
 
 @pytest.mark.parametrize("call,field", [
@@ -249,9 +262,10 @@ def test_linear_profile_on_the_edge_of_the_core_is_accepted():
     fpm.rectangle(0.06, 0.03, profile="linear", centre_of_pressure=(0.005, 0.0025))
 
 
-def test_centre_of_pressure_needs_the_linear_profile():
+@pytest.mark.parametrize("profile", ["uniform", "hertz"])
+def test_centre_of_pressure_needs_the_linear_profile(profile):
     with pytest.raises(InputError, match="centre_of_pressure applies to pressure_profile"):
-        fpm.disc(0.04, centre_of_pressure=(0.001, 0.0))
+        fpm.disc(0.04, profile=profile, centre_of_pressure=(0.001, 0.0))
 
 
 # ----------------------------------------------------------------------------- pressure files
@@ -474,6 +488,9 @@ def test_body_file_mesh_named_relative_to_the_file(tmp_path, meshes):
     ('shape = "disc"\nradius = inf\nmass = 1.0', "body.radius"),
     ('shape = "rectangle"\nsize = [0.1, -0.1]\nmass = 1.0', "body.b"),
     ('shape = "rectangle"\nsize = [0.1]\nmass = 1.0', "size"),
+    ('shape = "rectangle"\nsize = [0.1, 0.1, 0.1]\nmass = 1.0', "size"),
+    ('shape = "disc"\nmass = 1.0', "body.radius"),
+    ('shape = "polygon"\nmass = 1.0', "body.vertices"),
     ('shape = "hexagon"\nradius = 0.1\nmass = 1.0', "body.shape"),
     ('shape = "polygon"\nvertices = [[0, 0], [3, 0], [0, 1], [1, 1]]\nmass = 1.0',
      "crosses itself"),

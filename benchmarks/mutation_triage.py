@@ -1,0 +1,102 @@
+"""Triage of the mutation campaign's survivors (benchmarks/mutation_campaign.py), by mutant
+id (module:operator:hash of the line's text and column; ``--survivors`` lists them).
+
+EQUIVALENT: survivors no test can kill, each with the reason (the mutant computes the same
+numbers, or differs only where no input can reach).  They leave the score's denominator.
+LEFT: real survivors left without a test, with the reason (e.g. the body solver's Newton
+iteration, rewritten meanwhile: listed for the lead, not pinned by tests of code that goes).
+"""
+
+EQUIVALENT: dict[str, str] = {
+    "bodies/body_file.py:ReplaceComparisonOperator_LtE_Eq:a7e718dc41":
+        "inertia <= 0 -> == 0: inertia = mass * inertia_per_mass, mass > 0 (checked range) "
+        "and inertia_per_mass >= 0 (checked by Footprint), so it is never negative",
+    "bodies/footprint.py:ReplaceComparisonOperator_Eq_LtE:267b988b6d":
+        "disc: profile <= 'linear' also takes 'hertz' into the linear branch, where the "
+        "centre of pressure is 0 (refused otherwise), so beta = 0 and the weights are "
+        "unchanged",
+    "bodies/footprint.py:ReplaceBinaryOperator_Mul_Mod:8a6b3e629e":
+        "GOLDEN_ANGLE = pi % (3 - sqrt 5) (0.086 rad): the rings' stagger is a sampling "
+        "choice; the disc still meets its contract (0.5 % of f, m at every eps and "
+        "direction, tested) -- the same specified behaviour, not a wrong number",
+    "bodies/polygon.py:ReplaceComparisonOperator_LtE_Lt:ad4474fca1":
+        "near <= tol -> near < tol in _inside_polygon: differs only for a point exactly "
+        "1e-9 x span from the boundary (tol > 0 always), a float coincidence",
+    "bodies/footprint.py:ReplaceBinaryOperator_Sub_Add:dccd2f304d":
+        "_lamina's grid origin shifted by +c[1] instead of -c[1]: only rectangle() passes a "
+        "grid, and its vertices are symmetric about the origin, so its centroid c is 0",
+    "contact/plastic.py:ReplaceComparisonOperator_Gt_Is:5080eed35a":
+        "release never (array 'is' float): at one load the outer loop's plastic set only "
+        "grows -- no release in 36 capped solves that reached the outer loop (4 maps, "
+        "periodic and free, H / p 1.01-1.2, non-square pixels); a wrong plastic pixel would "
+        "show as a gap at H, which test_contact_solver's complementarity checks",
+    "contact/plot.py:NumberReplacer:75b2a143ea":
+        "the profile figure 9 x 6 inches instead of 8 x 6: a figure's size, no number shown",
+    "contact/solver.py:ReplaceBinaryOperator_Pow_Mul:e9e9038b83":
+        "G of the plain (unpreconditioned) iteration: with PRECONDITION = True (a constant) "
+        "G is overwritten by the preconditioned sum on the next line before any use",
+    "dynamics/body_bench.py:NumberReplacer:2f49475ded":
+        "V0 = 9 m/s instead of 10: the benchmark's own launch speed (reported as v0); any "
+        "V0 above mu g SLIDE_TIME (5.9 m/s) keeps the point mass sliding throughout, the "
+        "one condition of the measurement (test_bench_body asserts sliding_at_end)",
+    "friction/elastic.py:NumberReplacer:047dca49e9":
+        "w > -1 in the 'no face carries load' guard: a converged solve's forces sum to the "
+        "load > 0 over segments that are faces or flats, so a face or the gap always carries "
+        "some; the guard is never reached and w >= 0, so > -1 changes nothing reachable",
+    "dynamics/body.py:ReplaceBinaryOperator_Div_Mul:766695afe7":
+        "rho = sqrt(I m) for sqrt(I / m) in the stop threshold (1e-10 of the velocity "
+        "scale): it only separates a velocity exactly 0 (a sticking body's, bit for bit) "
+        "from one of order deceleration x dt, far above it, so the stop steps stay the same "
+        "(test_body_invariants checks them on a 4 kg body)",
+    "friction/elastic_windows.py:NumberReplacer:4808fc64b3":
+        "report(-1.0) for report(0.0) at the windows' start: both progress bars (terminal, "
+        "web job) clamp the fraction to [0, 1], so the same 0 % is shown",
+    "surface/mesh_grid.py:NumberReplacer:5879fa1eb6":
+        "the dummy arrays of the grid walk's mode 0 shaped (1, 0) instead of (1, 1): mode 0 "
+        "never reads them, and the kernel's signature (float64, 2 dimensions) is the same",
+    "contact/_pk_kernels.py:ReplaceComparisonOperator_Lt_NotEq:9839fa2216":
+        "0 < p < H -> 0 < p != H in the pressure step: they differ only for p > H, and every "
+        "pressure the step sees was capped at H (start, rescale, fill and the step itself "
+        "clip to [0, H]; H = inf without a cap)",
+    "dynamics/_body_kernels.py:NumberReplacer:df15432c20":
+        "rec_t[-1] = 0 for rec_t[0] = 0 at the start: rec_t is np.zeros (body.py), so its "
+        "first time is 0 anyway, and the last slot is written by the last record or cut "
+        "off by [:k]",
+    "contact/_pk_kernels.py:ReplaceComparisonOperator_Lt_IsNot:1609509913":
+        "pi < H -> pi is not H in gap_violation: numba compares two floats' values for "
+        "'is' (checked: 1.0 is not 1.0 is False there), and p <= H always (clipped), so it "
+        "is p != H, the same as p < H",
+}
+
+LEFT: dict[str, str] = {
+    "dynamics/body_bench.py:NumberReplacer:0c404aa33f":
+        "MuJoCo's disc (DISC v0): runs only with mujoco installed, which the test machines "
+        "do not have (test_bench_body checks its figures when it is installed)",
+    "dynamics/body_bench.py:NumberReplacer:1e7360cfe9":
+        "MuJoCo's disc (DISC t_max): as above, only with mujoco installed",
+    "dynamics/_body_kernels.py:NumberReplacer:73667ba982":
+        "step_velocity writes d[3] past its 3 elements (numba checks no bounds): a memory "
+        "error no result shows; in the Newton iteration the lead is rewriting",
+    "dynamics/_body_law_kernels.py:ReplaceBinaryOperator_Mul_Add:eca72e9622":
+        "the law table's derivative along t_b (e * py -> e + py) only feeds the Newton "
+        "Jacobian: fewer or more iterations, the same converged step; Newton iteration "
+        "being rewritten by the lead",
+    "dynamics/_body_kernels.py:NumberReplacer:b4683ec0c6":
+        "the step loop's rest flag from (vx, vx, omega) instead of (vx, vy, omega): a disc "
+        "launched exactly along y still slides the point mass's distance "
+        "(test_body_invariants), so the flag only steers the warm start; step loop being "
+        "rewritten",
+    "dynamics/_body_law_kernels.py:ReplaceBinaryOperator_Add_Mod:dd9252b04b":
+        "the ellipse's gauge without its t_b coordinate: a force across t_a still moves a "
+        "body only beyond mu_t_b (test_body_invariants), so this gauge only steers the "
+        "Newton iteration (the stick test is decided elsewhere); being rewritten",
+    "dynamics/_body_step_kernels.py:ReplaceBinaryOperator_Add_Sub:9e93b6c778":
+        "the sphere search's tangent gradient (a2 sign): its stopping test only; the "
+        "Newton iteration the lead is rewriting",
+    "dynamics/_body_step_kernels.py:NumberReplacer:591a90fd3e":
+        "the sphere search's tangent gradient (a1 from t1[-1]): as above",
+    "dynamics/_body_step_kernels.py:ReplaceBinaryOperator_Pow_FloorDiv:5b58919a32":
+        "the 2 x 2 eigenvalue discriminant of the sphere search (** 2 -> // 2): as above",
+    "dynamics/_body_step_kernels.py:NumberReplacer:d64a376bb5":
+        "the line search's residual norm (R[2] R[1] / md[1] for R[1]^2 / md[1]): as above",
+}

@@ -1,0 +1,97 @@
+"""What any correct body solver keeps: the rest horizon (the time by which a body with no
+external force is surely at rest) bounds the exact stopping times of a uniformly loaded
+disc's pure slide (v0 / (mu g)) and pure spin (3 R omega0 / (4 mu g)), for mu below and
+above 1; the reported stop times match the recorded motion; a disc launched exactly along
+an axis slides the point mass's distance; a force across t_a moves a body at rest only
+beyond the limit set."""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from asperity import coulomb_law
+from asperity.bodies import footprint as fpm
+from asperity.dynamics.body import rest_horizon
+
+G = 9.81
+
+
+@pytest.mark.parametrize("mu", [0.3, 1.0, 3.0])
+@pytest.mark.parametrize("g", [G, 1.62])
+def test_rest_horizon_bounds_the_closed_form_stopping_times(mu, g):
+    R, m = 0.05, 2.0
+    fp = fpm.disc(R, contact_points=256)
+    inertia = m * fp.inertia_per_mass
+    law = coulomb_law(mu)
+    v0, w0 = 1.3, 40.0
+    slide = rest_horizon(fp.points, fp.weights, law, m, inertia, (v0, 0.0, 0.0), g)
+    spin = rest_horizon(fp.points, fp.weights, law, m, inertia, (0.0, 0.0, w0), g)
+    t_slide, t_spin = v0 / (mu * g), 3 * R * w0 / (4 * mu * g)
+    assert t_slide <= slide < 20 * t_slide
+    assert t_spin <= spin < 20 * t_spin
+    # both at once stop no later than the bound of the combined speed
+    both = rest_horizon(fp.points, fp.weights, law, m, inertia, (v0, 0.0, w0), g)
+    assert both == pytest.approx(math.hypot(slide, spin), rel=1e-12)
+
+
+@pytest.mark.parametrize("u0", [(0.03, 0.0, 2.0), (0.004, -0.002, 0.05), (0.5, 0.2, 1.0)])
+def test_slide_and_spin_stop_times_are_where_the_motion_stays_below_the_threshold(u0):
+    """BodyResult's slide (spin) stop time: from then on |v| (rho |omega|, rho = sqrt(I/m))
+    stays below STOP_FRACTION of |v0| + rho |omega0| + g dt, and the step before was above
+    -- read off the recorded states (every step), a body of 4 kg (m != 1), slow starts
+    (a velocity scale below 1) included."""
+    import numpy as np
+
+    from asperity.dynamics.body import STOP_FRACTION, simulate_body
+    fp = fpm.disc(0.05, contact_points=64)
+    m, dt = 4.0, 2e-4
+    inertia = m * fp.inertia_per_mass
+    res = simulate_body(fp.points, fp.weights, coulomb_law(0.4), mass=m, inertia=inertia,
+                        u0=u0, dt=dt)
+    assert res.ok and res.rest
+    rho = math.sqrt(inertia / m)
+    thr = STOP_FRACTION * (math.hypot(u0[0], u0[1]) + rho * abs(u0[2]) + G * dt)
+    for stop, speed in ((res.slide_stop_time, np.hypot(res.u[:, 0], res.u[:, 1])),
+                        (res.spin_stop_time, rho * np.abs(res.u[:, 2]))):
+        assert stop is not None and 0 < stop <= res.stop_time + 1e-12
+        after = res.t >= stop - 1e-12
+        assert np.all(speed[after] <= thr) and speed[~after][-1] > thr
+
+
+@pytest.mark.parametrize("u0", [(0.0, 0.8, 0.0), (-0.8, 0.0, 0.0), (0.0, -0.5, 0.0)])
+def test_disc_launched_along_an_axis_slides_the_point_mass_distance(u0):
+    """No spin, launched exactly along x or y (the other components exactly 0): the disc
+    slides v0^2 / (2 mu g) and stops at v0 / (mu g), as a point mass on Coulomb friction."""
+    from asperity.dynamics.body import simulate_body
+    fp = fpm.disc(0.05, contact_points=64)
+    mu, dt = 0.4, 1e-4
+    res = simulate_body(fp.points, fp.weights, coulomb_law(mu), mass=1.0,
+                        inertia=fp.inertia_per_mass, u0=u0, dt=dt)
+    v0 = math.hypot(u0[0], u0[1])
+    assert res.ok and res.rest
+    assert res.stop_time == pytest.approx(v0 / (mu * G), abs=2 * dt)
+    travel = math.hypot(res.q_final[0], res.q_final[1])
+    assert travel == pytest.approx(v0 ** 2 / (2 * mu * G), rel=2e-3)
+    assert abs(res.q_final[2]) < 1e-9                  # no spin appears
+
+
+@pytest.mark.parametrize("mu_t_b,moves", [(0.2, True), (0.4, False)])
+def test_force_across_t_a_moves_the_body_only_beyond_mu_t_b(mu_t_b, moves):
+    """An ellipse law, mu 0.6 along t_a (x) and mu_t_b along t_b (y); a body at rest pushed
+    along y by 0.3 m g: beyond the limit set when mu_t_b = 0.2 (then it accelerates at
+    (0.3 - 0.2) g along y), inside it when mu_t_b = 0.4 (then it never moves)."""
+    from asperity.dynamics.body import simulate_body
+    from asperity.dynamics.moreau import Force
+    from asperity.laws.planar import ellipse_law
+    fp = fpm.disc(0.05, contact_points=64)
+    m, t = 2.0, 0.2
+    res = simulate_body(fp.points, fp.weights, ellipse_law(0.6, mu_t_b), mass=m,
+                        inertia=m * fp.inertia_per_mass, dt=1e-3, t_end=t,
+                        force=Force(constant=(0.0, 0.3 * m * G, 0.0)))
+    assert res.ok
+    if moves:
+        assert res.u_final[1] == pytest.approx(0.1 * G * t, rel=1e-3)
+        assert abs(res.u_final[0]) < 1e-9 and abs(res.u_final[2]) < 1e-9
+    else:
+        assert not res.u_final.any() and not res.q_final.any()

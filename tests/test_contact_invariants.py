@@ -1,0 +1,128 @@
+"""Invariants of the elastic contact solver that any correct solver keeps: a load curve of
+one pressure, with the defaults, is the single solve with the defaults; (more below)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from asperity.contact import solve_contact, solve_load_curve
+from asperity.contact.bench import self_affine
+
+E = 1e11
+
+
+def scan(n=40, m=56, dx=1e-6, dy=1.5e-6, seed=3):
+    """A rough map with non-square pixels, heights away from zero."""
+    return self_affine(n, m, dx=dx, dy=dy, seed=seed) + 3e-5, (dx, dy)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+def test_load_curve_of_one_pressure_with_the_defaults_is_the_single_solve(boundary):
+    z, px = scan()
+    p = 0.003 * E
+    (curve,) = solve_load_curve(z, px, E, [p], boundary=boundary)
+    single = solve_contact(z, px, E, p, boundary=boundary)
+    assert curve.converged and single.converged
+    assert curve.pressure_asked == p and curve.pixel_size == single.pixel_size
+    np.testing.assert_allclose(curve.pressure, single.pressure, rtol=0,
+                               atol=1e-9 * single.max_pressure)
+    assert curve.iterations == single.iterations
+    assert curve.mean_pressure == pytest.approx(p, rel=1e-8)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+@pytest.mark.parametrize("shape", [(12, 10), (9, 7)], ids=["even", "odd"])
+def test_self_compliance_is_the_operators_diagonal(boundary, shape):
+    """HalfSpace.self_compliance, the displacement of a pixel under unit pressure on it
+    alone, is K's diagonal: apply K to a unit pressure at any pixel and read it there."""
+    from asperity.contact.elastic import HalfSpace
+    space = HalfSpace(shape, 1e-6, 2.5e-6, E, boundary)
+    for i, j in ((0, 0), (shape[0] // 2, shape[1] - 1), (3, 2)):
+        p = np.zeros(shape)
+        p[i, j] = 1.0
+        u = space.apply(p, np.empty(shape))
+        assert u[i, j] == pytest.approx(space.self_compliance, rel=1e-10, abs=0)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+def test_memory_refusal_counts_every_pixel(boundary, monkeypatch):
+    """The solve plans its bytes a pixel times the pixels: 10 % less free memory than that
+    is refused in one line before any work, 10 % more is solved."""
+    from asperity import resources
+    from asperity.contact import elastic
+    from asperity.errors import ResourceError
+    z, px = scan()
+    need = elastic.BYTES_PER_PIXEL[boundary] * z.size
+    monkeypatch.setattr(resources, "available_memory",
+                        lambda: int(0.9 * need / resources.MEMORY_SHARE))
+    with pytest.raises(ResourceError, match=f"{z.shape[0]} x {z.shape[1]} pixels"):
+        solve_contact(z, px, E, 0.003 * E, boundary=boundary)
+    monkeypatch.setattr(resources, "available_memory",
+                        lambda: int(1.1 * need / resources.MEMORY_SHARE))
+    assert solve_contact(z, px, E, 0.003 * E, boundary=boundary).converged
+
+
+def test_bearing_area_fill_keeps_the_load_under_the_cap():
+    """The plastic solve's fill: the contact pixels at H and the rest of the load on the
+    most penetrating pixels out of contact (smallest u - h), the load exact, nothing
+    above H, nothing on undefined pixels (on the flat views the solver passes)."""
+    from asperity.contact.loads import fill
+    rng = np.random.default_rng(4)
+    shape, H = (1200,), 2.0
+    h = rng.normal(size=shape)
+    h[rng.random(shape) < 0.1] = np.nan
+    u = rng.normal(size=shape)
+    p = np.where(rng.random(shape) < 0.05, rng.uniform(0.1, H, shape), 0.0)
+    p[np.isnan(h)] = 0.0
+    on = p > 0
+    for extra in (0.5, 7.25, 100.0):
+        load = H * (on.sum() + extra)
+        q = p.copy()
+        fill(q, u, h, load, H)
+        assert q.sum() == pytest.approx(load, rel=1e-12)
+        assert q.max() <= H and q.min() >= 0.0 and not q[np.isnan(h)].any()
+        assert np.all(q[on] == H)
+        k = int(np.ceil(extra))
+        g = np.where(~on & ~np.isnan(h), u - h, np.inf)
+        assert set(np.flatnonzero((q > 0) & ~on)) == set(np.argsort(g, kind="stable")[:k])
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+@pytest.mark.parametrize("ratio,outer", [(None, False), (1.6, False), (1.6, True)],
+                         ids=["elastic", "capped", "capped-outer-loop"])
+def test_gap_is_displacement_minus_heights_plus_approach(boundary, ratio, outer, monkeypatch):
+    """g = u - h + d (the result's displacement and approach): zero on the contact
+    pixels, positive off them, and the mean gap its mean over the defined pixels; with a
+    cap, no pressure above it -- also when the plastic set comes from the outer loop
+    (forced: the capped single iteration given one iteration to converge)."""
+    from asperity.contact import solver
+    if outer:
+        monkeypatch.setattr(solver, "PLASTIC_FIRST_TRY", 1)
+    z, px = scan()
+    p = 0.003 * E
+    res = solve_contact(z, px, E, p, boundary=boundary,
+                        hardness=None if ratio is None else ratio * p)
+    assert res.converged and (ratio is None or res.plastic_fraction > 0)
+    g = res.displacement - z + res.approach
+    span = np.ptp(z)
+    off = ~res.contact
+    np.testing.assert_allclose(res.gap[off], g[off], rtol=0, atol=1e-9 * span)
+    assert np.all(res.gap[res.contact] == 0.0) and res.gap[off].min() > -1e-9 * span
+    assert res.mean_gap == pytest.approx(res.gap.mean(), rel=1e-12, abs=0)
+    if ratio is not None:
+        assert np.nanmax(res.pressure) <= ratio * p * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("args,field", [
+    ((0.0, 0.3), "E1"), ((-5e9, 0.3), "E1"), ((-0.5, 0.3), "E1"), ((1e9, -1.0), "nu1"),
+    ((1e9, 0.51), "nu1"), ((1e9, 0.3, 0.0, 0.3), "E2"), ((1e9, 0.3, 1e9, 0.6), "nu2"),
+    ((1e9, 0.3, 1e9, None), "E2 and nu2 together")])
+def test_effective_modulus_takes_only_physical_materials(args, field):
+    """E > 0 and -1 < nu <= 0.5 (the edge nu = 0.5, incompressible, is allowed: E* =
+    E / 0.75 on a rigid counterface); anything else is one line naming the field."""
+    from asperity.contact.solver import effective_modulus
+    from asperity.errors import InputError
+    assert effective_modulus(3e9, 0.5) == pytest.approx(4e9, rel=1e-14)
+    with pytest.raises(InputError) as e:
+        effective_modulus(*args)
+    assert field in str(e.value) and "\n" not in str(e.value)
