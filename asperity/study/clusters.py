@@ -204,6 +204,9 @@ def connect(scheduler: str | None, workers: int | None, per_worker: float | None
 
 
 def close(client, cluster) -> None:
+    import sys
+    if sys.exc_info()[0] is not None:   # stopping early (Ctrl-C, SIGTERM, an error): the
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)   # lost tasks are known
     with contextlib.suppress(Exception):
         client.close(timeout=5)
     if cluster is not None:
