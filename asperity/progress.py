@@ -17,10 +17,11 @@ code calls :func:`report` and does not care whether anyone listens.
 from __future__ import annotations
 
 import contextvars
+import math
 import os
 import time
 
-_current: contextvars.ContextVar["progress_bar | None"] = contextvars.ContextVar(
+_current: contextvars.ContextVar[progress_bar | None] = contextvars.ContextVar(
     "progress_bar", default=None)
 
 #: seconds of work before a bar is drawn (short work stays silent)
@@ -40,7 +41,7 @@ def line_seconds() -> float:
         x = float(text)
     except ValueError:
         return LINE_SECONDS
-    return x if x > 0 and x == x else 0.0
+    return x if math.isfinite(x) and x > 0 else 0.0
 
 
 def _duration(s: float) -> str:
@@ -100,7 +101,7 @@ class progress_bar:
             return
         if not self.shown and now - self.start < QUIET_SECONDS:
             return
-        n = int(round(30 * f))
+        n = round(30 * f)
         eta = f" {took * (1 - f) / f:6.0f} s left" if 0.02 < f < 1 else " " * 12
         name = self.phase or self.label
         self._write(f"\r{name[:28]:<28} [{'#' * n}{'.' * (30 - n)}] {100 * f:5.1f} %{eta}")

@@ -49,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"asperity {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
-    for name, mod in COMMANDS.items():
+    for mod in COMMANDS.values():
         importlib.import_module(f"asperity.cli.{mod}").add_parser(sub)
     for p in sub.choices.values():                   # what every command has
         p.epilog = EPILOG

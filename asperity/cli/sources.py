@@ -28,7 +28,8 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "pressure": "--pressure", "hardness": "--hardness",
                 "max_iterations": "--max-iterations", "tol ": "--tol ",
                 "window_placement": "--window-placement", "window_seed": "--window-seed",
-                "windows": "--windows", "window ": "--window ", "grid_step": "--grid-step"}
+                "windows": "--windows", "window ": "--window ", "grid_step": "--grid-step",
+                "rest_level": "--rest-level", "directions ": "--directions "}
 #: the elastic-contact flags (dest -> flag)
 ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
                  "hardness": "--hardness", "grid_step": "--grid-step"}
@@ -41,12 +42,12 @@ def surface_options(args) -> dict:
         raise InputError(f"--pixel-size takes one value or two (dx dy), got {len(px)}")
     if args.despike_window is not None and args.despike is None:
         raise InputError("--despike-window needs --despike (the spike filter's threshold)")
-    return dict(unit=args.unit, pixel_size=None if px is None else (px[0] if len(px) == 1
-                                                                     else tuple(px)),
-                height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
-                friction_map=args.friction_map, rest_level=args.rest_level,
-                bearing_fraction=args.bearing_fraction, despike=args.despike,
-                despike_window=args.despike_window, max_slope=args.max_slope)
+    return {"unit": args.unit,
+            "pixel_size": None if px is None else (px[0] if len(px) == 1 else tuple(px)),
+            "height_scale": args.height_scale, "detrend": args.detrend, "mu": args.mu,
+            "friction_map": args.friction_map, "rest_level": args.rest_level,
+            "bearing_fraction": args.bearing_fraction, "despike": args.despike,
+            "despike_window": args.despike_window, "max_slope": args.max_slope}
 
 
 class flag_names:
