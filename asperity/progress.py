@@ -75,6 +75,7 @@ class progress_bar:
         self.last_line = self.start
         self.phase = ""
         self.phase_start = self.start
+        self.phase_f0 = 0.0
         self._token = None
 
     def __call__(self, fraction: float, label: str | None = None) -> None:
@@ -83,18 +84,19 @@ class progress_bar:
             return
         if not (self.on or self.every):
             return
-        now = time.perf_counter()
-        if label is not None and label != self.phase:
-            self.phase, self.phase_start = label, now
         try:
             f = min(max(float(fraction), 0.0), 1.0)
         except (TypeError, ValueError):
             return
-        took = now - self.phase_start
+        now = time.perf_counter()
+        if (label is not None and label != self.phase) or f < self.phase_f0:
+            self.phase = self.phase if label is None else label
+            self.phase_start, self.phase_f0 = now, f
+        left = self._left(now, f)
         if not self.on:
             if now - self.last_line >= self.every:
                 self.last_line = now
-                eta = f", about {_duration(took * (1 - f) / f)} left" if 0.02 < f < 1 else ""
+                eta = "" if left is None else f", about {_duration(left)} left"
                 what = f"{self.phase} " if self.phase and self.phase != self.label else ""
                 self._write(f"{self.label}: {what}{100 * f:.1f} % after "
                             f"{_duration(now - self.start)}{eta}\n")
@@ -102,10 +104,18 @@ class progress_bar:
         if not self.shown and now - self.start < QUIET_SECONDS:
             return
         n = round(30 * f)
-        eta = f" {took * (1 - f) / f:6.0f} s left" if 0.02 < f < 1 else " " * 12
+        eta = " " * 12 if left is None else f" {left:6.0f} s left"
         name = self.phase or self.label
         self._write(f"\r{name[:28]:<28} [{'#' * n}{'.' * (30 - n)}] {100 * f:5.1f} %{eta}")
         self.shown = True
+
+    def _left(self, now: float, f: float) -> float | None:
+        """Seconds left in the phase at the pace since its first report (None until it has
+        moved by 1 %, and at the end)."""
+        done = f - self.phase_f0
+        if done < 0.01 or f >= 1.0:
+            return None
+        return (now - self.phase_start) * (1.0 - f) / done
 
     def _write(self, text: str) -> None:
         try:

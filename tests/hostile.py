@@ -35,7 +35,7 @@ def cli(*argv, cwd=None, timeout=120, env=None, preexec_fn=None, stdin=None):
     (the package under test, whatever the cwd)."""
     e = package_env(env)
     e.pop("ASPERITY_DEBUG", None)
-    p = subprocess.run([sys.executable, "-m", "asperity", *map(str, argv)], cwd=cwd,
+    p = subprocess.run([sys.executable, "-m", "asperity", *map(str, argv)], cwd=cwd, check=False,
                        capture_output=True, text=True, timeout=timeout, env=e,
                        preexec_fn=preexec_fn, stdin=stdin)
     return p.returncode, p.stdout, p.stderr
@@ -59,24 +59,89 @@ def assert_finite_output(text: str):
     assert m is None, f"non-finite value in output: ...{text[max(0, m.start() - 60):m.end() + 20]}"
 
 
-def interrupt(*argv, after=1.5, cwd=None, timeout=60):
-    """Start ``asperity ARGV``, send SIGINT ``after`` seconds, and return (exit status,
-    stderr, seconds from SIGINT to exit)."""
-    p = subprocess.Popen([sys.executable, "-m", "asperity", *map(str, argv)], cwd=cwd,
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=package_env())
-    time.sleep(after)
-    if p.poll() is not None:
-        out, err = p.communicate()
-        raise AssertionError(f"finished before the interrupt (exit {p.returncode}): {err}")
-    t0 = time.perf_counter()
-    p.send_signal(signal.SIGINT)
-    try:
-        out, err = p.communicate(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        p.kill()
-        raise AssertionError("still running after SIGINT") from None
-    return p.returncode, err, time.perf_counter() - t0
+#: a progress line of a command whose stderr is no terminal (asperity.progress)
+PROGRESS_LINE = re.compile(r"^asperity [a-z]+: .*\d % after \d")
+
+
+class Running:
+    """``asperity ARGV`` in a child process whose stderr is a pipe, with a progress line
+    every ``every`` seconds (``$ASPERITY_PROGRESS_EVERY``): :meth:`wait_progress` waits
+    for the long work to be under way (an event, not a guess of how long start-up takes
+    on a loaded machine), :meth:`send` signals it (``group``: its whole process group, as
+    a terminal's Ctrl-C does), :meth:`finish` collects its exit status and stderr."""
+
+    def __init__(self, *argv, cwd=None, every=0.2, group=False, env=None):
+        import threading
+        e = package_env({**(env or {}), "ASPERITY_PROGRESS_EVERY": str(every)})
+        e.pop("ASPERITY_DEBUG", None)
+        self.group = group
+        self.p = subprocess.Popen([sys.executable, "-m", "asperity", *map(str, argv)],
+                                  cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                  text=True, env=e, start_new_session=group)
+        self.err: list[str] = []
+        self.out: list[str] = []
+        self.progress = threading.Event()
+        self.sent_at = None
+        self._readers = [threading.Thread(target=self._read, args=(s, k), daemon=True)
+                         for s, k in ((self.p.stderr, self.err), (self.p.stdout, self.out))]
+        for t in self._readers:
+            t.start()
+
+    def _read(self, stream, into):
+        for line in stream:
+            into.append(line)
+            if into is self.err and PROGRESS_LINE.match(line):
+                self.progress.set()
+        if into is self.err:
+            self.progress.set()                 # ended: wake a waiter
+
+    def wait_progress(self, timeout=600):
+        """Wait for the first progress line; the command must still be running."""
+        if not self.progress.wait(timeout):
+            self.kill()
+            raise AssertionError(f"no progress line within {timeout} s")
+        if not any(PROGRESS_LINE.match(x) for x in self.err) or self.p.poll() is not None:
+            self.kill()
+            raise AssertionError(f"ended before its first progress line (exit "
+                                 f"{self.p.returncode}): {''.join(self.err)}")
+
+    def send(self, sig):
+        self.sent_at = time.perf_counter()
+        if self.group:
+            os.killpg(self.p.pid, sig)
+        else:
+            self.p.send_signal(sig)
+
+    def finish(self, timeout=300):
+        """(exit status, stderr without the progress lines, the progress lines); the
+        seconds from the signal to the exit are in ``self.took``."""
+        try:
+            self.p.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.kill()
+            raise AssertionError(f"still running {timeout} s after the signal") from None
+        self.took = None if self.sent_at is None else time.perf_counter() - self.sent_at
+        for t in self._readers:
+            t.join(30)
+        lines = [x for x in self.err if not PROGRESS_LINE.match(x)]
+        return self.p.returncode, "".join(lines), [x for x in self.err if x not in lines]
+
+    def kill(self):
+        if self.p.poll() is None:
+            (os.killpg(self.p.pid, signal.SIGKILL) if self.group else self.p.kill())
+            self.p.wait()
+
+
+def interrupt(*argv, sig=signal.SIGINT, cwd=None, group=False):
+    """Start ``asperity ARGV``, wait for its first progress line (the long work is under
+    way), send ``sig`` (Ctrl-C by default) and return (exit status, stderr without the
+    progress lines).  Behaviour only: how soon it stops is measured by
+    benchmarks/bench_interrupts.py, not asserted (a loaded machine makes any bound flaky)."""
+    run = Running(*argv, cwd=cwd, group=group)
+    run.wait_progress()
+    run.send(sig)
+    status, err, _ = run.finish()
+    return status, err
 
 
 def limit_memory(nbytes: int):
@@ -111,7 +176,8 @@ class read_only:
             os.chmod(self.folder, 0o555)
             self.how = "chmod"
             return self
-        r = subprocess.run(["chattr", "+i", str(self.folder)], capture_output=True, text=True)
+        r = subprocess.run(["chattr", "+i", str(self.folder)], capture_output=True, text=True,
+                           check=False)
         if r.returncode != 0:
             raise RuntimeError(f"cannot make {self.folder} read-only as root: {r.stderr.strip()}")
         self.how = "chattr"
