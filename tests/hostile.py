@@ -95,22 +95,48 @@ class Running:
         if into is self.err:
             self.progress.set()                 # ended: wake a waiter
 
-    def wait_progress(self, timeout=600):
-        """Wait for the first progress line; the command must still be running."""
-        if not self.progress.wait(timeout):
+    def wait_progress(self, timeout=600, above=None):
+        """Wait for the first progress line (with ``above``: the first past that percentage);
+        the command must still be running."""
+        t0 = time.monotonic()
+        while not self._seen(above) and self.p.poll() is None:
+            self.progress.clear()
+            if self._seen(above):
+                break
+            if not self.progress.wait(max(0.0, timeout - (time.monotonic() - t0))):
+                self.kill()
+                raise AssertionError(f"no progress line within {timeout} s")
+        if not self._seen(above) or self.p.poll() is not None:
             self.kill()
-            raise AssertionError(f"no progress line within {timeout} s")
-        if not any(PROGRESS_LINE.match(x) for x in self.err) or self.p.poll() is not None:
-            self.kill()
-            raise AssertionError(f"ended before its first progress line (exit "
+            raise AssertionError(f"ended before the progress line awaited (exit "
                                  f"{self.p.returncode}): {''.join(self.err)}")
 
-    def send(self, sig):
+    def _seen(self, above) -> bool:
+        for x in list(self.err):
+            if PROGRESS_LINE.match(x):
+                m = re.search(r"(\d+(\.\d+)?) % after", x)
+                if above is None or (m and float(m.group(1)) > above):
+                    return True
+        return False
+
+    def send(self, sig, whole_group: bool | None = None):
+        """Signal the command (its whole group: by default when started with ``group``)."""
         self.sent_at = time.perf_counter()
-        if self.group:
+        if self.group if whole_group is None else whole_group:
             os.killpg(self.p.pid, sig)
         else:
             self.p.send_signal(sig)
+
+    def group_gone(self, timeout=60.0) -> bool:
+        """Whether every process of its group (Dask workers included) ends within
+        ``timeout`` s (started with ``group``)."""
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < timeout:
+            if not group_members(self.p.pid):
+                return True
+            time.sleep(0.1)
+        return False
+
 
     def finish(self, timeout=300):
         """(exit status, stderr without the progress lines, the progress lines); the
@@ -130,6 +156,22 @@ class Running:
         if self.p.poll() is None:
             (os.killpg(self.p.pid, signal.SIGKILL) if self.group else self.p.kill())
             self.p.wait()
+
+
+def group_members(pgid: int) -> list[int]:
+    """The live (not zombie) processes of process group ``pgid`` (Linux /proc)."""
+    out = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit():
+            continue
+        try:
+            with open(f"/proc/{d}/stat", encoding="ascii", errors="replace") as fh:
+                fields = fh.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if fields[0] != "Z" and int(fields[2]) == pgid:
+            out.append(int(d))
+    return out
 
 
 def interrupt(*argv, sig=signal.SIGINT, cwd=None, group=False):
