@@ -47,10 +47,10 @@ def long_runs(tmp: Path) -> dict:
         "slide": (["slide", "--law", "star", "--mu1", "0.3", "--mu2", "0.2", "--u0", "1",
                    "--angle", "30", "--t-end", "4000", "--dt", "1e-5", "--csv",
                    tmp / "p.csv"], tmp / "p.csv"),
-        "slide --body": (["slide", "--mu1", "0.3", "--u0", "0", "--angle", "0", "--body",
+        "slide --body": (["slide", "--mu1", "0.3", "--u0", "1", "--angle", "0", "--body",
                           "disc", "--radius", "0.05", "--contact-points", "256", "--t-end",
-                          "1000", "--dt", "1e-4",
-                          "--force", "0", "0", "--csv", tmp / "b.csv"], tmp / "b.csv"),
+                          "1000", "--dt", "1e-4", "--force", "3", "0", "--csv",
+                          tmp / "b.csv"], tmp / "b.csv"),       # pushed past friction
         "risk": (["risk", SURF / "wedge-asymmetric.toml", SURF / "bushing-strip.toml",
                   "--dynamic", "10000000", "--plot", tmp / "k.png"], tmp / "k.png"),
         "study": (["study", study, "-o", tmp / "out", "--workers", "0", "--batch-size", "5",
