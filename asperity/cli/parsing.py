@@ -3,6 +3,9 @@
 * A number typed with a minus sign is a value, whatever its form: ``--force -1e-1 0``,
   ``--elastic -1e9``, ``--angle -.5``, ``--u0 -inf`` (argparse alone knows only ``-1`` and
   ``-1.5`` and takes ``-1e9`` for an unknown option).  The command then checks its range.
+* A flag is spelled in full: no abbreviations (``contact --mu`` is an unknown flag, not
+  "ambiguous: --mu-alpha or --mu-beta"; a script's ``--pres`` would change meaning the
+  day a flag ``--preset`` appears).
 * Exit status (README, "Errors"): a value the command cannot use -- text where a number
   belongs, a number out of its range, a word that is not one of the choices, a file that
   cannot be read -- is one line and status 1 (:data:`EXIT_VALUE`), whether argparse or
@@ -36,12 +39,26 @@ def flag_of(action) -> str:
 
 class Parser(argparse.ArgumentParser):
     """argparse with a one-line usage error (status 2; the usage itself is in --help),
-    negative numbers in any form taken as values, and a bad value (argparse's type and
-    choice errors) refused as the commands refuse one: an InputError, status 1."""
+    negative numbers in any form taken as values, flags in full, and a bad value
+    (argparse's type and choice errors) refused as the commands refuse one: an
+    InputError, status 1."""
 
     def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = NEGATIVE_NUMBER
+
+    def parse_args(self, args=None, namespace=None):
+        """As argparse's, but arguments left over are reported by the subcommand's parser
+        (``asperity contact: error: unrecognized arguments ... (see asperity contact
+        --help)``), not by the top-level one."""
+        ns, extra = self.parse_known_args(args, namespace)
+        if extra:
+            sub = self
+            if self._subparsers is not None and getattr(ns, "command", None):
+                sub = self._subparsers._group_actions[0].choices.get(ns.command, self)
+            sub.error(f"unrecognized arguments: {' '.join(extra)}")
+        return ns
 
     def error(self, message: str):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
