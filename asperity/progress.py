@@ -97,7 +97,8 @@ class progress_bar:
             if now - self.last_line >= self.every:
                 self.last_line = now
                 eta = "" if left is None else f", about {_duration(left)} left"
-                what = f"{self.phase} " if self.phase and self.phase != self.label else ""
+                what = "" if self.label.split()[-1:] == [self.phase] or not self.phase \
+                    else f"{self.phase} "            # not 'asperity study: study 5 %'
                 self._write(f"{self.label}: {what}{100 * f:.1f} % after "
                             f"{_duration(now - self.start)}{eta}\n")
             return
