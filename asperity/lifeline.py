@@ -123,5 +123,11 @@ def die_with_parent(parent: int | None = None) -> None:
 
 def dask_setup(worker=None) -> None:
     """Dask preload hook: a worker of a local cluster dies with the process that started
-    it (the client, where its nanny runs)."""
+    it (the client, where its nanny runs), and ignores Ctrl-C: a terminal sends SIGINT to
+    the whole foreground group, and the worker would die with a traceback of its event
+    loop while its client is still closing it (the client stops its workers itself)."""
     die_with_parent()
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:                         # not the main thread: nothing to undo
+        pass

@@ -7,11 +7,16 @@ from the test's own thread."""
 from __future__ import annotations
 
 import ctypes
+import os
 import signal
 import subprocess
 import sys
 
 PR_SET_PDEATHSIG = 1
+# no periodic progress lines from the suite's commands (their stderr is no terminal): what
+# a test reads on stderr must not depend on how long a run took on a loaded machine; the
+# tests of those lines ask for them (tests/test_cli_signals.py)
+os.environ["ASPERITY_PROGRESS_EVERY"] = "0"
 _popen_init = subprocess.Popen.__init__
 
 

@@ -105,7 +105,7 @@ def test_derive_surface_errors_are_one_line(capsys, tmp_path):
     code, _, err = run(capsys, "derive", str(path), "--unit", "mm", "--mu", "-1")
     assert code == 1 and "mu" in err and len(err.strip().splitlines()) == 1
     code, _, err = run(capsys, "derive", str(path), "--unit", "mm", "--rest-level", "1.0")
-    assert code == 1 and "rest_level" in err
+    assert code == 1 and "--rest-level" in err
     code, _, err = run(capsys, "derive", "--alpha", "30", "--beta", "10", "--mu-alpha", "0.1",
                        "--mu-beta", "0.1", "--mu", "0.2")
     assert code == 1 and "--mu" in err

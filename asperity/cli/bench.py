@@ -73,6 +73,15 @@ def main(args) -> int:
     from .. import bench
     from ..errors import check_range
     seconds = check_range("--seconds", args.seconds, 0.05, 600)
+    # every flag in its widest range, whichever benchmark reads it (a value for a benchmark
+    # not asked for was ignored: 'bench --workers -1' ran the default benchmarks)
+    for flag, value, low, high in (
+            ("--directions", args.directions, 1, 1_000_000),
+            ("--numpy-directions", args.numpy_directions, 1, 1_000_000),
+            ("--workers", args.workers, 1, 64), ("--repeats", args.repeats, 1, 20),
+            ("--contact-size", args.contact_size, 64, 4096),
+            *(("--scan-sizes", n, 64, 32768) for n in args.scan_sizes)):
+        check_range(flag, value, low, high)
     parts = [args.only] if args.only else ["closed-form", "springs"]
     if args.facets is not None and "facets" not in parts:
         parts.append("facets")

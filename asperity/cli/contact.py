@@ -7,7 +7,13 @@ from __future__ import annotations
 
 from ..errors import InputError
 from . import emit, whole_flag
-from .sources import add_source_arguments, contact_failed, flag_names, surface_options
+from .sources import (
+    add_source_arguments,
+    check_pressures,
+    contact_failed,
+    flag_names,
+    surface_options,
+)
 
 #: the wedge textures whose profile the command presses (the others have no profile)
 WEDGE_KINDS = ("wedge", "gaussian-wedge")
@@ -78,18 +84,20 @@ def add_parser(sub) -> None:
 
 def modulus(args) -> float:
     """E* from --elastic or --materials (exactly one is given: the parser sees to it)."""
-    from ..errors import InputError, check_range
+    from ..errors import InputError
+    from .sources import check_modulus
     if args.materials is None:
-        return check_range("--elastic", args.elastic, 0.0, None, low_open=True, unit="Pa")
+        return check_modulus(args.elastic)
     m = args.materials
     if len(m) not in (2, 4):
         raise InputError(f"--materials takes E1 NU1 or E1 NU1 E2 NU2 (Pa, Poisson's ratio), "
                          f"got {len(m)} values")
     from ..contact import effective_modulus
     try:
-        return effective_modulus(*m)
+        E = effective_modulus(*m)
     except InputError as exc:
         raise InputError(f"--materials {exc}") from None
+    return check_modulus(E, "--materials")
 
 
 def run(args) -> tuple[dict, object, dict]:
@@ -104,6 +112,7 @@ def run(args) -> tuple[dict, object, dict]:
         ec = ElasticContact(E, args.pressure, boundary=args.boundary, hardness=args.hardness,
                             tol=args.tol, max_iterations=whole_flag(
                                 "--max-iterations", args.max_iterations, 1, 10 ** 7))
+    check_pressures(E, ec.pressures)
     if win:
         return contact_windows_args(args, ec), None, None
     for flag, given in (("--workers", args.workers), ("--scheduler", args.scheduler)):

@@ -85,13 +85,13 @@ def run(args) -> dict:
     texture, table = texture_from_args(args, several=True)
     if elastic is not None and elastic.family:
         from ..friction.family import derive_family, family_json
-        with progress_bar("facets") as progress:
+        with flag_names(), progress_bar("facets") as progress:
             fam = derive_family(texture, elastic, args.contact, args.directions, progress)
         return fam, family_json(fam)
     if elastic is not None:
         texture = texture[0]
     model = spring_model_from_args(args, table) if args.method == "springs" else None
-    with progress_bar("facets") as progress:
+    with flag_names(), progress_bar("facets") as progress:
         d = derive(texture, args.contact, args.method, args.directions, model, progress=progress)
     return d, to_json(d)
 

@@ -49,7 +49,7 @@ def run(args):
     from ..friction.derive import derive
     from ..laws.fitting import fit_derivation
     from ..progress import progress_bar
-    from .sources import elastic_from_args, texture_from_args
+    from .sources import elastic_from_args, flag_names, texture_from_args
     elastic = elastic_from_args(args, several=True)
     if elastic is not None and elastic.family:
         gl = _fit_family(args, elastic)
@@ -57,7 +57,7 @@ def run(args):
         obj = family_summary(gl)
     else:
         texture, _ = texture_from_args(args)
-        with progress_bar("facets") as progress:
+        with flag_names(), progress_bar("facets") as progress:
             d = derive(texture, args.contact, "closed-form", args.directions,
                        progress=progress)
         gl = fit_derivation(d, LAWS[args.law])
@@ -76,14 +76,10 @@ def _fit_family(args, elastic):
     from ..laws.family import GaugeFamily
     from ..laws.fitting import fit_derivation
     from ..progress import progress_bar
-    from .sources import texture_from_args
-    ps = elastic.pressures
-    for a, b in zip(ps, ps[1:]):
-        if not b > a:
-            raise InputError(f"--pressure values of a law family must be strictly increasing, "
-                             f"got {b:g} after {a:g}")
+    from .sources import flag_names, texture_from_args
+    ps = elastic.pressures                  # strictly increasing (elastic_from_args)
     textures, _ = texture_from_args(args, several=True)
-    with progress_bar("facets") as progress:
+    with flag_names(), progress_bar("facets") as progress:
         fam = derive_family(textures, elastic, args.contact, args.directions, progress)
     laws = []
     for p, d in zip(ps, fam.members):

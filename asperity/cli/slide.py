@@ -303,6 +303,7 @@ def run_body(args):
                          settings=BodySettings(tol=tol, max_iterations=maxit))
     except InputError as exc:          # the work limits name dt and t_end: say the options
         msg = str(exc).replace("t_end / dt", "--t-end / --dt").replace("raise dt", "raise --dt")
+        msg = msg.replace("inertia must", "the body's inertia (its size and --mass) must", 1)
         raise type(exc)(msg.replace("lower t_end", "lower --t-end")) from None
     obj = run.summary
     if args.gauge:
@@ -331,15 +332,15 @@ def _say_body(say, obj) -> None:
         say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m, angle {th:.6g} rad "
             f"({math.degrees(th):.4g} deg), after {obj['stop_time']:.6g} s ({obj['steps']} "
             f"steps of {obj['dt']:g} s), distance {obj['distance']:.6g} m")
-    else:
-        say(f"still moving at t = {obj['t_end']:g} s: position "
+    else:                        # t_end None: no rest within the horizon of the launch
+        say(f"still moving at t = {obj['t_end'] or obj['steps'] * obj['dt']:g} s: position "
             f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m, angle "
             f"{th:.6g} rad ({math.degrees(th):.4g} deg)")
     ts, tw = obj["slide_stop_time"], obj["spin_stop_time"]
     words = ["did not slide" if ts == 0 and obj["u0"] == 0 else
              f"sliding stopped at {ts:.6g} s" if ts is not None else "still sliding",
              "did not spin" if tw == 0 and obj["omega0"] == 0 else
-             f"spinning at {tw:.6g} s" if tw is not None else "still spinning"]
+             f"spin stopped at {tw:.6g} s" if tw is not None else "still spinning"]
     if obj["together"] is not None:
         words.append("together" if obj["together"] else "not together")
     say(", ".join(words))

@@ -3,6 +3,8 @@ risk), and turning them into a texture or surface.
 """
 from __future__ import annotations
 
+import itertools
+
 from ..errors import InputError
 from ..friction.sources import is_texture_file
 
@@ -28,7 +30,9 @@ _FIELD_FLAGS = {"pixel_size": "--pixel-size", "height_scale": "--height-scale",
                 "pressure": "--pressure", "hardness": "--hardness",
                 "max_iterations": "--max-iterations", "tol ": "--tol ",
                 "window_placement": "--window-placement", "window_seed": "--window-seed",
-                "windows": "--windows", "window ": "--window ", "grid_step": "--grid-step"}
+                "windows": "--windows", "window ": "--window ", "grid_step": "--grid-step",
+                "rest_level": "--rest-level", "directions ": "--directions ",
+                "boundary ": "--boundary "}
 #: the elastic-contact flags (dest -> flag)
 ELASTIC_FLAGS = {"elastic": "--elastic", "pressure": "--pressure", "boundary": "--boundary",
                  "hardness": "--hardness", "grid_step": "--grid-step"}
@@ -41,16 +45,25 @@ def surface_options(args) -> dict:
         raise InputError(f"--pixel-size takes one value or two (dx dy), got {len(px)}")
     if args.despike_window is not None and args.despike is None:
         raise InputError("--despike-window needs --despike (the spike filter's threshold)")
-    return dict(unit=args.unit, pixel_size=None if px is None else (px[0] if len(px) == 1
-                                                                     else tuple(px)),
-                height_scale=args.height_scale, detrend=args.detrend, mu=args.mu,
-                friction_map=args.friction_map, rest_level=args.rest_level,
-                bearing_fraction=args.bearing_fraction, despike=args.despike,
-                despike_window=args.despike_window, max_slope=args.max_slope)
+    return {"unit": args.unit,
+            "pixel_size": None if px is None else (px[0] if len(px) == 1 else tuple(px)),
+            "height_scale": args.height_scale, "detrend": args.detrend, "mu": args.mu,
+            "friction_map": args.friction_map, "rest_level": args.rest_level,
+            "bearing_fraction": args.bearing_fraction, "despike": args.despike,
+            "despike_window": args.despike_window, "max_slope": args.max_slope}
+
+
+#: library wording inside a message (after a file's name) -> the flags
+_PHRASES = (("pass unit and pixel_size", "pass --unit and --pixel-size"),
+            ("pixel_size is given in unit;", "--pixel-size is given in --unit;"),
+            ("pixel_size applies to", "--pixel-size applies to"), ("pass unit", "pass --unit"),
+            ("pixel_size in that unit", "--pixel-size in that unit"),
+            ("(and height_scale)", "(and --height-scale)"))
 
 
 class flag_names:
-    """Library field names at the start of an InputError's message -> the user's flags."""
+    """Library field names at the start of an InputError's message (and a few phrases
+    after a file's name) -> the user's flags."""
 
     def __enter__(self):
         return self
@@ -61,6 +74,11 @@ class flag_names:
             for field, flag in _FIELD_FLAGS.items():
                 if msg.startswith(field):
                     raise kind(flag + msg[len(field):]) from None
+            new = msg
+            for phrase, flags in _PHRASES:
+                new = new.replace(phrase, flags)
+            if new != msg:
+                raise kind(new) from None
         return False
 
 
@@ -136,14 +154,42 @@ def elastic_from_args(args, several: bool):
                          "load model")
     from ..surface.contact_facets import ElasticContact
     p = args.pressure
+    E = check_modulus(args.elastic)
     with flag_names():
-        elastic = ElasticContact(args.elastic, p[0] if len(p) == 1 else tuple(p),
+        elastic = ElasticContact(E, p[0] if len(p) == 1 else tuple(p),
                                  boundary=args.boundary, hardness=args.hardness)
+    check_pressures(E, elastic.pressures)
+    for a, b in itertools.pairwise(elastic.pressures if several else ()):
+        if not b > a:                       # a family (derive, fit): each pressure once
+            raise InputError(f"--pressure values of a law family must be strictly "
+                             f"increasing, got {b:g} after {a:g}")
     if elastic.family and not several:
         raise InputError("several --pressure values make a family of laws (derive and fit "
                          "take them); this command takes the law at one pressure: give one "
                          "--pressure")
     return elastic
+
+
+def check_modulus(E, flag: str = "--elastic") -> float:
+    """E* in the contact solver's range, named by ``flag`` (--elastic, or --materials for
+    the modulus the materials give), before any work."""
+    from ..contact.solver import E_RANGE
+    from ..errors import check_range
+    if flag == "--elastic":
+        return check_range(flag, E, *E_RANGE, unit="Pa")
+    if not E_RANGE[0] <= E <= E_RANGE[1]:
+        raise InputError(f"{flag} gives E* = {E:.4g} Pa, outside [{E_RANGE[0]:g}, "
+                         f"{E_RANGE[1]:g}] Pa")
+    return E
+
+
+def check_pressures(E: float, pressures) -> None:
+    """Every --pressure over E* in the solver's range, before any work (a wedge's profile
+    is sampled for it before the solve checks it)."""
+    from ..contact.solver import PRESSURE_OVER_E
+    from ..errors import check_range
+    for p in pressures:
+        check_range("--pressure / --elastic", p / E, *PRESSURE_OVER_E)
 
 
 def add_source_arguments(p, friction: bool = True) -> None:

@@ -171,8 +171,10 @@ class GaugeFamily:
         ps = self.pressures
         if not ps[0] <= p <= ps[-1]:
             rng = f"{ps[0]:g}" if len(ps) == 1 else f"[{ps[0]:g}, {ps[-1]:g}]"
-            raise InputError(f"{name} {p:g} Pa is outside the law family's pressures {rng} Pa: "
-                             "no extrapolation; refit the family with a wider --pressure range")
+            shown = f"{p:g}" if f"{p:g}" not in (f"{ps[0]:g}", f"{ps[-1]:g}") else repr(p)
+            raise InputError(f"{name} {shown} Pa is outside the law family's pressures {rng} "
+                             "Pa: no extrapolation; refit the family with a wider --pressure "
+                             "range")
         if p in ps:
             return ps.index(p), 0.0
         k = int(np.searchsorted(ps, p, side="right")) - 1

@@ -204,11 +204,40 @@ def connect(scheduler: str | None, workers: int | None, per_worker: float | None
 
 
 def close(client, cluster) -> None:
+    """Close the client and a local cluster.  Called while an exception propagates (Ctrl-C,
+    SIGTERM, an error): the results still running are not wanted, so the local workers are
+    killed rather than closed (a worker finishes its task first, seconds), and
+    distributed's logs of the tasks so lost are silenced."""
+    import sys
+    if sys.exc_info()[0] is not None:
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)
+        _kill_workers(cluster)
     with contextlib.suppress(Exception):
         client.close(timeout=5)
     if cluster is not None:
         with contextlib.suppress(Exception):
             cluster.close(timeout=5)
+
+
+def _kill_workers(cluster) -> None:
+    """SIGKILL the worker processes of a local cluster; their nannies (in this process)
+    are told first that they are closing, else each would start a new worker."""
+    import signal
+    try:
+        from distributed.core import Status
+        nannies = list(getattr(cluster, "workers", {}).values()) if cluster is not None \
+            else []
+    except Exception:                     # noqa: BLE001 - then the graceful close only
+        return
+    for nanny in nannies:
+        pid = getattr(getattr(getattr(nanny, "process", None), "process", None), "pid", None)
+        if not (isinstance(pid, int) and pid > 0):
+            continue
+        try:
+            nanny.status = Status.closing_gracefully
+            os.kill(pid, signal.SIGKILL)
+        except (OSError, TypeError, AttributeError):
+            pass
 
 
 class cluster:

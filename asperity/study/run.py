@@ -47,8 +47,10 @@ def run_study_file(path, folder=None, *, scheduler: str | None = None,
         summary = finish(store, plot)
         summary["run"] = {"ran": report.ran, "seconds": report.seconds, "where": report.where,
                           "workers": report.workers, "discarded": store.discarded}
-    except BaseException:
-        store.discard()            # nothing stored: the folder as it was before the run
+    except BaseException as exc:
+        if store.discard() and isinstance(exc, KeyboardInterrupt):  # the folder as it was
+            raise type(exc)("stopped before its first case was stored; nothing written") \
+                from None
         raise
     store.close()
     return summary
@@ -56,11 +58,9 @@ def run_study_file(path, folder=None, *, scheduler: str | None = None,
 
 def finish(store, plot: bool = False) -> dict:
     """Summarise ``store`` and write summary.json, summary.md (and the figures)."""
-    from ..io import write_text_atomic
+    from ..io import json_ready, outside_transaction, write_text_atomic
     from .summary import summarise
-    from ..io import json_ready
     from .text import markdown
-    from ..io import outside_transaction
     summary = json_ready(summarise(store))
     figs = []
     with outside_transaction():        # the study folder is a working store: written now

@@ -84,11 +84,15 @@ def _projected(mesh: TriangleMesh):
     return v, f, lo, hi, name
 
 
+#: nodes counted at most along a side (far beyond any memory)
+MAX_NODES_PER_SIDE = 1e15
+
+
 def default_step(mesh: TriangleMesh) -> float:
     """The median projected edge length over :data:`NODES_PER_EDGE`, refined so that the
     grid has at least :data:`DEFAULT_MIN_NODES` nodes and coarsened so that it has at
     most :data:`DEFAULT_MAX_NODES`."""
-    v, f, lo, hi, name = _projected(mesh)
+    v, f, lo, hi, _ = _projected(mesh)
     e = np.concatenate([np.hypot(*(v[f[:, b], :2] - v[f[:, a], :2]).T)
                         for a, b in ((0, 1), (1, 2), (2, 0))])
     e = e[e > 0]
@@ -100,8 +104,11 @@ def default_step(mesh: TriangleMesh) -> float:
 
 
 def grid_shape(lo, hi, step: float) -> tuple[int, int]:
-    """Nodes along x and y of a grid of ``step`` from ``lo`` covering up to ``hi``."""
-    return tuple(int(math.floor((hi[k] - lo[k]) / step * (1 + 1e-12))) + 1 for k in (0, 1))
+    """Nodes along x and y of a grid of ``step`` from ``lo`` covering up to ``hi`` (a count
+    beyond :data:`MAX_NODES_PER_SIDE`, even an overflow of a step such as 5e-324 m, is
+    capped there: the memory check then refuses the grid)."""
+    counts = (float(hi[k] - lo[k]) / float(step) * (1 + 1e-12) for k in (0, 1))
+    return tuple(math.floor(min(c, MAX_NODES_PER_SIDE)) + 1 for c in counts)
 
 
 def mesh_heightmap(mesh: TriangleMesh, grid_step=None, node_bytes: float = 0.0) -> MeshGrid:

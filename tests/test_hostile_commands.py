@@ -1,0 +1,233 @@
+"""Hostile input to the newest commands (issue 25, item 4): ``asperity contact`` (maps,
+meshes, wedge textures, windows), ``slide --body`` (disc, ring, rectangle, body files),
+``derive/fit/risk --elastic``, ``law --pressure`` on law families.  Extreme values,
+garbled files, options combined: one line naming the flag (or the file and its key) with
+the README's status, or a result -- never a traceback, an internal error or a NaN.
+
+Each case is one a walk of some 900 command lines found failing or unclear (an internal
+error, a library name instead of the flag, two ranges for one flag, a message that hides
+the value, a run that printed nothing useful), plus the plain refusals next to it."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cli_run import run
+from hostile import assert_finite_output, assert_refused, cli
+
+ROOT = Path(__file__).resolve().parents[1]
+SURF = ROOT / "surfaces"
+SCAN = SURF / "scan-ridges.txt"
+WEDGE_FLAGS = ["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.2"]
+E = ["--elastic", "1e9", "--pressure", "1e6"]
+BODY = ["--mu1", "0.3", "--u0", "0.5", "--angle", "30", "--dt", "1e-3"]
+DISC = ["--body", "disc", "--radius", "0.05", "--contact-points", "64"]
+
+
+def outcome(capsys, *argv):
+    """(status, stdout, stderr) through the real parser, in this process."""
+    try:
+        return run(capsys, *argv)
+    except SystemExit as exc:
+        out, err = capsys.readouterr()
+        return exc.code, out, err
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("hostile")
+    rng = np.random.default_rng(0)
+    base = rng.normal(size=(32, 32)) * 1e-6
+    np.save(d / "complex.npy", base.astype(complex))
+    np.save(d / "bool.npy", base > 0)
+    np.save(d / "3d.npy", np.zeros((4, 4, 4)))
+    np.save(d / "allnan.npy", np.full((8, 8), np.nan))
+    inf = base.copy()
+    inf[3, 3] = np.inf
+    np.save(d / "inf.npy", inf)
+    (d / "garbage.npy").write_bytes(rng.bytes(500))
+    (d / "bad.toml").write_text("this is [not toml")
+    (d / "neg.toml").write_text('[body]\nshape = "disc"\nradius = -1.0\nmass = 1.0\n')
+    (d / "flat.toml").write_text('[body]\nshape = "polygon"\nvertices = [[0,0],[1,0],[2,0]]\n'
+                                 'mass = 1.0\n')
+    code, _, err = cli("fit", SCAN, *E[:2], "--pressure", "1e5", "1e6", "1e7", "--directions",
+                       "72", "-o", d / "family.json")
+    assert code == 0, err
+    code, _, err = cli("fit", SURF / "wedge-asymmetric.toml", "--directions", "72", "-o",
+                       d / "one.json")
+    assert code == 0, err
+    return d
+
+
+CONTACT = [
+    # one range for --elastic, whichever way it is exceeded, and the materials named
+    ([SCAN, "--elastic", "0", "--pressure", "1e6"], "--elastic must be in [1, 1e+13] Pa, got 0"),
+    ([SCAN, "--elastic", "5e-324", "--pressure", "1e6"], "--elastic must be in [1, 1e+13] Pa"),
+    ([SCAN, "--elastic", "-1e9", "--pressure", "1e6"], "--elastic must be in [1, 1e+13] Pa"),
+    ([SCAN, "--materials", "1e308", "0.3", "--pressure", "1e6"],
+     "--materials gives E* = 1.099e+308 Pa, outside [1, 1e+13] Pa"),
+    ([SCAN, "--materials", "1e9", "0.6", "--pressure", "1e6"], "--materials nu1 must be in"),
+    ([SCAN, "--materials", "1e9", "0.3", "1e9", "--pressure", "1e6"],
+     "--materials takes E1 NU1 or E1 NU1 E2 NU2"),
+    # a pressure whose ratio to E* underflows: refused before a wedge's profile divides by it
+    ([*WEDGE_FLAGS, "--elastic", "1e9", "--pressure", "5e-324"],
+     "--pressure / --elastic must be in [1e-12, 10], got 0"),
+    ([SCAN, "--elastic", "1e9", "--pressure", "1e12"],
+     "--pressure / --elastic must be in [1e-12, 10], got 1000"),
+    ([SCAN, *E, "--hardness", "1e6"], "--hardness must be in (1e+06, inf) Pa"),
+    ([SCAN, *E, "--tol", "0"], "--tol must be in [1e-15, 0.1], got 0"),
+    ([SCAN, *E, "--max-iterations", "1e8"], "--max-iterations must be a whole number in [1,"),
+    # a mesh's grid step so small that the node count overflowed (an internal error)
+    ([SURF / "wedge-30-10.stl", "--unit", "um", *E, "--grid-step", "5e-324"],
+     ["the height grid of wedge-30-10.stl", "give a coarser grid_step (--grid-step)"]),
+    ([SURF / "wedge-30-10.stl", "--unit", "um", *E, "--boundary", "periodic"],
+     "--boundary of a mesh must be free"),
+    # the library's words for the flags, after a file's name
+    ([SCAN, *E, "--pixel-size", "0"], "--pixel-size is given in --unit; pass --unit too"),
+    # windows
+    ([SCAN, *E, "--window", "65"], "--window 65 pixels is larger than the scan"),
+    ([SCAN, *E, "--window", "15"], "--window must be a whole number in [16,"),
+    ([SCAN, *E, "--window", "32", "--windows", "0"], "--windows must be a whole number in [1,"),
+    ([SCAN, *E, "--window", "32", "--window-seed", "3"], "--window-seed applies to"),
+    ([SCAN, *E, "--window", "32", "--save-pressure", "p.npy"], "not with --save-pressure"),
+    ([SURF / "wedge-asymmetric.toml", *E, "--window", "32"], "--window applies to height-map"),
+    ([SCAN, *E, "--workers", "2"], "--workers runs windows (--window W)"),
+]
+
+
+@pytest.mark.parametrize("argv,msg", CONTACT)
+def test_contact_refuses_in_one_line(capsys, tmp_path, monkeypatch, argv, msg):
+    monkeypatch.chdir(tmp_path)
+    code, out, err = outcome(capsys, "contact", *argv)
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert err.startswith("asperity contact: error: ")
+    for m in [msg] if isinstance(msg, str) else msg:
+        assert m in err, err
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("name,msg", [
+    ("complex.npy", "must hold real numbers"), ("bool.npy", "holds booleans"),
+    ("3d.npy", "must be a 2-D array"), ("allnan.npy", "every pixel is undefined"),
+    ("inf.npy", "infinite values"), ("garbage.npy", "not a surface file"),
+    ("nope.npy", "does not exist")])
+def test_contact_refuses_a_file_it_cannot_use(files, capsys, name, msg):
+    code, out, err = outcome(capsys, "contact", files / name, "--unit", "m", "--pixel-size",
+                             "1e-6", *E)
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert name in err and msg in err, err
+
+
+def test_an_abbreviated_or_foreign_flag_is_unknown_to_the_command(capsys):
+    """contact has no --mu: argparse's prefix matching said 'ambiguous option: --mu could
+    match --mu-alpha, --mu-beta'; a flag is now spelled in full, and the command's own
+    parser names itself."""
+    for argv, flag in ((["contact", SCAN, *E, "--mu", "0.1"], "--mu 0.1"),
+                       (["contact", SCAN, *E, "--hard", "2e6"], "--hard 2e6")):
+        code, out, err = outcome(capsys, *argv)
+        assert code == 2 and out == "" and err.count("\n") == 1, err
+        assert err.startswith("asperity contact: error: unrecognized arguments: " + flag), err
+        assert "(see asperity contact --help)" in err
+
+
+BODIES = [
+    (["--radius", "1e-9", "--omega0", "10"],
+     "the body's inertia (its size and --mass) must be in [1e-15, 1e+12] kg m^2, got 5e-19"),
+    (["--centre-of-pressure", "0.01", "0"],
+     "--centre-of-pressure applies to --pressure-profile linear only"),
+    (["--t-end", "1", "--force-amplitude", "1", "--waveform", "sine"],
+     "--force-amplitude takes AX AY or AX AY AT (2 or 3 numbers), got 1"),
+    (["--t-end", "1", "--force", "1e308", "0"], "--force must be in [-1e+12, 1e+12] N"),
+    (["--force", "-1e-1", "0"], "--force, --torque and --force-amplitude need --t-end"),
+    (["--omega0", "-1e7"], "--omega0 must be in [-1e+06, 1e+06] rad/s, got -1e+07"),
+    (["--contact-points", "2.5"], "--contact-points must be a whole number, got 2.5"),
+    (["--texture-angle", "1e5"], "--texture-angle must be in [-360, 360] deg"),
+]
+
+
+@pytest.mark.parametrize("extra,msg", BODIES)
+def test_slide_body_refuses_in_one_line(capsys, extra, msg):
+    code, out, err = outcome(capsys, "slide", *BODY, *DISC[:4], *extra)
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert err.startswith("asperity slide: error: ") and msg in err, err
+
+
+@pytest.mark.parametrize("name,msg", [("bad.toml", "not valid TOML"),
+                                      ("neg.toml", "body.radius must be in [1e-09, 1000] m"),
+                                      ("flat.toml", "body.vertices: the polygon has zero area"),
+                                      ("nope.toml", "does not exist")])
+def test_slide_refuses_a_body_file_it_cannot_use(files, capsys, name, msg):
+    code, out, err = outcome(capsys, "slide", *BODY, "--body", files / name)
+    assert code == 1 and out == "" and err.count("\n") == 1 and msg in err, err
+
+
+def test_a_body_launched_at_a_denormal_speed_prints_a_result(capsys):
+    """--u0 5e-324: the text of a run without a rest time and without --t-end raised a
+    TypeError (an internal error, status 70)."""
+    code, out, err = outcome(capsys, "slide", "--mu1", "0.3", "--u0", "5e-324", "--angle", "30",
+                             "--dt", "1e-3", *DISC)
+    assert code == 0 and err == "", err
+    assert "deflection:" in out and "Newton iterations per step" in out
+    assert_finite_output(out)
+
+
+def test_a_spinning_body_says_when_its_spin_stopped(capsys):
+    code, out, _ = outcome(capsys, "slide", *BODY, *DISC, "--omega0", "5")
+    assert code == 0 and "spin stopped at" in out and "spinning at" not in out, out
+
+
+def test_law_families_refuse_outside_their_pressures_showing_the_value(files, capsys):
+    code, _, err = outcome(capsys, "law", files / "family.json", "--pressure", "99999.99")
+    assert code == 1 and err.count("\n") == 1, err
+    assert "--pressure 99999.99 Pa is outside the law family's pressures [100000, 1e+07]" in err
+    code, _, err = outcome(capsys, "law", files / "family.json", "--pressure", "1e4")
+    assert code == 1 and "--pressure 10000 Pa is outside" in err, err
+    code, _, err = outcome(capsys, "law", files / "one.json", "--pressure", "1e6")
+    assert code == 1 and "--pressure applies to a law family" in err, err
+    code, _, err = outcome(capsys, "slide", files / "family.json", "--pressure", "1e308",
+                           "--u0", "0.5", "--angle", "30", *DISC)
+    assert code == 1 and "--pressure 1e+308 Pa is outside" in err, err
+    code, out, err = outcome(capsys, "law", files / "family.json", "--pressure", "1e5",
+                             "--psi", "-1e1")
+    assert code == 0 and out.startswith("psi = -10 deg"), err
+
+
+@pytest.mark.parametrize("command", ["derive", "fit"])
+def test_a_family_needs_increasing_pressures_in_derive_as_in_fit(capsys, command):
+    """derive took --pressure 1e7 1e6 (and 100 copies of one pressure) as a 'law family'
+    that fit refuses."""
+    for ps in (["1e7", "1e6"], ["1e6", "1e6"]):
+        code, out, err = outcome(capsys, command, SCAN, "--elastic", "1e9", "--pressure", *ps)
+        assert code == 1 and out == "" and err.count("\n") == 1, err
+        assert "--pressure values of a law family must be strictly increasing" in err, err
+
+
+@pytest.mark.parametrize("argv,msg", [
+    (["derive", SURF / "wedge-asymmetric.toml", "--elastic", "5e-324", "--pressure", "1e6"],
+     "--elastic must be in [1, 1e+13] Pa"),
+    (["fit", SCAN, "--elastic", "1e9", "--pressure", "1e6", "5e-324"],
+     "--pressure / --elastic must be in [1e-12, 10], got 0"),
+    (["risk", SURF / "wedge-asymmetric.toml", SURF / "two-node-spec.toml", *E, "--boundary",
+      "free"], "--boundary of a wedge texture must be periodic"),
+    (["risk", SURF / "wedge-asymmetric.toml", SURF / "two-node-spec.toml", "--elastic", "1e9",
+      "--pressure", "1e6", "2e6"], "give one --pressure"),
+    (["risk", SURF / "wedge-asymmetric.toml", SURF / "two-node-spec.toml", "--elastic", "1e9"],
+     "add assembly.contact_area"),
+])
+def test_elastic_flags_of_derive_fit_and_risk(capsys, argv, msg):
+    code, out, err = outcome(capsys, *argv)
+    assert code == 1 and out == "" and err.count("\n") == 1 and msg in err, err
+
+
+def test_the_real_commands_agree(files):
+    """A few of the above through ``python -m asperity``, stderr and status as a user
+    sees them."""
+    assert_refused(cli("contact", *WEDGE_FLAGS, "--elastic", "1e9", "--pressure", "5e-324"),
+                   contains="--pressure / --elastic must be in [1e-12, 10], got 0")
+    assert_refused(cli("contact", SURF / "wedge-30-10.stl", "--unit", "um", *E, "--grid-step",
+                       "5e-324"), contains="--grid-step")
+    assert_refused(cli("contact", SCAN, *E, "--mu", "0.1"), code=2,
+                   contains="unrecognized arguments: --mu 0.1")
+    assert_refused(cli("law", files / "family.json", "--pressure", "-1e-1"),
+                   contains="--pressure must be in (0, inf) Pa, got -0.1")
