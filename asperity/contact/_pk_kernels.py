@@ -214,22 +214,27 @@ def final_fields(u, h, p, gap, d):
 @njit(cache=True)
 def gap_violation(u, h, p, H, gbar):
     """The complementarity of a solution, from the gap g = u - h - gbar: the largest |g|
-    over the free set (0 < p < H, where g must vanish) and the largest g over the plastic
-    pixels (p >= H, where g > 0 means a pixel at the hardness off the half-space)."""
+    over the free set (0 < p < H, where g must vanish), the largest g over the plastic
+    pixels (p >= H, where g > 0 means a pixel at the hardness off the half-space) and the
+    largest -g out of contact (p = 0, where g < 0 means a pixel through the half-space)."""
     free = 0.0
     plastic = 0.0
+    pen = 0.0
     for i in range(p.size):
         hi = h[i]
-        pi = p[i]
-        if hi != hi or pi <= 0.0:
+        if hi != hi:
             continue
+        pi = p[i]
         g = u[i] - hi - gbar
-        if pi < H:
+        if pi <= 0.0:
+            if -g > pen:
+                pen = -g
+        elif pi < H:
             if abs(g) > free:
                 free = abs(g)
         elif g > plastic:
             plastic = g
-    return free, plastic
+    return free, plastic, pen
 
 
 @njit(cache=True)
@@ -250,28 +255,33 @@ def masked_gap(u, h, p, H, gbar, w):
 
 @njit(cache=True)
 def precond_sum(u, h, p, z, H, gbar):
-    """Over the free set: sum of g z (g = u - h - gbar, z = M g)."""
+    """Over the free set: sum of g z (g = u - h - gbar, z = M g) and sum of z."""
     sgz = 0.0
+    sz = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
-            sgz += (u[i] - hi - gbar) * z[i]
-    return sgz
+            zi = z[i]
+            sgz += (u[i] - hi - gbar) * zi
+            sz += zi
+    return sgz, sz
 
 
 @njit(cache=True)
-def precond_direction(u, h, p, t, z, H, gbar, beta):
-    """t = z + beta t on the free set, 0 elsewhere; returns sum g t."""
+def precond_direction(u, h, p, t, z, H, gbar, zbar, beta):
+    """t = z - zbar + beta t on the free set, 0 elsewhere (zbar the mean of z there: the
+    direction keeps the load of the free set); returns sum g t."""
     sgt = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
             g = u[i] - hi - gbar
-            ti = z[i] + beta * t[i]
+            ti = z[i] - zbar + beta * t[i]
             t[i] = ti
             sgt += g * ti
         else:
             t[i] = 0.0
     return sgt
+

@@ -60,3 +60,24 @@ def fill(p, u, h, load: float, H: float) -> None:
     idx = idx[np.argsort(g[idx])]
     p[idx] = H
     p[idx[-1]] = rest - H * (k - 1)
+
+
+def trim(p, u, h, load: float, H: float, regroup: bool) -> bool:
+    """When the pixels at H alone carry the load or more (the load control would scale
+    every pixel off the cap, and the iteration cycle between the two sets): the least
+    penetrating of them (the largest u - h) out of contact until they carry less.
+    ``regroup`` (after a gap step: the free set is a pixel or two): every contact pixel
+    in the order of u - h, at H as long as they leave load for the next one, that one
+    with the rest, the others out of contact (a free pixel cut off from the plastic zone
+    goes first).  Returns whether it changed p."""
+    k = int(math.ceil(load / H)) - 1           # the most at H that leave load to the rest
+    if int(np.count_nonzero(p >= H)) <= k:
+        return False
+    idx = np.flatnonzero(p > 0.0 if regroup else p >= H)
+    idx = idx[np.argsort(u[idx] - h[idx], kind="stable")]
+    p[idx[:k]] = H
+    if regroup:
+        p[idx[k]] = load - H * k
+        k += 1
+    p[idx[k:]] = 0.0
+    return True

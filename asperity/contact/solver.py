@@ -51,10 +51,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import AsperityError, InputError, check_array, check_choice, check_int, \
-    check_range
+from ..errors import AsperityError, check_array
 from . import elastic
-from .loads import fill, scale_factor, start
+from .checks import (  # noqa: F401  (the checks of the arguments, and their ranges)
+    E_RANGE,
+    MAX_ITERATIONS,
+    PRESSURE_OVER_E,
+    check_inputs,
+    check_options,
+    check_solver_memory,
+    effective_modulus,
+)
+from .loads import fill, scale_factor, start, trim
 
 #: iterations between two full products u = K p when u is updated incrementally
 REFRESH = 25
@@ -69,6 +77,10 @@ GAP_TOL = 1e-6
 #: iterations a capped solve tries before the outer loop over the plastic set (:mod:`.plastic`;
 #: converged capped solves take 15 to 60, one whose set stalls never converges)
 PLASTIC_FIRST_TRY = 300
+#: ... or whose residual has not halved in this many iterations (a contact set that
+#: cycles at the edge of the plastic zones: measured, converging capped solves halve it
+#: every 1 to 10 iterations)
+PLASTIC_STALL = 30
 #: the conjugate directions are preconditioned by the inverse of the half-space (the
 #: module's docstring, steps 2 and 3; without: z = g, Polonsky and Keer's iteration).
 #: Measured (self-affine map of the benchmark, p/E* 0.0025, tol 1e-8, one thread, CPU
@@ -76,15 +88,6 @@ PLASTIC_FIRST_TRY = 300
 #: for 5.0; free 512^2 43 for 75, 1.7 s for 2.3 (an iteration takes one transform more,
 #: in single precision, on the unpadded grid)
 PRECONDITION = True
-#: default iteration limit
-MAX_ITERATIONS = 10_000
-#: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
-#: flat many times over, or nothing is loaded)
-PRESSURE_OVER_E = (1e-12, 10.0)
-#: range of E* in Pa (a gel to diamond, with margin)
-E_RANGE = (1.0, 1e13)
-
-
 class ContactNotConverged(AsperityError):
     """The iteration limit was reached; ``.result`` holds the last iterate."""
 
@@ -133,56 +136,6 @@ class ContactResult:
                 "plastic_fraction": self.plastic_fraction}
 
 
-def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
-    """E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2); E2 None: a rigid counterface."""
-    E1 = check_range("E1", E1, 0.0, None, low_open=True, unit="Pa")
-    nu1 = check_range("nu1", nu1, -1.0, 0.5, low_open=True)
-    c = (1.0 - nu1 * nu1) / E1
-    if (E2 is None) != (nu2 is None):
-        raise InputError("give E2 and nu2 together (or neither: a rigid counterface)")
-    if E2 is not None:
-        E2 = check_range("E2", E2, 0.0, None, low_open=True, unit="Pa")
-        nu2 = check_range("nu2", nu2, -1.0, 0.5, low_open=True)
-        c += (1.0 - nu2 * nu2) / E2
-    return 1.0 / c
-
-
-def _pixel_size(pixel_size) -> tuple[float, float]:
-    from ..surface.topography import pixel_length
-    if not isinstance(pixel_size, (list, tuple, np.ndarray)) or (
-            isinstance(pixel_size, np.ndarray) and pixel_size.ndim == 0):
-        d = pixel_length("pixel_size", pixel_size)
-        return d, d
-    a = check_array("pixel_size", pixel_size, shape=(2,))
-    return pixel_length("pixel_size dx", float(a[0])), pixel_length("pixel_size dy",
-                                                                     float(a[1]))
-
-
-def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
-    """The checked arguments of :func:`solve_contact`: (heights as float64, (dx, dy),
-    E*, pressure, boundary, hardness or None, number of defined pixels)."""
-    # C order: the kernels work on flat views (a Fortran-ordered map would be copied)
-    z = np.ascontiguousarray(check_array("heights", heights, ndim=2, finite=False))
-    if z.shape[0] < 2 or z.shape[1] < 2:
-        raise InputError(f"heights must have at least 2 x 2 pixels, got shape {z.shape}")
-    if np.isinf(z).any():
-        raise InputError("heights must be finite or NaN (undefined), got an infinity")
-    defined = int(np.count_nonzero(~np.isnan(z)))
-    if defined == 0:
-        raise InputError("heights has no defined (finite) pixel: nothing can carry the load")
-    dx, dy = _pixel_size(pixel_size)
-    E_star = check_range("E_star", E_star, *E_RANGE, unit="Pa")
-    p = check_range("pressure", pressure, 0.0, None, low_open=True, unit="Pa")
-    lo, hi = PRESSURE_OVER_E
-    check_range("pressure / E_star", p / E_star, lo, hi)
-    boundary = check_choice("boundary", boundary, elastic.BOUNDARIES)
-    if hardness is not None:
-        mean_defined = p * z.size / defined
-        hardness = check_range("hardness", hardness, mean_defined, None, low_open=True,
-                               unit="Pa (above the mean pressure over the defined pixels)")
-    return z, (dx, dy), E_star, p, boundary, hardness, defined
-
-
 def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
                   hardness=None, tol=1e-8, max_iterations=None, initial=None,
                   progress=None, workers=None) -> ContactResult:
@@ -213,41 +166,20 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
     return solve_on(space, z, pbar, H, n_def, tol, maxit, p0, progress)
 
 
-def check_options(tol, max_iterations, progress, workers):
-    """(tol, iteration limit, transform threads) checked (``progress`` a callable or
-    None)."""
-    from ..resources import cpu_cores
-    tol = check_range("tol", tol, 1e-15, 0.1)
-    maxit = MAX_ITERATIONS if max_iterations is None else \
-        check_int("max_iterations", max_iterations, 1, 10 ** 7)
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable(fraction, text), got "
-                         f"{type(progress).__name__}")
-    workers = cpu_cores() if workers is None else check_int("workers", workers, 1, 4096)
-    return tol, maxit, workers
-
-
-def check_solver_memory(shape, boundary: str) -> None:
-    """Refuse a solve whose arrays do not fit in the free memory, in one line."""
-    from ..resources import check_memory
-    check_memory(elastic.solver_bytes(shape, boundary),
-                 f"the {boundary} contact solve of {shape[0]} x {shape[1]} pixels",
-                 "crop or resample the map to fewer pixels")
-
-
 def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
              progress) -> ContactResult:
     """The solve of checked arguments (:func:`check_inputs`) on the half-space ``space``
     (an :class:`.elastic.HalfSpace` of z's shape, reused along a load curve)."""
     first = maxit if H is None else min(maxit, PLASTIC_FIRST_TRY)
     out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, first, p0,
-                   progress)
+                   progress, None if H is None else PLASTIC_STALL)
     if not out["converged"] and H is not None and maxit > out["iterations"]:
         from .plastic import solve_plastic    # the plastic set by an outer loop
         used = out["iterations"]
+        start = out.pop("pressure")            # the plastic set starts from its pixels at H
         del out
         out = solve_plastic(_iterate, GAP_TOL, space, z, pbar, H, n_def, tol, maxit - used,
-                            progress)
+                            progress, start)
         out["iterations"] += used
     res = ContactResult(**out, E_star=space.E_star, boundary=space.boundary, hardness=H,
                         pixel_size=(space.dx, space.dy), pressure_asked=pbar)
@@ -259,7 +191,7 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
     return res
 
 
-def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
+def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> dict:
     from ..progress import report
     from . import _pk_kernels as K
     tell = progress or report
@@ -281,11 +213,12 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
         K.rescale(pf, uf, rf, s, H, False, fixed)
     space.apply(p, u)
     c, G_old, delta, fresh, eps = 0.0, 1.0, 0, 0, math.inf
-    it = 0
+    it, best, it_best = 0, math.inf, 0
     t_report = time.perf_counter()
     while it < maxit:
         it += 1
         s1, s2, n, _, _ = K.gap_sums(uf, hf, pf, H, c)
+        tau = 0.0
         if n > 1:                              # one free pixel: its gap is the mean, no step
             gbar = c + s1 / n
             G = max(s2 - n * (gbar - c) ** 2, 0.0)
@@ -293,13 +226,14 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             if PRECONDITION:                   # z = M g
                 K.masked_gap(uf, hf, pf, H, gbar, zf)
                 space.precondition(zp, zp)
-                G = K.precond_sum(uf, hf, pf, zf, H, gbar)
+                G, sz = K.precond_sum(uf, hf, pf, zf, H, gbar)
+                zb = sz / n                    # the direction keeps the free set's load
                 beta = delta * G / G_old if G_old > 0 and G > 0 else 0.0
-                if beta > 0.0 and K.precond_direction(uf, hf, pf, tf, zf, H, gbar,
+                if beta > 0.0 and K.precond_direction(uf, hf, pf, tf, zf, H, gbar, zb,
                                                       beta) < THETA * G:
-                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, 0.0)
+                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, zb, 0.0)
                 elif beta == 0.0:
-                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, 0.0)
+                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, zb, 0.0)
             else:
                 beta = delta * G / G_old if G_old > 0 else 0.0
                 if beta > 0.0 and K.direction(uf, hf, pf, tf, H, gbar, beta) < THETA * G:
@@ -309,19 +243,25 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             space.apply(t, r)
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
-            tau = sgt / denom if denom > 0.0 else 0.0
+            tau = sgt / denom if denom > 0.0 and sgt > 0.0 else 0.0
             moves = zf
-        else:                                  # one free pixel or none (all plastic)
-            G = 0.0
-            gbar = c + s1 if n == 1 else float(np.max(np.where(p >= H, u - h, -np.inf)))
+        if not tau > 0.0:                      # the gap step: one free pixel or none, or
+            G = 0.0                            # the free set solved (no conjugate step)
+            if n == 1:
+                gbar = c + s1
+            elif n == 0:
+                gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
             t[...] = 0.0
             r[...] = 0.0
             tau = 1.0 / space.self_compliance
             moves = nz
+            c = gbar
         total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau, moves)
-        delta = 1
+        delta = 0 if moved else 1             # pixels entered or left the set: restart
         exact = clipped == 0 and moved == 0 and fresh < REFRESH
-        s, fixed = scale_factor(pf, load, H) if total > 0.0 else (None, False)
+        if math.isfinite(H) and trim(pf, uf, hf, load, H, moves is nz):
+            total, exact = -1.0, False         # the least penetrating pixels off the cap
+        s, fixed = scale_factor(pf, load, H) if total != 0.0 else (None, False)
         if s is None and math.isinf(H):       # every pressure clipped: back to the last
             p[...] = r                         # iterate, restart the directions
             change, delta, exact = math.inf, 0, False
@@ -346,7 +286,13 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             tell(min(1.0, max(0.0, math.log(max(eps, tol)) / math.log(tol))),
                  f"contact: iteration {it}, residual {eps:.2g}")
         if eps < tol:
-            break
+            if _complementary(K, space, p, u, h, H, fresh, tol):
+                break
+            delta = 0                          # a stalled set: restart the directions
+        if eps < 0.5 * best:
+            best, it_best = eps, it
+        elif stall is not None and it - it_best >= stall:
+            break                              # the residual no longer comes down
     if fresh:                                  # the exact displacement of the result
         space.apply(p, u)
     s1, _, n, _, _ = K.gap_sums(uf, hf, pf, H, 0.0)
@@ -357,8 +303,8 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     del r, rf, zp, zf, moves
     plastic = int(np.count_nonzero(p >= H)) if math.isfinite(H) else 0
     gap = t
-    free_off, plastic_off = K.gap_violation(uf, hf, pf, H, gbar)
-    gap_sum, pen, nc = K.final_fields(uf, hf, pf, tf, -gbar)
+    free_off, plastic_off, pen = K.gap_violation(uf, hf, pf, H, gbar)
+    gap_sum, _, nc = K.final_fields(uf, hf, pf, tf, -gbar)
     d = float(np.nanmax(z)) - gbar             # approach for the heights as given
     # complementarity: no pixel out of contact below the half-space, none in contact off
     # it (the free set on it, the plastic pixels on or into it)
@@ -371,3 +317,21 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
                 iterations=it, residual=float(eps if ok else max(eps, off)),
                 converged=bool(ok),
                 plastic_fraction=plastic / n_def, approach=d)
+
+
+def _violation(K, u, h, p, H) -> float:
+    """The largest complementarity violation of (p, u) over the height range (see
+    :func:`_iterate`'s result)."""
+    hf, pf, uf = h.reshape(-1), p.reshape(-1), u.reshape(-1)
+    s1, _, n, _, _ = K.gap_sums(uf, hf, pf, H, 0.0)
+    gbar = s1 / n if n > 0 else float(np.max(np.where(p >= H, u - h, -np.inf)))
+    span = float(np.nanmax(h) - np.nanmin(h)) or 1.0
+    return max(K.gap_violation(uf, hf, pf, H, gbar)) / span
+
+
+def _complementary(K, space, p, u, h, H, fresh: int, tol: float) -> bool:
+    """Whether the iterate (p, u) satisfies the complementarity to the solver's tolerance
+    (u recomputed first when it was updated incrementally)."""
+    if fresh:
+        space.apply(p, u)
+    return _violation(K, u, h, p, H) <= max(GAP_TOL, 100.0 * tol)
