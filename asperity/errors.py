@@ -184,10 +184,28 @@ def check_array(name: str, value, ndim: int | None = None, shape=None, *,
     import numpy as np
     if value is None or isinstance(value, (str, bytes, dict)):
         raise InputError(f"{name} must be an array, got {_show(value)} ({_kind(value)})")
+    masked = None
+    if isinstance(value, np.ma.MaskedArray):    # masked: undefined (NaN) where allowed
+        masked, value = np.ma.getmaskarray(value), np.ma.getdata(value)
+    kind = getattr(getattr(value, "dtype", None), "kind", "")
+    if kind == "c":
+        raise InputError(f"{name} must be real numbers, got complex values ({value.dtype})")
+    if kind == "b" and np.dtype(dtype).kind != "b":
+        raise InputError(f"{name} must be numbers, got booleans (a {value.dtype} array)")
+    if isinstance(value, np.ndarray):           # a copy of it at least: does it fit?
+        _check_fits(name, value.shape, value.size * max(8, np.dtype(dtype).itemsize))
     try:
         a = np.asarray(value, dtype=dtype)
     except (TypeError, ValueError, OverflowError):
         raise InputError(f"{name} must be an array of numbers, got {_show(value)}") from None
+    except MemoryError:
+        raise ResourceError(f"{name} of shape {np.shape(value)} does not fit in memory; "
+                            f"pass a smaller array") from None
+    if masked is not None and masked.any():
+        if finite or a.dtype.kind != "f":
+            raise InputError(f"{name} must be finite numbers, got "
+                             f"{int(np.count_nonzero(masked))} masked values")
+        a = np.where(masked, np.nan, a)         # the masked pixels undefined, as NaN
     want = len(shape) if shape is not None else ndim
     if want is not None and a.ndim != want:
         raise InputError(f"{name} must have {want} dimension(s), got shape {a.shape}")
@@ -201,6 +219,15 @@ def check_array(name: str, value, ndim: int | None = None, shape=None, *,
         k = int(np.flatnonzero(~np.isfinite(a.ravel()))[0])
         raise InputError(f"{name} must be finite, got {a.ravel()[k]} at index {k}")
     return a
+
+
+def _check_fits(name: str, shape, need: float) -> None:
+    """Refuse an array whose copy does not fit in the free memory (a broadcast view of
+    200000 x 200000 values holds none itself), in one line."""
+    if need > 2 ** 28:                          # only large arrays cost a look at /proc
+        from .resources import check_memory
+        dims = " x ".join(str(n) for n in shape)
+        check_memory(need, f"{name} ({dims} values)", "pass a smaller array")
 
 
 def is_array(value) -> bool:

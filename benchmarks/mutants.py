@@ -829,10 +829,10 @@ MUTANTS = [
            "pixels entering contact moved by the gap g, not by the preconditioned gap M g "
            "(the step tau is in the preconditioned units)"),
     Mutant("contact-precond-beta-sign", "contact/_pk_kernels.py",
-           "ti = z[i] - zbar + beta * t[i]", "ti = z[i] - zbar - beta * t[i]",
+           "ti = z[i] + beta * t[i]", "ti = z[i] - beta * t[i]",
            CONTACT_SOLVER, "the preconditioned conjugate direction subtracts the old one"),
     Mutant("contact-precond-sum-unshifted", "contact/_pk_kernels.py",
-           "sgz += (u[i] - hi - gbar) * zi", "sgz += (u[i] - hi) * zi", CONTACT_SOLVER,
+           "sgz += (u[i] - hi - gbar) * z[i]", "sgz += (u[i] - hi) * z[i]", CONTACT_SOLVER,
            "the preconditioned residual norm Z taken with the gap before its mean shift"),
     Mutant("bench-curve-pressures-unscaled", "contact/bench.py",
            'curve(h, PIXEL, E_STAR, [f * E_STAR for f in spec["pressures"]],',

@@ -227,13 +227,11 @@ def gap_violation(u, h, p, H, gbar):
         pi = p[i]
         g = u[i] - hi - gbar
         if pi <= 0.0:
-            if -g > pen:
-                pen = -g
+            pen = max(pen, -g)
         elif pi < H:
-            if abs(g) > free:
-                free = abs(g)
-        elif g > plastic:
-            plastic = g
+            free = max(free, abs(g))
+        else:
+            plastic = max(plastic, g)
     return free, plastic, pen
 
 
@@ -255,33 +253,28 @@ def masked_gap(u, h, p, H, gbar, w):
 
 @njit(cache=True)
 def precond_sum(u, h, p, z, H, gbar):
-    """Over the free set: sum of g z (g = u - h - gbar, z = M g) and sum of z."""
+    """Over the free set: sum of g z (g = u - h - gbar, z = M g)."""
     sgz = 0.0
-    sz = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
-            zi = z[i]
-            sgz += (u[i] - hi - gbar) * zi
-            sz += zi
-    return sgz, sz
+            sgz += (u[i] - hi - gbar) * z[i]
+    return sgz
 
 
 @njit(cache=True)
-def precond_direction(u, h, p, t, z, H, gbar, zbar, beta):
-    """t = z - zbar + beta t on the free set, 0 elsewhere (zbar the mean of z there: the
-    direction keeps the load of the free set); returns sum g t."""
+def precond_direction(u, h, p, t, z, H, gbar, beta):
+    """t = z + beta t on the free set, 0 elsewhere; returns sum g t."""
     sgt = 0.0
     for i in range(p.size):
         pi = p[i]
         hi = h[i]
         if hi == hi and 0.0 < pi < H:
             g = u[i] - hi - gbar
-            ti = z[i] - zbar + beta * t[i]
+            ti = z[i] + beta * t[i]
             t[i] = ti
             sgt += g * ti
         else:
             t[i] = 0.0
     return sgt
-

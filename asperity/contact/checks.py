@@ -45,21 +45,28 @@ def _pixel_size(pixel_size) -> tuple[float, float]:
 def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
     """The checked arguments of :func:`solve_contact`: (heights as float64, (dx, dy),
     E*, pressure, boundary, hardness or None, number of defined pixels)."""
-    # C order: the kernels work on flat views (a Fortran-ordered map would be copied)
-    z = np.ascontiguousarray(check_array("heights", heights, ndim=2, finite=False))
+    z = check_array("heights", heights, ndim=2, finite=False)
     if z.shape[0] < 2 or z.shape[1] < 2:
         raise InputError(f"heights must have at least 2 x 2 pixels, got shape {z.shape}")
+    boundary = check_choice("boundary", boundary, elastic.BOUNDARIES)
+    check_solver_memory(z.shape, boundary)     # before any copy of the heights
+    # C order: the kernels work on flat views (a Fortran-ordered map would be copied)
+    z = np.ascontiguousarray(z)
     if np.isinf(z).any():
         raise InputError("heights must be finite or NaN (undefined), got an infinity")
     defined = int(np.count_nonzero(~np.isnan(z)))
     if defined == 0:
         raise InputError("heights has no defined (finite) pixel: nothing can carry the load")
+    from ..surface.topography import MAX_COORDINATE
+    big = float(np.nanmax(np.abs(z)))
+    if big > MAX_COORDINATE:
+        raise InputError(f"heights must lie within +-{MAX_COORDINATE:g} m, got values up to "
+                         f"{big:.3g} m; check the unit (heights in metres)")
     dx, dy = _pixel_size(pixel_size)
     E_star = check_range("E_star", E_star, *E_RANGE, unit="Pa")
     p = check_range("pressure", pressure, 0.0, None, low_open=True, unit="Pa")
     lo, hi = PRESSURE_OVER_E
     check_range("pressure / E_star", p / E_star, lo, hi)
-    boundary = check_choice("boundary", boundary, elastic.BOUNDARIES)
     if hardness is not None:
         mean_defined = p * z.size / defined
         hardness = check_range("hardness", hardness, mean_defined, None, low_open=True,
@@ -85,5 +92,6 @@ def check_solver_memory(shape, boundary: str) -> None:
     """Refuse a solve whose arrays do not fit in the free memory, in one line."""
     from ..resources import check_memory
     check_memory(elastic.solver_bytes(shape, boundary),
-                 f"the {boundary} contact solve of {shape[0]} x {shape[1]} pixels",
+                 f"the {boundary} contact solve of heights of {shape[0]} x {shape[1]} "
+                 f"pixels",
                  "crop or resample the map to fewer pixels")

@@ -42,7 +42,6 @@ from .solver import (
     ContactResult,
     check_inputs,
     check_options,
-    check_solver_memory,
     solve_on,
 )
 
@@ -65,7 +64,6 @@ def iter_load_curve(heights, pixel_size, E_star, pressures, *, boundary="periodi
                                                          hardness)
     check_range("pressures / E_star", float(values.min()) / E, *PRESSURE_OVER_E)
     tol, maxit, workers = check_options(tol, max_iterations, progress, workers)
-    check_solver_memory(z.shape, boundary)
     space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
     order = np.argsort(values, kind="stable")
     waiting: dict[int, ContactResult] = {}

@@ -22,23 +22,35 @@ Polonsky & Keer (Wear 231, 206, 1999) with Vollebregt's preconditioner, one iter
    periodic half-space, |q| E* / 2 in Fourier space (single precision: an approximate
    inverse serves as well); Z = sum_F g z;
 3. the conjugate direction t = z + (Z / Z_old) t on F, 0 elsewhere, restarted (t = z)
-   when sum_F g t < :data:`THETA` Z (after the contact set changed).  t keeps its mean
-   over F: the load control (step 5) takes it out, and the iteration converges faster
-   than with t projected on the constant load (measured: 36 iterations for 43 at 512^2);
+   when sum_F g t < :data:`THETA` Z, or when the last step moved more than
+   :data:`RESTART_SHARE` of F's size in or out of the set.  t keeps its mean over F:
+   the load control (step 5) takes it out, and the iteration converges faster than with
+   t projected on the constant load (measured: 37 iterations for 43 at 512^2);
 4. r = K t, rbar its mean over F, tau = sum_F g t / sum_F (r - rbar) t; p -= tau t on F;
    where p = 0 and g < 0 (overlap), and where p = H and g > 0 (a plastic pixel whose gap
    opened), p -= tau z; p clipped to [0, H];
 5. load control: p scaled by the factor s that gives sum min(s p, H) = the load (plain
    scaling without a cap, as in the paper; with one, Newton steps on that concave,
-   piecewise linear function, exact in a few passes);
+   piecewise linear function, exact in a few passes).  When the pixels at H alone carry
+   the load, scaling would take them all off the cap (and the next step put them back:
+   the iteration cycled), so the least penetrating of them leave contact first
+   (:func:`.loads.trim`);
 6. the change eps = sum |p_new - p_old| / sum p (the residual reported): done below tol,
    when the result also satisfies the complementarity (no pixel out of contact below the
-   half-space, none in contact off it, within :data:`GAP_TOL` of the height range; else the
-   residual reported is that violation and the solve did not converge).
+   half-space, none in contact off it, within :data:`GAP_TOL` of :func:`reference_length`;
+   else the directions restart and the iteration goes on, and a result reached that way
+   reports the violation as its residual and did not converge).
 
-A capped solve that does not converge in :data:`PLASTIC_FIRST_TRY` iterations (a cap close
-to the mean pressure: the clipped steps and the load control undo each other) turns to an
-outer loop over the plastic set (:mod:`.plastic`).
+A solve whose residual stops halving for :data:`STALL` iterations (pixels at the edge of a
+plastic zone stepping in by M g and out by the clip, in turn) goes on without the
+preconditioner.  A capped solve that does not converge in :data:`PLASTIC_FIRST_TRY`
+iterations, or whose residual stops halving for :data:`PLASTIC_STALL` (a cap close to the
+mean pressure, most of the contact at H: the set cycles at the zones' edges), turns to an
+outer loop over the plastic set (:mod:`.plastic`) that starts from its pixels at H.
+
+The iteration works in the unit of length L = :func:`reference_length` (heights, gaps,
+displacements) and of pressure L Pa (so that u = K p holds unchanged): its numbers are near
+1 for heights of 1e-306 m as for 1 km, with no underflow or overflow of the sums.
 
 u is updated without a transform (u - tau r, scaled) when no pixel was clipped or moved
 by the gap; else, and every :data:`REFRESH` iterations, recomputed as K p.
@@ -70,6 +82,11 @@ REFRESH = 25
 #: contact set changed, the old direction may have lost its conjugacy (on an unchanged
 #: set, with the exact step of the iteration, sum g t = Z)
 THETA = 0.9
+#: ... and when the gap moved more pixels in or out than this share of the free set (a
+#: direction of two pixels times beta ~ 1e10, continued over the 66 pixels that entered,
+#: gave steps of 1e-10 that passed the residual test on a wrong set; restarting on every
+#: pixel moved costs 20 to 90 % more iterations on a rough map at 512^2, this share 3 %)
+RESTART_SHARE = 0.05
 #: largest gap violation of a converged solution over the map's height range (a pixel
 #: out of contact below the half-space, one in contact off it); converged solves stay
 #: near 1e-9 (measured), a solve stuck in a wrong contact set near 0.1
@@ -81,6 +98,11 @@ PLASTIC_FIRST_TRY = 300
 #: cycles at the edge of the plastic zones: measured, converging capped solves halve it
 #: every 1 to 10 iterations)
 PLASTIC_STALL = 30
+#: iterations without the residual halving after which a solve drops the preconditioner
+#: (measured: a few pixels at the edge of a plastic zone entering by the preconditioned
+#: gap and leaving clipped, every other iteration, for thousands of iterations; the
+#: plain iteration moves them by their own gap and converges)
+STALL = 30
 #: the conjugate directions are preconditioned by the inverse of the half-space (the
 #: module's docstring, steps 2 and 3; without: z = g, Polonsky and Keer's iteration).
 #: Measured (self-affine map of the benchmark, p/E* 0.0025, tol 1e-8, one thread, CPU
@@ -159,7 +181,6 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
     z, (dx, dy), E, pbar, boundary, H, n_def = check_inputs(heights, pixel_size, E_star,
                                                             pressure, boundary, hardness)
     tol, maxit, workers = check_options(tol, max_iterations, progress, workers)
-    check_solver_memory(z.shape, boundary)
     p0 = None if initial is None else check_array("initial", initial, shape=z.shape,
                                                   finite=False)
     space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
@@ -170,17 +191,34 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
              progress) -> ContactResult:
     """The solve of checked arguments (:func:`check_inputs`) on the half-space ``space``
     (an :class:`.elastic.HalfSpace` of z's shape, reused along a load curve)."""
+    # in the unit of length L (heights, displacements, gaps) and of pressure L x Pa (so
+    # that u = K p holds unchanged): every number of the iteration near 1, whatever the
+    # scale of the heights (1e-306 m or 1 km) -- no underflow, no overflow
+    L = reference_length(space, z, pbar)
+    top = float(np.nanmax(z))
+    zn = (z - top) / L                         # the highest point at 0
+    Hn = math.inf if H is None else H / L
     first = maxit if H is None else min(maxit, PLASTIC_FIRST_TRY)
-    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, first, p0,
-                   progress, None if H is None else PLASTIC_STALL)
+    out = _iterate(space, zn, pbar / L, Hn, n_def, tol, first, None if p0 is None
+                   else p0 / L, progress, None if H is None else PLASTIC_STALL)
     if not out["converged"] and H is not None and maxit > out["iterations"]:
         from .plastic import solve_plastic    # the plastic set by an outer loop
         used = out["iterations"]
         start = out.pop("pressure")            # the plastic set starts from its pixels at H
         del out
-        out = solve_plastic(_iterate, GAP_TOL, space, z, pbar, H, n_def, tol, maxit - used,
-                            progress, start)
+        out = solve_plastic(_iterate, GAP_TOL, space, zn, pbar / L, Hn, n_def, tol,
+                            maxit - used, progress, start)
         out["iterations"] += used
+    del zn
+    at = None if H is None else out["pressure"] >= Hn
+    for k in ("pressure", "gap", "displacement"):
+        out[k] *= L
+    for k in ("mean_pressure", "max_pressure", "mean_gap"):
+        out[k] = float(out[k] * L)
+    if at is not None and at.any():            # the pixels at the cap: at H exactly
+        out["pressure"][at] = H
+        out["max_pressure"] = H
+    out["approach"] = top + out["approach"] * L
     res = ContactResult(**out, E_star=space.E_star, boundary=space.boundary, hardness=H,
                         pixel_size=(space.dx, space.dy), pressure_asked=pbar)
     if not res.converged:
@@ -189,6 +227,13 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
             f"{res.residual:.3g}, tolerance {tol:g}); allow more iterations or a looser "
             f"tolerance", res)
     return res
+
+
+def reference_length(space, z, pbar: float) -> float:
+    """The length the complementarity is measured against: the larger of the height range
+    and the displacement of a pixel under the nominal pressure alone (the heights far
+    below it: full contact, whose gaps are the rounding of the displacement)."""
+    return max(float(np.nanmax(z) - np.nanmin(z)), pbar * space.self_compliance)
 
 
 def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> dict:
@@ -213,7 +258,7 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
         K.rescale(pf, uf, rf, s, H, False, fixed)
     space.apply(p, u)
     c, G_old, delta, fresh, eps = 0.0, 1.0, 0, 0, math.inf
-    it, best, it_best = 0, math.inf, 0
+    it, best, it_best, pre = 0, math.inf, 0, PRECONDITION
     t_report = time.perf_counter()
     while it < maxit:
         it += 1
@@ -223,17 +268,16 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
             gbar = c + s1 / n
             G = max(s2 - n * (gbar - c) ** 2, 0.0)
             c = gbar
-            if PRECONDITION:                   # z = M g
+            if pre:                            # z = M g
                 K.masked_gap(uf, hf, pf, H, gbar, zf)
                 space.precondition(zp, zp)
-                G, sz = K.precond_sum(uf, hf, pf, zf, H, gbar)
-                zb = sz / n                    # the direction keeps the free set's load
+                G = K.precond_sum(uf, hf, pf, zf, H, gbar)
                 beta = delta * G / G_old if G_old > 0 and G > 0 else 0.0
-                if beta > 0.0 and K.precond_direction(uf, hf, pf, tf, zf, H, gbar, zb,
+                if beta > 0.0 and K.precond_direction(uf, hf, pf, tf, zf, H, gbar,
                                                       beta) < THETA * G:
-                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, zb, 0.0)
+                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, 0.0)
                 elif beta == 0.0:
-                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, zb, 0.0)
+                    K.precond_direction(uf, hf, pf, tf, zf, H, gbar, 0.0)
             else:
                 beta = delta * G / G_old if G_old > 0 else 0.0
                 if beta > 0.0 and K.direction(uf, hf, pf, tf, H, gbar, beta) < THETA * G:
@@ -244,7 +288,7 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
             tau = sgt / denom if denom > 0.0 and sgt > 0.0 else 0.0
-            moves = zf
+            moves = zf if pre else nz
         if not tau > 0.0:                      # the gap step: one free pixel or none, or
             G = 0.0                            # the free set solved (no conjugate step)
             if n == 1:
@@ -257,7 +301,7 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
             moves = nz
             c = gbar
         total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau, moves)
-        delta = 0 if moved else 1             # pixels entered or left the set: restart
+        delta = 0 if moved > RESTART_SHARE * n else 1     # the set changed: restart
         exact = clipped == 0 and moved == 0 and fresh < REFRESH
         if math.isfinite(H) and trim(pf, uf, hf, load, H, moves is nz):
             total, exact = -1.0, False         # the least penetrating pixels off the cap
@@ -286,13 +330,15 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
             tell(min(1.0, max(0.0, math.log(max(eps, tol)) / math.log(tol))),
                  f"contact: iteration {it}, residual {eps:.2g}")
         if eps < tol:
-            if _complementary(K, space, p, u, h, H, fresh, tol):
+            if _complementary(K, space, p, u, h, H, fresh, tol, pbar):
                 break
             delta = 0                          # a stalled set: restart the directions
         if eps < 0.5 * best:
             best, it_best = eps, it
         elif stall is not None and it - it_best >= stall:
             break                              # the residual no longer comes down
+        elif pre and it - it_best >= STALL:    # pixels stepping in and out by M g, in a
+            pre, delta, it_best = False, 0, it   # cycle: the plain iteration from here
     if fresh:                                  # the exact displacement of the result
         space.apply(p, u)
     s1, _, n, _, _ = K.gap_sums(uf, hf, pf, H, 0.0)
@@ -308,8 +354,7 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
     d = float(np.nanmax(z)) - gbar             # approach for the heights as given
     # complementarity: no pixel out of contact below the half-space, none in contact off
     # it (the free set on it, the plastic pixels on or into it)
-    span = float(np.nanmax(z) - np.nanmin(z)) or 1.0
-    off = max(pen, free_off, plastic_off) / span
+    off = max(pen, free_off, plastic_off) / reference_length(space, z, pbar)
     ok = eps < tol and off <= max(GAP_TOL, 100.0 * tol)
     return dict(pressure=p, gap=gap, displacement=u, contact=p > 0.0,
                 area_fraction=nc / n_def, mean_pressure=float(np.nansum(p)) / (nx * ny),
@@ -319,19 +364,14 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> 
                 plastic_fraction=plastic / n_def, approach=d)
 
 
-def _violation(K, u, h, p, H) -> float:
-    """The largest complementarity violation of (p, u) over the height range (see
-    :func:`_iterate`'s result)."""
+def _complementary(K, space, p, u, h, H, fresh: int, tol: float, pbar: float) -> bool:
+    """Whether the iterate (p, u) satisfies the complementarity to the solver's tolerance
+    over :func:`reference_length` (u recomputed first when it was updated
+    incrementally)."""
+    if fresh:
+        space.apply(p, u)
     hf, pf, uf = h.reshape(-1), p.reshape(-1), u.reshape(-1)
     s1, _, n, _, _ = K.gap_sums(uf, hf, pf, H, 0.0)
     gbar = s1 / n if n > 0 else float(np.max(np.where(p >= H, u - h, -np.inf)))
-    span = float(np.nanmax(h) - np.nanmin(h)) or 1.0
-    return max(K.gap_violation(uf, hf, pf, H, gbar)) / span
-
-
-def _complementary(K, space, p, u, h, H, fresh: int, tol: float) -> bool:
-    """Whether the iterate (p, u) satisfies the complementarity to the solver's tolerance
-    (u recomputed first when it was updated incrementally)."""
-    if fresh:
-        space.apply(p, u)
-    return _violation(K, u, h, p, H) <= max(GAP_TOL, 100.0 * tol)
+    off = max(K.gap_violation(uf, hf, pf, H, gbar)) / reference_length(space, h, pbar)
+    return off <= max(GAP_TOL, 100.0 * tol)
