@@ -222,12 +222,22 @@ def check_array(name: str, value, ndim: int | None = None, shape=None, *,
 
 
 def _check_fits(name: str, shape, need: float) -> None:
-    """Refuse an array whose copy does not fit in the free memory (a broadcast view of
-    200000 x 200000 values holds none itself), in one line."""
-    if need > 2 ** 28:                          # only large arrays cost a look at /proc
-        from .resources import check_memory
+    """Refuse an array whose copy cannot fit in this machine's memory (a broadcast view
+    of 200000 x 200000 values holds none itself), in one line: the rule of
+    :func:`asperity.resources.check_memory` (which imports this module) against the
+    physical memory; what copies large arrays checks the memory free for it with that."""
+    import os
+    if need <= 2 ** 28:                        # a small array: no look at the machine
+        return
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, OSError, ValueError):
+        return
+    if need > 0.8 * total:
         dims = " x ".join(str(n) for n in shape)
-        check_memory(need, f"{name} ({dims} values)", "pass a smaller array")
+        raise ResourceError(f"{name} ({dims} values) needs about {need / 2 ** 30:.3g} GiB of "
+                            f"memory, more than this machine's {total / 2 ** 30:.3g} GiB; "
+                            f"pass a smaller array")
 
 
 def is_array(value) -> bool:

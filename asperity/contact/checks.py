@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError, check_array, check_choice, check_int, check_range
+from ..errors import InputError, check_array, check_choice, check_range
 from . import elastic
 
 #: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
@@ -13,8 +13,6 @@ from . import elastic
 PRESSURE_OVER_E = (1e-12, 10.0)
 #: range of E* in Pa (a gel to diamond, with margin)
 E_RANGE = (1.0, 1e13)
-#: default iteration limit
-MAX_ITERATIONS = 10_000
 
 
 def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
@@ -45,6 +43,9 @@ def _pixel_size(pixel_size) -> tuple[float, float]:
 def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
     """The checked arguments of :func:`solve_contact`: (heights as float64, (dx, dy),
     E*, pressure, boundary, hardness or None, number of defined pixels)."""
+    if isinstance(heights, np.ndarray) and heights.ndim == 2 and \
+            check_choice("boundary", boundary, elastic.BOUNDARIES):
+        check_solver_memory(heights.shape, boundary)     # before any copy, a view's too
     z = check_array("heights", heights, ndim=2, finite=False)
     if z.shape[0] < 2 or z.shape[1] < 2:
         raise InputError(f"heights must have at least 2 x 2 pixels, got shape {z.shape}")
@@ -72,20 +73,6 @@ def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
         hardness = check_range("hardness", hardness, mean_defined, None, low_open=True,
                                unit="Pa (above the mean pressure over the defined pixels)")
     return z, (dx, dy), E_star, p, boundary, hardness, defined
-
-
-def check_options(tol, max_iterations, progress, workers):
-    """(tol, iteration limit, transform threads) checked (``progress`` a callable or
-    None)."""
-    from ..resources import cpu_cores
-    tol = check_range("tol", tol, 1e-15, 0.1)
-    maxit = MAX_ITERATIONS if max_iterations is None else \
-        check_int("max_iterations", max_iterations, 1, 10 ** 7)
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable(fraction, text), got "
-                         f"{type(progress).__name__}")
-    workers = cpu_cores() if workers is None else check_int("workers", workers, 1, 4096)
-    return tol, maxit, workers
 
 
 def check_solver_memory(shape, boundary: str) -> None:

@@ -54,8 +54,9 @@ def solve_plastic(iterate, gap_tol: float, space, z, pbar: float, H: float, n_de
     nx, ny = z.shape
     load = pbar * nx * ny
     undefined = np.isnan(z)
-    from .solver import reference_length
-    span = reference_length(space, z, pbar)
+    # the solver's reference length (solver.reference_length, not imported: solver
+    # imports this module)
+    span = max(float(np.nanmax(z) - np.nanmin(z)), pbar * space.self_compliance)
     plastic = np.zeros(z.shape, dtype=bool)
     p0 = None
     if start is not None:

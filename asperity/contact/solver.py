@@ -63,14 +63,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import AsperityError, check_array
+from ..errors import AsperityError, InputError, check_array, check_int, check_range
 from . import elastic
 from .checks import (  # noqa: F401  (the checks of the arguments, and their ranges)
     E_RANGE,
-    MAX_ITERATIONS,
     PRESSURE_OVER_E,
     check_inputs,
-    check_options,
     check_solver_memory,
     effective_modulus,
 )
@@ -94,6 +92,8 @@ GAP_TOL = 1e-6
 #: iterations a capped solve tries before the outer loop over the plastic set (:mod:`.plastic`;
 #: converged capped solves take 15 to 60, one whose set stalls never converges)
 PLASTIC_FIRST_TRY = 300
+#: default iteration limit
+MAX_ITERATIONS = 10_000
 #: ... or whose residual has not halved in this many iterations (a contact set that
 #: cycles at the edge of the plastic zones: measured, converging capped solves halve it
 #: every 1 to 10 iterations)
@@ -185,6 +185,20 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
                                                   finite=False)
     space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
     return solve_on(space, z, pbar, H, n_def, tol, maxit, p0, progress)
+
+
+def check_options(tol, max_iterations, progress, workers):
+    """(tol, iteration limit, transform threads) checked (``progress`` a callable or
+    None)."""
+    from ..resources import cpu_cores
+    tol = check_range("tol", tol, 1e-15, 0.1)
+    maxit = MAX_ITERATIONS if max_iterations is None else \
+        check_int("max_iterations", max_iterations, 1, 10 ** 7)
+    if progress is not None and not callable(progress):
+        raise InputError(f"progress must be a callable(fraction, text), got "
+                         f"{type(progress).__name__}")
+    workers = cpu_cores() if workers is None else check_int("workers", workers, 1, 4096)
+    return tol, maxit, workers
 
 
 def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
