@@ -592,6 +592,28 @@ def test_the_issue_examples(tmp_path):
              "gy must have the shape of gx")
 
 
+def test_the_issue_25_examples():
+    """Issue 25, item 3, one by one: heights times 1e300 (a raw OverflowError), a masked
+    array (its masked pixels taken as heights), complex heights (accepted), a 200000^2
+    request (a raw MemoryError)."""
+    from asperity.errors import ResourceError
+    _refused(lambda: A.solve_contact(Z * 1e300, 1e-6, 1e9, 1e6), "heights must lie within")
+    mask = np.zeros(Z.shape, dtype=bool)
+    mask[3:5, 2:7] = True
+    masked = A.solve_contact(np.ma.masked_array(Z, mask=mask), 1e-6, 1e9, 1e6)
+    nan = A.solve_contact(np.where(mask, np.nan, Z), 1e-6, 1e9, 1e6)
+    assert np.isnan(masked.pressure[mask]).all()
+    assert np.array_equal(masked.pressure, nan.pressure, equal_nan=True)
+    _refused(lambda: A.solve_contact(Z + 0j, 1e-6, 1e9, 1e6), "heights must be real numbers")
+    for view in (np.broadcast_to(0.0, (200_000, 200_000)),
+                 np.broadcast_to(np.int8(0), (200_000, 200_000))):
+        msg = _refused(lambda v=view: A.solve_contact(v, 1e-6, 1e9, 1e6),
+                       "contact solve of heights of 200000 x 200000 pixels needs about")
+        with pytest.raises(ResourceError):
+            A.solve_contact(view, 1e-6, 1e9, 1e6)
+        assert "memory" in msg
+
+
 @pytest.mark.parametrize("inline", [False, True])
 def test_x3p_whose_increment_overflows_is_one_line_without_warnings(tmp_path, inline):
     """Raw heights times the file's Increment (plus Offset) beyond the float range: the
