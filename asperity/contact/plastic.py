@@ -33,6 +33,8 @@ import math
 
 import numpy as np
 
+from .gaps import reference_length
+
 #: most outer iterations
 MAX_OUTER = 10_000
 #: the tolerance of the elastic solves while the plastic set still changes (the last
@@ -54,9 +56,7 @@ def solve_plastic(iterate, gap_tol: float, space, z, pbar: float, H: float, n_de
     nx, ny = z.shape
     load = pbar * nx * ny
     undefined = np.isnan(z)
-    # the solver's reference length (solver.reference_length, not imported: solver
-    # imports this module)
-    span = max(float(np.nanmax(z) - np.nanmin(z)), pbar * space.self_compliance)
+    span = reference_length(space, z, pbar)
     plastic = np.zeros(z.shape, dtype=bool)
     p0 = None
     if start is not None:
