@@ -86,7 +86,7 @@ SWEEP = sorted({*np.round(np.geomspace(1.2e7, 5e7, 19), -3), 1.5e7, 1.58e7, 1.99
 
 def test_hardness_sweep_through_the_stalled_cap_converges():
     """The wedge's profile, caps from 1.2 to 5 times the mean pressure: each solve within
-    100 iterations (measured: 4 to 58, mean 17; before, 8 of these 26 caps reached the
+    100 iterations (measured: 4 to 52, mean 19; before, 10 of these 27 caps reached the
     limit: the iteration cycled between contact sets at the plastic zone's edges), the
     invariants held, and the contact essentially plastic (H << E* x slope): the area
     between P / H and P / H + 3 % of the map."""
@@ -102,7 +102,7 @@ def test_hardness_sweep_through_the_stalled_cap_converges():
 
 
 def test_the_issue_command_converges(capsys):
-    """The command of the issue: converged in a few dozen iterations (measured 43, on the
+    """The command of the issue: converged in a few dozen iterations (measured 48, on the
     4096-node profile the command picks), half the period at H."""
     d = run_json(capsys, "contact", str(WEDGE_FILE), "--elastic", "1e9", "--pressure", "1e7",
                  "--hardness", "2e7", "--max-iterations", "1000")
@@ -125,8 +125,8 @@ def rough(holes: bool):
 def test_cap_sweep_on_a_rough_map(boundary, holes):
     """Caps from 1.05 to 8 times the mean pressure over the defined pixels (a cap of 2
     took 718 iterations before: 300 of a stalled single iteration, then the outer loop's
-    elastic solves to 1e-8 each): every solve within 150 iterations, the invariants held,
-    and the plastic share falling as the cap rises."""
+    elastic solves to 1e-8 each): every solve within 60 iterations (measured 8 to 19), the
+    invariants held, and the plastic share falling as the cap rises."""
     z = rough(holes)
     pbar = 2.5e8
     mean = pbar * z.size / np.count_nonzero(np.isfinite(z))
@@ -135,7 +135,7 @@ def test_cap_sweep_on_a_rough_map(boundary, holes):
         res = solve_contact(z, 1e-6, 1e11, pbar, boundary=boundary, hardness=ratio * mean,
                             max_iterations=300, workers=1)
         check_capped(z, res, pbar, ratio * mean)
-        assert res.iterations <= 150, (ratio, res.iterations)
+        assert res.iterations <= 60, (ratio, res.iterations)
         shares.append(res.plastic_fraction)
     assert all(a > b for a, b in pairwise(shares)), shares
 
