@@ -37,13 +37,7 @@ import numpy as np
 
 from ..errors import InputError, check_array, check_int, check_range
 from . import elastic
-from .solver import (
-    PRESSURE_OVER_E,
-    ContactResult,
-    check_inputs,
-    check_options,
-    solve_on,
-)
+from .solver import PRESSURE_OVER_E, ContactResult, check_inputs, check_options, solve_on
 
 #: most pressures of one load curve
 MAX_PRESSURES = 1000
