@@ -184,10 +184,28 @@ def check_array(name: str, value, ndim: int | None = None, shape=None, *,
     import numpy as np
     if value is None or isinstance(value, (str, bytes, dict)):
         raise InputError(f"{name} must be an array, got {_show(value)} ({_kind(value)})")
+    masked = None
+    if isinstance(value, np.ma.MaskedArray):    # masked: undefined (NaN) where allowed
+        masked, value = np.ma.getmaskarray(value), np.ma.getdata(value)
+    kind = getattr(getattr(value, "dtype", None), "kind", "")
+    if kind == "c":
+        raise InputError(f"{name} must be real numbers, got complex values ({value.dtype})")
+    if kind == "b" and np.dtype(dtype).kind != "b":
+        raise InputError(f"{name} must be numbers, got booleans (a {value.dtype} array)")
+    if isinstance(value, np.ndarray):           # a copy of it at least: does it fit?
+        _check_fits(name, value.shape, value.size * max(8, np.dtype(dtype).itemsize))
     try:
         a = np.asarray(value, dtype=dtype)
     except (TypeError, ValueError, OverflowError):
         raise InputError(f"{name} must be an array of numbers, got {_show(value)}") from None
+    except MemoryError:
+        raise ResourceError(f"{name} of shape {np.shape(value)} does not fit in memory; "
+                            f"pass a smaller array") from None
+    if masked is not None and masked.any():
+        if finite or a.dtype.kind != "f":
+            raise InputError(f"{name} must be finite numbers, got "
+                             f"{int(np.count_nonzero(masked))} masked values")
+        a = np.where(masked, np.nan, a)         # the masked pixels undefined, as NaN
     want = len(shape) if shape is not None else ndim
     if want is not None and a.ndim != want:
         raise InputError(f"{name} must have {want} dimension(s), got shape {a.shape}")
@@ -201,6 +219,25 @@ def check_array(name: str, value, ndim: int | None = None, shape=None, *,
         k = int(np.flatnonzero(~np.isfinite(a.ravel()))[0])
         raise InputError(f"{name} must be finite, got {a.ravel()[k]} at index {k}")
     return a
+
+
+def _check_fits(name: str, shape, need: float) -> None:
+    """Refuse an array whose copy cannot fit in this machine's memory (a broadcast view
+    of 200000 x 200000 values holds none itself), in one line: the rule of
+    :func:`asperity.resources.check_memory` (which imports this module) against the
+    physical memory; what copies large arrays checks the memory free for it with that."""
+    import os
+    if need <= 2 ** 28:                        # a small array: no look at the machine
+        return
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, OSError, ValueError):
+        return
+    if need > 0.8 * total:
+        dims = " x ".join(str(n) for n in shape)
+        raise ResourceError(f"{name} ({dims} values) needs about {need / 2 ** 30:.3g} GiB of "
+                            f"memory, more than this machine's {total / 2 ** 30:.3g} GiB; "
+                            f"pass a smaller array")
 
 
 def is_array(value) -> bool:

@@ -9,6 +9,7 @@ calls of each class.  :func:`judge` runs one call and says what is wrong with ho
 failed (None: a one-line InputError, no warning on the way)."""
 from __future__ import annotations
 
+import cmath
 import math
 import re
 import warnings
@@ -187,3 +188,190 @@ def judge(call, kind: Kind, names, value=None) -> str | None:
     if not any(re.search(rf"(?<![\w]){re.escape(n)}(?![\w])", msg) for n in names):
         return f"message names none of {names}: {msg[:160]}"
     return None
+
+
+# ---- NumPy's own arrays (issue 25, item 3) --------------------------------------------------
+#
+# A list of numbers is not all a caller passes: a masked array, complex or boolean values,
+# an object array, a 0-d array, a broadcast view of 200000 x 200000 values that holds no
+# memory itself, a strided view, big-endian or integer values.  :func:`array_variants`
+# derives them from an argument's valid value; each says what the function must do with
+# it: refuse it in one line ("refuse"), take masked values as undefined or refuse them
+# ("nan"), or give exactly what the same values as a plain float64 array give ("same").
+
+#: a request far beyond any machine's memory (a float64 copy: 298 GiB)
+HUGE = {1: (40_000_000_000,), 2: (200_000, 200_000)}
+
+
+def array_variants(kind: Kind, valid):
+    """(the plain float64 array, [(class, label, value, how) of the NumPy arrays built
+    from it]): ``valid`` is the argument's value in a valid call (None: a small array of
+    the kind's dimensions)."""
+    import numpy as np
+    nd = kind.ndim
+    if valid is None:
+        t = np.full((3, 2) if nd == 2 else (3,), 0.5)
+    else:
+        try:
+            t = np.array(valid, dtype=float)
+        except (TypeError, ValueError):
+            return None, []
+    if t.ndim == 0 or t.size == 0:
+        return None, []
+    x = float(t.flat[0])
+    out = [("type", "complex array", t.astype(complex), "refuse"),
+           ("type", "complex array with imaginary parts", t + 1j, "refuse"),
+           ("type", "boolean array", np.ones(t.shape, dtype=bool), "refuse"),
+           ("type", "object array holding text", _with(t.astype(object), "abc"), "refuse"),
+           ("NaN", "object array holding None", _with(t.astype(object), None), "nan"),
+           ("NaN", "masked array", np.ma.masked_array(t, mask=_first(t.shape)), "nan"),
+           ("huge", "broadcast view of 4e10 values",
+            np.broadcast_to(x, HUGE[2] if nd in (None, 2) else HUGE[1]), "refuse")]
+    out.append(("shape", "0-d array", np.array(x), "scalar"))
+    if nd is not None and "empty" not in kind.skip:
+        out.append(("shape", "empty array", np.zeros((0,) * nd), "refuse"))
+    out += [("layout", "strided view", np.repeat(t, 2, axis=-1)[..., ::2], "same"),
+            ("layout", "big-endian", t.astype(">f8"), "same"),
+            ("layout", "read-only", _read_only(t), "same")]
+    if t.ndim == 2:
+        out.append(("layout", "Fortran order", np.asfortranarray(t), "same"))
+    if np.all(t == np.round(t)) and np.all(np.abs(t) < 2 ** 52):
+        out.append(("layout", "integers", t.astype(np.int64), "same"))
+    return t, [v for v in out if v[1] not in kind.skip]
+
+
+def number_variants(kind: Kind, valid):
+    """(the float, [(class, label, value, how)]) of the NumPy scalars a caller may pass
+    for a number (``valid``: its value in a valid call; not a number: none)."""
+    import numbers
+
+    import numpy as np
+    if isinstance(valid, bool) or not isinstance(valid, numbers.Real):
+        return None, []
+    x = float(valid)
+    out = [("type", "NumPy complex", np.complex128(x), "refuse"),
+           ("type", "NumPy bool", np.bool_(True), "refuse"),
+           ("NaN", "masked constant", np.ma.masked, "refuse"),
+           ("shape", "0-d array", np.array(x), "scalar")]
+    if abs(x) < 2 ** 52 and x == round(x):
+        out.append(("layout", "NumPy int64", np.int64(round(x)), "same"))
+    return x, [v for v in out if v[1] not in kind.skip]
+
+
+def _first(shape):
+    import numpy as np
+    m = np.zeros(shape, dtype=bool)
+    m.flat[0] = True
+    return m
+
+
+def _with(a, item):
+    a.flat[0] = item
+    return a
+
+
+def _read_only(t):
+    a = t.copy()
+    a.flags.writeable = False
+    return a
+
+
+def nan_first(plain):
+    """``plain`` with NaN in the place :func:`array_variants` masks."""
+    a = plain.copy()
+    a.flat[0] = math.nan
+    return a
+
+
+#: attributes whose values differ between two identical calls (clocks, caches)
+VOLATILE = re.compile(r"time|elapsed|seconds|wall|cpu|created|date|duration")
+
+
+def outcome(call):
+    """("value", result) or ("error", type name, message) of ``call()``, and the warnings
+    it raised on the way."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            res = ("value", call())
+        except AsperityError as exc:
+            res = ("error", type(exc).__name__, str(exc))
+        except Exception as exc:           # noqa: BLE001 -- the finding
+            res = ("raw", type(exc).__name__, str(exc).replace("\n", "\\n")[:160])
+    return res, [str(w.message)[:100] for w in caught]
+
+
+def differ(a, b, path="", depth=0) -> str | None:
+    """Where two results differ (None: the same values, to 1e-12, NaN equal to NaN)."""
+    import dataclasses
+
+    import numpy as np
+    if depth > 8 or a is b:
+        return None
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        if a.shape != b.shape:
+            return f"{path}: shape {a.shape} != {b.shape}"
+        if "O" in a.dtype.kind + b.dtype.kind:
+            ok = all(differ(x, y) is None for x, y in zip(a.flat, b.flat))
+        elif a.dtype.kind in "fc" or b.dtype.kind in "fc":
+            ok = np.allclose(a, b, rtol=1e-12, atol=0.0, equal_nan=True)
+        else:
+            ok = np.array_equal(a, b)
+        return None if ok else f"{path}: arrays differ"
+    if isinstance(a, (bool, str, bytes, type(None))) or isinstance(b, (bool, str, bytes)):
+        return None if a == b else f"{path}: {a!r} != {b!r}"
+    if isinstance(a, (int, float, np.number)) and isinstance(b, (int, float, np.number)):
+        fa, fb = complex(a), complex(b)
+        same = fa == fb or (cmath.isnan(fa) and cmath.isnan(fb)) or \
+            abs(fa - fb) <= 1e-12 * abs(fa)
+        return None if same else f"{path}: {a!r} != {b!r}"
+    if type(a) is not type(b):
+        return f"{path}: {type(a).__name__} != {type(b).__name__}"
+    if isinstance(a, dict):
+        if set(a) != set(b):
+            return f"{path}: keys {sorted(map(str, set(a) ^ set(b)))}"
+        items = [(k, a[k], b[k]) for k in a]
+    elif isinstance(a, (list, tuple)):
+        if len(a) != len(b):
+            return f"{path}: length {len(a)} != {len(b)}"
+        items = list(zip(range(len(a)), a, b))
+    elif dataclasses.is_dataclass(a):
+        items = [(f.name, getattr(a, f.name), getattr(b, f.name))
+                 for f in dataclasses.fields(a)]
+    elif hasattr(a, "__dict__") and not callable(a):
+        items = [(k, v, vars(b).get(k)) for k, v in vars(a).items()]
+    else:
+        return None                           # functions, modules, kernels: not values
+    for k, x, y in items:
+        if isinstance(k, str) and (k.startswith("_") or VOLATILE.search(k)):
+            continue
+        why = differ(x, y, f"{path}.{k}", depth + 1)
+        if why:
+            return why
+    return None
+
+
+def judge_variant(call, expected, kind: Kind, names, how: str) -> str | None:
+    """What is wrong with how ``call`` (a NumPy variant of an argument) ended: "refuse":
+    a one-line InputError naming the argument (:func:`judge`); "nan": that, or what the
+    values with NaN in the masked places give; "scalar" (a 0-d array): that, or what its
+    value as a float gives; "same": what the plain float64 array of the same values gives,
+    a refusal or a result.  ``expected(how)``: the :func:`outcome` of that other call."""
+    if how == "refuse":
+        return judge(call, kind, names)
+    if how in ("nan", "scalar") and judge(call, kind, names) is None:
+        return None
+    got, warned = outcome(call)
+    want, _ = expected(how)
+    if warned:
+        return f"warning on the way: {warned[0]}"
+    if got[0] == "raw":
+        return f"{got[1]}: {got[2]}"
+    if got[0] != want[0]:
+        return (f"{got[0]} {got[1:] if got[0] != 'value' else ''} where the plain array "
+                f"gives {want[0]} {want[1:] if want[0] != 'value' else ''}")[:300]
+    if got[0] == "error":
+        return None if got[1:] == want[1:] else f"a different refusal: {got[2][:120]}"
+    why = differ(got[1], want[1])
+    return None if why is None else f"another result than the plain array's ({why})"

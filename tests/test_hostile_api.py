@@ -19,8 +19,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from api_walk import (BIG_INT as BIG, NAN, Kind, address, array, callback, choice, flag, infile, instance, judge, number,
-                      outfile, outfolder, text, whole)
+from api_walk import (BIG_INT as BIG, NAN, Kind, address, array, array_variants, callback, choice, flag, infile,
+                      instance, judge, judge_variant, nan_first, number, number_variants, outcome, outfile, outfolder, text,
+                      whole)
 from hostile import SURF
 
 import asperity as A
@@ -66,10 +67,27 @@ def _files(folder: Path) -> dict:
     import trimesh
     trimesh.creation.box(extents=(40, 20, 10)).export(folder / "box.stl")
     (folder / "pressure.csv").write_text("x_m,y_m,p_Pa\n0,0,1e5\n0.001,0,2e5\n0,0.001,1e5\n")
-    return dict(d=A.derive(TEX, n_directions=72), npy=folder / "z.npy", gauge=folder / "g.json", gl=gl, chain=chain, members=members,
+    contact = A.solve_contact(-np.hypot(*np.meshgrid(np.arange(16), np.arange(16))) * 1e-6,
+                              1e-6, 1e9, 1e5, boundary="free")
+    return dict(contact=contact, d=A.derive(TEX, n_directions=72), npy=folder / "z.npy", gauge=folder / "g.json", gl=gl, chain=chain, members=members,
                 loading=loading, asm=asm, friction=A.assembly_friction(asm),
                 law=A.ellipse_law(0.2, 0.1), fs=A.load_surface(folder / "z.npy", unit="m",
                                                                pixel_size=1e-6))
+
+
+def hand_made(res) -> list:
+    """ContactResults made by hand around ``res``'s pressure (issue 25, item 3): NumPy's
+    hostile arrays in the fields a function reads, each to refuse in one line."""
+    p = res.pressure
+    bad = [("type", "complex pressure", p + 1j), ("type", "boolean pressure", p > 0),
+           ("shape", "1-d pressure", p[0]), ("inf", "infinite pressure", np.where(p > 0, np.inf, p)),
+           ("range", "negative pressure", -p), ("huge", "4e10 pressures", np.broadcast_to(1.0, (200_000, 200_000))),
+           ("type", "text pressure", np.full(p.shape, "a", dtype=object))]
+    out = [(cls, label, replace(res, pressure=v)) for cls, label, v in bad]
+    for label, px in (("pixel_size NaN", (NAN, 1e-6)), ("pixel_size negative", (-1e-6, 1e-6)),
+                      ("pixel_size of 3", (1e-6, 1e-6, 1e-6)), ("pixel_size text", ("a", 1.0))):
+        out.append(("range", label, replace(res, pixel_size=px)))
+    return out
 
 
 def api_table(folder: Path) -> list[Row]:
@@ -154,10 +172,8 @@ def api_table(folder: Path) -> list[Row]:
                 ("range", "all zero", [0.0, 0.0])]), shape=instance(none=True),
                  cell_areas=array(0.0, None, lo_open=True, none=True), contact_points=points)),
         Row("contact_footprint", A.contact_footprint,
-            dict(result=A.solve_contact(-np.hypot(*np.meshgrid(np.arange(16), np.arange(16)))
-                                        * 1e-6, 1e-6, 1e9, 1e5, boundary="free"),
-                 contact_points=None),
-            dict(result=instance(), contact_points=points)),
+            dict(result=f["contact"], contact_points=None),
+            dict(result=instance(extra=hand_made(f["contact"])), contact_points=points)),
         Row("read_pressure", A.read_pressure, dict(path=folder / "pressure.csv"),
             dict(path=infile(folder, ".csv")), {"path": ("pressure file",)}),
         Row("read_body", A.read_body, dict(path=SURF / "body-plate.toml"),
@@ -496,16 +512,66 @@ def test_every_argument_refuses_hostile_values_in_one_line(table, name):
     assert not failures, "\n".join(failures)
 
 
+def walk_arrays(row: Row) -> tuple[collections.Counter, list[str]]:
+    """(NumPy variants per class, what went wrong) of the array arguments of one row."""
+    counts, failures = collections.Counter(), []
+    for arg, kind in row.kinds.items():
+        if kind.what == "array":
+            plain, variants = array_variants(kind, row.args[arg])
+        elif kind.what in ("number", "int"):
+            plain, variants = number_variants(kind, row.args[arg])
+        else:
+            continue
+        if not variants:
+            continue
+        arr, memo = np.atleast_1d(plain), {}
+        others = {"same": plain, "nan": nan_first(arr), "scalar": float(arr.flat[0])}
+
+        def expected(how, arg=arg, others=others, memo=memo):
+            if how not in memo:                 # each reference call once per argument
+                memo[how] = outcome(row._call(arg, others[how]))
+            return memo[how]
+
+        for cls, label, value, how in variants:
+            counts[cls] += 1
+            why = judge_variant(row._call(arg, value), expected, kind,
+                                (arg, *row.words.get(arg, ())), how)
+            if why:
+                failures.append(f"{row.name}({arg}={label}): {why}")
+    return counts, failures
+
+
+@pytest.mark.parametrize("name", PUBLIC)
+def test_numpy_arrays_of_every_flavour(table, name):
+    """Issue 25, item 3: each array argument given as NumPy arrays a caller may hold
+    (:func:`api_walk.array_variants`): complex, boolean or object arrays, a 0-d or empty
+    array and a broadcast view of 4e10 values refused in one line naming the argument;
+    a masked array's masked values taken as undefined (as NaN) or refused; a strided
+    view, big-endian, read-only, Fortran-ordered or integer array giving exactly what the
+    plain float64 array of the same values gives."""
+    _, failures = walk_arrays(table[name])
+    assert not failures, "\n".join(failures)
+
+
 def test_the_walk_covers_every_class(table):
     """The counts the issue asks for (per class of bad input), for the report."""
-    total, n_args = collections.Counter(), 0
+    total, n_args, numpy = collections.Counter(), 0, collections.Counter()
     for row in table.values():
         total.update(collections.Counter(cls for _, _, cls, *_ in row.calls()))
         n_args += len(row.kinds)
+        for arg, kind in row.kinds.items():
+            if kind.what == "array":
+                numpy.update(v[0] for v in array_variants(kind, row.args[arg])[1])
+            elif kind.what in ("number", "int"):
+                numpy.update(v[0] for v in number_variants(kind, row.args[arg])[1])
     line = (f"API: {len(table)} callables, {n_args} arguments, {sum(total.values())} hostile "
-            f"calls: " + ", ".join(f"{k} {v}" for k, v in total.most_common()))
+            f"calls: " + ", ".join(f"{k} {v}" for k, v in total.most_common()) +
+            f"; NumPy arrays and scalars: {sum(numpy.values())}: " +
+            ", ".join(f"{k} {v}" for k, v in numpy.most_common()))
     print(line)
-    assert set(total) == {"type", "shape", "NaN", "inf", "overflow", "range", "file", "choice"}
+    assert set(total) == {"type", "shape", "NaN", "inf", "overflow", "range", "file", "choice",
+                          "huge"}
+    assert set(numpy) == {"type", "shape", "NaN", "huge", "layout"}
     assert len(table) == len(PUBLIC) and n_args >= 4 * len(table)
 
 
@@ -530,6 +596,28 @@ def test_the_issue_examples(tmp_path):
     fs = A.load_surface(tmp_path / "z.npy", unit="m", pixel_size=1e-6)
     _refused(lambda: A.FacetSurface(fs.gx, fs.gy[:-1], 0.1, fs.weight, {}),
              "gy must have the shape of gx")
+
+
+def test_the_issue_25_examples():
+    """Issue 25, item 3, one by one: heights times 1e300 (a raw OverflowError), a masked
+    array (its masked pixels taken as heights), complex heights (accepted), a 200000^2
+    request (a raw MemoryError)."""
+    from asperity.errors import ResourceError
+    _refused(lambda: A.solve_contact(Z * 1e300, 1e-6, 1e9, 1e6), "heights must lie within")
+    mask = np.zeros(Z.shape, dtype=bool)
+    mask[3:5, 2:7] = True
+    masked = A.solve_contact(np.ma.masked_array(Z, mask=mask), 1e-6, 1e9, 1e6)
+    nan = A.solve_contact(np.where(mask, np.nan, Z), 1e-6, 1e9, 1e6)
+    assert np.isnan(masked.pressure[mask]).all()
+    assert np.array_equal(masked.pressure, nan.pressure, equal_nan=True)
+    _refused(lambda: A.solve_contact(Z + 0j, 1e-6, 1e9, 1e6), "heights must be real numbers")
+    for view in (np.broadcast_to(0.0, (200_000, 200_000)),
+                 np.broadcast_to(np.int8(0), (200_000, 200_000))):
+        msg = _refused(lambda v=view: A.solve_contact(v, 1e-6, 1e9, 1e6),
+                       "contact solve of heights of 200000 x 200000 pixels needs about")
+        with pytest.raises(ResourceError):
+            A.solve_contact(view, 1e-6, 1e9, 1e6)
+        assert "memory" in msg
 
 
 @pytest.mark.parametrize("inline", [False, True])

@@ -136,10 +136,14 @@ def from_contact(result, *, contact_points: int | None = None) -> Footprint:
     pressure, merged into about ``contact_points`` points (default: the polygon's default;
     see :func:`from_pressure`).  Pixel (i, j) is at (i dx, j dy)."""
     from ..contact.solver import ContactResult
-    from ..errors import check_instance
+    from ..errors import check_array, check_instance
     check_instance("result", result, ContactResult)
-    pr = np.asarray(result.pressure, dtype=float)
-    dx, dy = result.pixel_size
+    pr = check_array("result.pressure", result.pressure, ndim=2, finite=False)
+    if np.isinf(pr).any() or (pr < 0).any():     # a result made by hand, not solved
+        raise InputError("result.pressure must be finite and >= 0 Pa (NaN: undefined)")
+    dx, dy = check_array("result.pixel_size", result.pixel_size, shape=(2,)).tolist()
+    if not (dx > 0 and dy > 0):
+        raise InputError(f"result.pixel_size must be two lengths > 0 m, got {[dx, dy]}")
     i, j = np.nonzero(np.nan_to_num(pr) > 0)
     if i.size == 0:
         raise InputError(f"result: no pixel carries pressure: {NOT_CARRIED}")

@@ -214,22 +214,25 @@ def final_fields(u, h, p, gap, d):
 @njit(cache=True)
 def gap_violation(u, h, p, H, gbar):
     """The complementarity of a solution, from the gap g = u - h - gbar: the largest |g|
-    over the free set (0 < p < H, where g must vanish) and the largest g over the plastic
-    pixels (p >= H, where g > 0 means a pixel at the hardness off the half-space)."""
+    over the free set (0 < p < H, where g must vanish), the largest g over the plastic
+    pixels (p >= H, where g > 0 means a pixel at the hardness off the half-space) and the
+    largest -g out of contact (p = 0, where g < 0 means a pixel through the half-space)."""
     free = 0.0
     plastic = 0.0
+    pen = 0.0
     for i in range(p.size):
         hi = h[i]
-        pi = p[i]
-        if hi != hi or pi <= 0.0:
+        if hi != hi:
             continue
+        pi = p[i]
         g = u[i] - hi - gbar
-        if pi < H:
-            if abs(g) > free:
-                free = abs(g)
-        elif g > plastic:
-            plastic = g
-    return free, plastic
+        if pi <= 0.0:
+            pen = max(pen, -g)
+        elif pi < H:
+            free = max(free, abs(g))
+        else:
+            plastic = max(plastic, g)
+    return free, plastic, pen
 
 
 @njit(cache=True)

@@ -37,14 +37,7 @@ import numpy as np
 
 from ..errors import InputError, check_array, check_int, check_range
 from . import elastic
-from .solver import (
-    PRESSURE_OVER_E,
-    ContactResult,
-    check_inputs,
-    check_options,
-    check_solver_memory,
-    solve_on,
-)
+from .solver import PRESSURE_OVER_E, ContactResult, check_inputs, check_options, solve_on
 
 #: most pressures of one load curve
 MAX_PRESSURES = 1000
@@ -65,7 +58,6 @@ def iter_load_curve(heights, pixel_size, E_star, pressures, *, boundary="periodi
                                                          hardness)
     check_range("pressures / E_star", float(values.min()) / E, *PRESSURE_OVER_E)
     tol, maxit, workers = check_options(tol, max_iterations, progress, workers)
-    check_solver_memory(z.shape, boundary)
     space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
     order = np.argsort(values, kind="stable")
     waiting: dict[int, ContactResult] = {}

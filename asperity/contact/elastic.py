@@ -35,7 +35,9 @@ PRECONDITIONER_DTYPE = np.float32
 #: planned peak bytes per pixel of a solve (the solver's arrays, the transform's buffers
 #: and the result; the caller's heights not counted): measured peaks 83 (periodic) and
 #: 142 (free) bytes per pixel at 1024^2 with the preconditioner's array and its
-#: single-precision transform (``asperity bench --only contact``), with a margin
+#: single-precision transform (``asperity bench --only contact``), 8 more since the
+#: solve works on a copy of the heights in its own length unit (tracemalloc: 70 -> 78 and
+#: 114 -> 122), with a margin
 BYTES_PER_PIXEL = {"periodic": 100, "free": 200}
 
 

@@ -22,23 +22,35 @@ Polonsky & Keer (Wear 231, 206, 1999) with Vollebregt's preconditioner, one iter
    periodic half-space, |q| E* / 2 in Fourier space (single precision: an approximate
    inverse serves as well); Z = sum_F g z;
 3. the conjugate direction t = z + (Z / Z_old) t on F, 0 elsewhere, restarted (t = z)
-   when sum_F g t < :data:`THETA` Z (after the contact set changed).  t keeps its mean
-   over F: the load control (step 5) takes it out, and the iteration converges faster
-   than with t projected on the constant load (measured: 36 iterations for 43 at 512^2);
+   when sum_F g t < :data:`THETA` Z, or when the last step moved more than
+   :data:`RESTART_SHARE` of F's size in or out of the set.  t keeps its mean over F:
+   the load control (step 5) takes it out, and the iteration converges faster than with
+   t projected on the constant load (measured: 37 iterations for 43 at 512^2);
 4. r = K t, rbar its mean over F, tau = sum_F g t / sum_F (r - rbar) t; p -= tau t on F;
    where p = 0 and g < 0 (overlap), and where p = H and g > 0 (a plastic pixel whose gap
    opened), p -= tau z; p clipped to [0, H];
 5. load control: p scaled by the factor s that gives sum min(s p, H) = the load (plain
    scaling without a cap, as in the paper; with one, Newton steps on that concave,
-   piecewise linear function, exact in a few passes);
+   piecewise linear function, exact in a few passes).  When the pixels at H alone carry
+   the load, scaling would take them all off the cap (and the next step put them back:
+   the iteration cycled), so the least penetrating of them leave contact first
+   (:func:`.loads.trim`);
 6. the change eps = sum |p_new - p_old| / sum p (the residual reported): done below tol,
    when the result also satisfies the complementarity (no pixel out of contact below the
-   half-space, none in contact off it, within :data:`GAP_TOL` of the height range; else the
-   residual reported is that violation and the solve did not converge).
+   half-space, none in contact off it, within :data:`GAP_TOL` of :func:`.gaps.reference_length`;
+   else the directions restart and the iteration goes on, and a result reached that way
+   reports the violation as its residual and did not converge).
 
-A capped solve that does not converge in :data:`PLASTIC_FIRST_TRY` iterations (a cap close
-to the mean pressure: the clipped steps and the load control undo each other) turns to an
-outer loop over the plastic set (:mod:`.plastic`).
+A solve whose residual stops halving for :data:`STALL` iterations (pixels at the edge of a
+plastic zone stepping in by M g and out by the clip, in turn) goes on without the
+preconditioner.  A capped solve that does not converge in :data:`PLASTIC_FIRST_TRY`
+iterations, or whose residual stops halving for :data:`PLASTIC_STALL` (a cap close to the
+mean pressure, most of the contact at H: the set cycles at the zones' edges), turns to an
+outer loop over the plastic set (:mod:`.plastic`) that starts from its pixels at H.
+
+The iteration works in the unit of length L = :func:`.gaps.reference_length` (heights, gaps,
+displacements) and of pressure L Pa (so that u = K p holds unchanged): its numbers are near
+1 for heights of 1e-306 m as for 1 km, with no underflow or overflow of the sums.
 
 u is updated without a transform (u - tau r, scaled) when no pixel was clipped or moved
 by the gap; else, and every :data:`REFRESH` iterations, recomputed as K p.
@@ -51,10 +63,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import AsperityError, InputError, check_array, check_choice, check_int, \
-    check_range
+from ..errors import AsperityError, InputError, check_array, check_int, check_range
 from . import elastic
-from .loads import fill, scale_factor, start
+from .checks import (  # noqa: F401  (the checks of the arguments, and their ranges)
+    E_RANGE,
+    PRESSURE_OVER_E,
+    check_inputs,
+    check_solver_memory,
+    effective_modulus,
+)
+from .gaps import complementary, reference_length
+from .loads import fill, scale_factor, start, trim
 
 #: iterations between two full products u = K p when u is updated incrementally
 REFRESH = 25
@@ -62,6 +81,12 @@ REFRESH = 25
 #: contact set changed, the old direction may have lost its conjugacy (on an unchanged
 #: set, with the exact step of the iteration, sum g t = Z)
 THETA = 0.9
+#: ... and when the gap moved more pixels in or out than this share of the free set (a
+#: direction of two pixels times beta ~ 1e10, continued over the 66 pixels that entered,
+#: gave steps of 1e-10 that passed the residual test on a wrong set).  Measured on the
+#: rough map at 512^2 (periodic, free): no restart 36, 43 iterations; a restart on every
+#: pixel moved 43, 81; on 5 % of the set 37, 42
+RESTART_SHARE = 0.05
 #: largest gap violation of a converged solution over the map's height range (a pixel
 #: out of contact below the half-space, one in contact off it); converged solves stay
 #: near 1e-9 (measured), a solve stuck in a wrong contact set near 0.1
@@ -69,6 +94,17 @@ GAP_TOL = 1e-6
 #: iterations a capped solve tries before the outer loop over the plastic set (:mod:`.plastic`;
 #: converged capped solves take 15 to 60, one whose set stalls never converges)
 PLASTIC_FIRST_TRY = 300
+#: default iteration limit
+MAX_ITERATIONS = 10_000
+#: ... or whose residual has not halved in this many iterations (a contact set that
+#: cycles at the edge of the plastic zones: measured, converging capped solves halve it
+#: every 1 to 10 iterations)
+PLASTIC_STALL = 30
+#: iterations without the residual halving after which a solve drops the preconditioner
+#: (measured: a few pixels at the edge of a plastic zone entering by the preconditioned
+#: gap and leaving clipped, every other iteration, for thousands of iterations; the
+#: plain iteration moves them by their own gap and converges)
+STALL = 30
 #: the conjugate directions are preconditioned by the inverse of the half-space (the
 #: module's docstring, steps 2 and 3; without: z = g, Polonsky and Keer's iteration).
 #: Measured (self-affine map of the benchmark, p/E* 0.0025, tol 1e-8, one thread, CPU
@@ -76,13 +112,6 @@ PLASTIC_FIRST_TRY = 300
 #: for 5.0; free 512^2 43 for 75, 1.7 s for 2.3 (an iteration takes one transform more,
 #: in single precision, on the unpadded grid)
 PRECONDITION = True
-#: default iteration limit
-MAX_ITERATIONS = 10_000
-#: range of the nominal pressure over E* a solve accepts (beyond: the map is flattened
-#: flat many times over, or nothing is loaded)
-PRESSURE_OVER_E = (1e-12, 10.0)
-#: range of E* in Pa (a gel to diamond, with margin)
-E_RANGE = (1.0, 1e13)
 
 
 class ContactNotConverged(AsperityError):
@@ -133,56 +162,6 @@ class ContactResult:
                 "plastic_fraction": self.plastic_fraction}
 
 
-def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
-    """E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2); E2 None: a rigid counterface."""
-    E1 = check_range("E1", E1, 0.0, None, low_open=True, unit="Pa")
-    nu1 = check_range("nu1", nu1, -1.0, 0.5, low_open=True)
-    c = (1.0 - nu1 * nu1) / E1
-    if (E2 is None) != (nu2 is None):
-        raise InputError("give E2 and nu2 together (or neither: a rigid counterface)")
-    if E2 is not None:
-        E2 = check_range("E2", E2, 0.0, None, low_open=True, unit="Pa")
-        nu2 = check_range("nu2", nu2, -1.0, 0.5, low_open=True)
-        c += (1.0 - nu2 * nu2) / E2
-    return 1.0 / c
-
-
-def _pixel_size(pixel_size) -> tuple[float, float]:
-    from ..surface.topography import pixel_length
-    if not isinstance(pixel_size, (list, tuple, np.ndarray)) or (
-            isinstance(pixel_size, np.ndarray) and pixel_size.ndim == 0):
-        d = pixel_length("pixel_size", pixel_size)
-        return d, d
-    a = check_array("pixel_size", pixel_size, shape=(2,))
-    return pixel_length("pixel_size dx", float(a[0])), pixel_length("pixel_size dy",
-                                                                     float(a[1]))
-
-
-def check_inputs(heights, pixel_size, E_star, pressure, boundary, hardness):
-    """The checked arguments of :func:`solve_contact`: (heights as float64, (dx, dy),
-    E*, pressure, boundary, hardness or None, number of defined pixels)."""
-    # C order: the kernels work on flat views (a Fortran-ordered map would be copied)
-    z = np.ascontiguousarray(check_array("heights", heights, ndim=2, finite=False))
-    if z.shape[0] < 2 or z.shape[1] < 2:
-        raise InputError(f"heights must have at least 2 x 2 pixels, got shape {z.shape}")
-    if np.isinf(z).any():
-        raise InputError("heights must be finite or NaN (undefined), got an infinity")
-    defined = int(np.count_nonzero(~np.isnan(z)))
-    if defined == 0:
-        raise InputError("heights has no defined (finite) pixel: nothing can carry the load")
-    dx, dy = _pixel_size(pixel_size)
-    E_star = check_range("E_star", E_star, *E_RANGE, unit="Pa")
-    p = check_range("pressure", pressure, 0.0, None, low_open=True, unit="Pa")
-    lo, hi = PRESSURE_OVER_E
-    check_range("pressure / E_star", p / E_star, lo, hi)
-    boundary = check_choice("boundary", boundary, elastic.BOUNDARIES)
-    if hardness is not None:
-        mean_defined = p * z.size / defined
-        hardness = check_range("hardness", hardness, mean_defined, None, low_open=True,
-                               unit="Pa (above the mean pressure over the defined pixels)")
-    return z, (dx, dy), E_star, p, boundary, hardness, defined
-
-
 def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
                   hardness=None, tol=1e-8, max_iterations=None, initial=None,
                   progress=None, workers=None) -> ContactResult:
@@ -206,7 +185,6 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
     z, (dx, dy), E, pbar, boundary, H, n_def = check_inputs(heights, pixel_size, E_star,
                                                             pressure, boundary, hardness)
     tol, maxit, workers = check_options(tol, max_iterations, progress, workers)
-    check_solver_memory(z.shape, boundary)
     p0 = None if initial is None else check_array("initial", initial, shape=z.shape,
                                                   finite=False)
     space = elastic.HalfSpace(z.shape, dx, dy, E, boundary, workers=workers)
@@ -227,28 +205,38 @@ def check_options(tol, max_iterations, progress, workers):
     return tol, maxit, workers
 
 
-def check_solver_memory(shape, boundary: str) -> None:
-    """Refuse a solve whose arrays do not fit in the free memory, in one line."""
-    from ..resources import check_memory
-    check_memory(elastic.solver_bytes(shape, boundary),
-                 f"the {boundary} contact solve of {shape[0]} x {shape[1]} pixels",
-                 "crop or resample the map to fewer pixels")
-
-
 def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
              progress) -> ContactResult:
     """The solve of checked arguments (:func:`check_inputs`) on the half-space ``space``
     (an :class:`.elastic.HalfSpace` of z's shape, reused along a load curve)."""
+    # in the unit of length L (heights, displacements, gaps) and of pressure L x Pa (so
+    # that u = K p holds unchanged): every number of the iteration near 1, whatever the
+    # scale of the heights (1e-306 m or 1 km) -- no underflow, no overflow
+    L = reference_length(space, z, pbar)
+    top = float(np.nanmax(z))
+    zn = (z - top) / L                         # the highest point at 0
+    Hn = math.inf if H is None else H / L
     first = maxit if H is None else min(maxit, PLASTIC_FIRST_TRY)
-    out = _iterate(space, z, pbar, math.inf if H is None else H, n_def, tol, first, p0,
-                   progress)
+    out = _iterate(space, zn, pbar / L, Hn, n_def, tol, first, None if p0 is None
+                   else p0 / L, progress, None if H is None else PLASTIC_STALL)
     if not out["converged"] and H is not None and maxit > out["iterations"]:
         from .plastic import solve_plastic    # the plastic set by an outer loop
         used = out["iterations"]
+        start = out.pop("pressure")            # the plastic set starts from its pixels at H
         del out
-        out = solve_plastic(_iterate, GAP_TOL, space, z, pbar, H, n_def, tol, maxit - used,
-                            progress)
+        out = solve_plastic(_iterate, GAP_TOL, space, zn, pbar / L, Hn, n_def, tol,
+                            maxit - used, progress, start)
         out["iterations"] += used
+    del zn
+    at = None if H is None else out["pressure"] >= Hn
+    for k in ("pressure", "gap", "displacement"):
+        out[k] *= L
+    for k in ("mean_pressure", "max_pressure", "mean_gap"):
+        out[k] = float(out[k] * L)
+    if at is not None and at.any():            # the pixels at the cap: at H exactly
+        out["pressure"][at] = H
+        out["max_pressure"] = H
+    out["approach"] = top + out["approach"] * L
     res = ContactResult(**out, E_star=space.E_star, boundary=space.boundary, hardness=H,
                         pixel_size=(space.dx, space.dy), pressure_asked=pbar)
     if not res.converged:
@@ -259,7 +247,7 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
     return res
 
 
-def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
+def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress, stall=None) -> dict:
     from ..progress import report
     from . import _pk_kernels as K
     tell = progress or report
@@ -281,16 +269,17 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
         K.rescale(pf, uf, rf, s, H, False, fixed)
     space.apply(p, u)
     c, G_old, delta, fresh, eps = 0.0, 1.0, 0, 0, math.inf
-    it = 0
+    it, best, it_best, pre = 0, math.inf, 0, PRECONDITION
     t_report = time.perf_counter()
     while it < maxit:
         it += 1
         s1, s2, n, _, _ = K.gap_sums(uf, hf, pf, H, c)
+        tau = 0.0
         if n > 1:                              # one free pixel: its gap is the mean, no step
             gbar = c + s1 / n
             G = max(s2 - n * (gbar - c) ** 2, 0.0)
             c = gbar
-            if PRECONDITION:                   # z = M g
+            if pre:                            # z = M g
                 K.masked_gap(uf, hf, pf, H, gbar, zf)
                 space.precondition(zp, zp)
                 G = K.precond_sum(uf, hf, pf, zf, H, gbar)
@@ -309,19 +298,25 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             space.apply(t, r)
             sr, srt, st, sgt = K.step_sums(uf, hf, pf, tf, rf, H, gbar)
             denom = srt - sr / n * st
-            tau = sgt / denom if denom > 0.0 else 0.0
-            moves = zf
-        else:                                  # one free pixel or none (all plastic)
-            G = 0.0
-            gbar = c + s1 if n == 1 else float(np.max(np.where(p >= H, u - h, -np.inf)))
+            tau = sgt / denom if denom > 0.0 and sgt > 0.0 else 0.0
+            moves = zf if pre else nz
+        if not tau > 0.0:                      # the gap step: one free pixel or none, or
+            G = 0.0                            # the free set solved (no conjugate step)
+            if n == 1:
+                gbar = c + s1
+            elif n == 0:
+                gbar = float(np.max(np.where(p >= H, u - h, -np.inf)))
             t[...] = 0.0
             r[...] = 0.0
             tau = 1.0 / space.self_compliance
             moves = nz
+            c = gbar
         total, clipped, moved = K.update(uf, hf, pf, tf, rf, H, gbar, tau, moves)
-        delta = 1
+        delta = 0 if moved > RESTART_SHARE * n else 1     # the set changed: restart
         exact = clipped == 0 and moved == 0 and fresh < REFRESH
-        s, fixed = scale_factor(pf, load, H) if total > 0.0 else (None, False)
+        if math.isfinite(H) and trim(pf, uf, hf, load, H, moves is nz):
+            total, exact = -1.0, False         # the least penetrating pixels off the cap
+        s, fixed = scale_factor(pf, load, H) if total != 0.0 else (None, False)
         if s is None and math.isinf(H):       # every pressure clipped: back to the last
             p[...] = r                         # iterate, restart the directions
             change, delta, exact = math.inf, 0, False
@@ -346,7 +341,15 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
             tell(min(1.0, max(0.0, math.log(max(eps, tol)) / math.log(tol))),
                  f"contact: iteration {it}, residual {eps:.2g}")
         if eps < tol:
-            break
+            if complementary(K, space, p, u, h, H, fresh, max(GAP_TOL, 100.0 * tol), pbar):
+                break
+            delta = 0                          # a stalled set: restart the directions
+        if eps < 0.5 * best:
+            best, it_best = eps, it
+        elif stall is not None and it - it_best >= stall:
+            break                              # the residual no longer comes down
+        elif pre and it - it_best >= STALL:    # pixels stepping in and out by M g, in a
+            pre, delta, it_best = False, 0, it   # cycle: the plain iteration from here
     if fresh:                                  # the exact displacement of the result
         space.apply(p, u)
     s1, _, n, _, _ = K.gap_sums(uf, hf, pf, H, 0.0)
@@ -357,13 +360,12 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
     del r, rf, zp, zf, moves
     plastic = int(np.count_nonzero(p >= H)) if math.isfinite(H) else 0
     gap = t
-    free_off, plastic_off = K.gap_violation(uf, hf, pf, H, gbar)
-    gap_sum, pen, nc = K.final_fields(uf, hf, pf, tf, -gbar)
+    free_off, plastic_off, pen = K.gap_violation(uf, hf, pf, H, gbar)
+    gap_sum, _, nc = K.final_fields(uf, hf, pf, tf, -gbar)
     d = float(np.nanmax(z)) - gbar             # approach for the heights as given
     # complementarity: no pixel out of contact below the half-space, none in contact off
     # it (the free set on it, the plastic pixels on or into it)
-    span = float(np.nanmax(z) - np.nanmin(z)) or 1.0
-    off = max(pen, free_off, plastic_off) / span
+    off = max(pen, free_off, plastic_off) / reference_length(space, z, pbar)
     ok = eps < tol and off <= max(GAP_TOL, 100.0 * tol)
     return dict(pressure=p, gap=gap, displacement=u, contact=p > 0.0,
                 area_fraction=nc / n_def, mean_pressure=float(np.nansum(p)) / (nx * ny),
@@ -371,3 +373,4 @@ def _iterate(space, z, pbar, H, n_def, tol, maxit, p0, progress) -> dict:
                 iterations=it, residual=float(eps if ok else max(eps, off)),
                 converged=bool(ok),
                 plastic_fraction=plastic / n_def, approach=d)
+

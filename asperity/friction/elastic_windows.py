@@ -220,16 +220,17 @@ def run_windows(kind, plan, windows, args=(), tick=None) -> list:
     return [solve_window(plan, k, tick) for k in windows]
 
 
-def check_window_request(shape, window, count, placement, seed) -> tuple[int, int]:
-    """(window, count) checked against the scan's ``shape``: one line naming the flag."""
+def check_window_request(shape, window, count, placement, seed) -> tuple[int, int, int]:
+    """(window, count, seed) checked against the scan's ``shape``: one line naming the
+    flag (the seed as an int: 0.0 or numpy.float64(0) does not seed a generator)."""
     w = check_int("window", window, MIN_WINDOW, None)
     n = check_int("windows", count, 1, MAX_WINDOWS)
     check_choice("window_placement", placement, PLACEMENTS)
-    check_int("window_seed", seed, 0, 2 ** 63 - 1)
+    seed = check_int("window_seed", seed, 0, 2 ** 63 - 1)
     if w > min(shape):
         raise InputError(f"window {w} pixels is larger than the scan ({shape[0]} x "
                          f"{shape[1]} pixels): at most {min(shape)}")
-    return w, n
+    return w, n, seed
 
 
 def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0,
@@ -292,7 +293,7 @@ def _run(path, elastic, derive, window, windows, placement, seed, unit, pixel_si
         check_instance("source", source, LineSource, "scan opened by open_scan")
     src = source if source is not None else open_scan(
         path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
-    w, n = check_window_request(src.shape, window, windows, placement, seed)
+    w, n, seed = check_window_request(src.shape, window, windows, placement, seed)
     if client is not None and not src.streams:
         raise InputError(f"{src.source}: this file is read whole (gzip, .npz, instrument "
                          f"formats); windows on Dask workers need .npy, .x3p or a text matrix")

@@ -95,6 +95,11 @@ def _series(name: str, value, check_one, scalar: bool = False) -> np.ndarray:
     lo, hi = HISTORY_POINTS
     if value is None or isinstance(value, (str, bytes, dict, bool)):
         raise InputError(f"{name} must be a list of numbers, got {_what(value)}")
+    if isinstance(value, np.ma.MaskedArray):
+        if np.ma.getmaskarray(value).any():
+            raise InputError(f"{name} must be numbers, got "
+                             f"{int(np.count_nonzero(np.ma.getmaskarray(value)))} masked values")
+        value = np.ma.getdata(value)
     if isinstance(value, (list, tuple)):
         if len(value) > hi:
             raise InputError(f"{name} has {len(value)} points, at most {hi}")

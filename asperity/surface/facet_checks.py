@@ -40,10 +40,11 @@ def check_values(name: str, a: np.ndarray, low: float | None = None,
 
 
 def check_fields(gx, gy, mu, weight, info, preview, extent, quality):
-    """(gx, gy, mu, weight) of a FacetSurface as arrays (mu: a float or an array), the
-    others checked: gradients finite, weights finite, >= 0 and not all zero, mu in
-    [0, MAX_MU], info a dict, preview None or a 2-d height array (NaN where undefined),
-    extent None or two sizes > 0, quality None or a dict."""
+    """(gx, gy, mu, weight, preview) of a FacetSurface as arrays (mu: a float or an
+    array), the others checked: gradients finite, weights finite, >= 0 and not all zero,
+    mu in [0, MAX_MU], info a dict, preview None or a 2-d height array (NaN where
+    undefined, as a masked array's masked values), extent None or two sizes > 0, quality
+    None or a dict."""
     gx = check_array("gx", gx, ndim=1, finite=False, min_size=1)
     check_values("gx", gx)
     gy = check_array("gy", gy, ndim=1, finite=False)
@@ -65,6 +66,7 @@ def check_fields(gx, gy, mu, weight, info, preview, extent, quality):
     else:
         mu = check_mu("mu", mu, MAX_MU)
     check_instance("info", info, dict)
+    pv = None
     if preview is not None:
         pv = check_array("preview", preview, ndim=2, finite=False, min_size=1)
         if np.isinf(pv).any():
@@ -75,7 +77,7 @@ def check_fields(gx, gy, mu, weight, info, preview, extent, quality):
             raise InputError(f"extent must be two sizes > 0 (m), got {ext.tolist()}")
     if quality is not None:
         check_instance("quality", quality, dict)
-    return gx, gy, mu, w
+    return gx, gy, mu, w, pv
 
 
 def check_options(rest_level, bearing_fraction, level_slope, info):

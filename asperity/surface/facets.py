@@ -85,8 +85,9 @@ class FacetSurface:
     kind = "surface"
 
     def __post_init__(self):
-        gx, gy, mu, w = check_fields(self.gx, self.gy, self.mu, self.weight, self.info,
-                                     self.preview, self.extent, self.quality)
+        gx, gy, mu, w, pv = check_fields(self.gx, self.gy, self.mu, self.weight, self.info,
+                                         self.preview, self.extent, self.quality)
+        object.__setattr__(self, "preview", pv)  # as checked: masked values NaN
         if self.elastic is not None:
             check_instance("elastic", self.elastic, dict)
         for name, v in (("gx", gx), ("gy", gy), ("weight", w), ("mu", mu)):
