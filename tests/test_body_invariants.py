@@ -12,7 +12,7 @@ import pytest
 
 from asperity import coulomb_law
 from asperity.bodies import footprint as fpm
-from asperity.dynamics.body import rest_horizon
+from asperity.dynamics.body_horizon import rest_horizon
 
 G = 9.81
 
