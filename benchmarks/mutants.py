@@ -48,18 +48,9 @@ TESTS = REPO / "tests"
 
 #: numba kernel modules and the kernel modules that compile them in (numba's cache does not
 #: notice a change in a module a cached kernel calls into: their caches are dropped too)
-KERNEL_DEPENDENTS = {
-    "laws/_set_kernels.py": ("laws/_warm_kernels.py", "laws/_law_kernels.py",
-                             "dynamics/_moreau_kernels.py"),
-    "laws/_warm_kernels.py": ("laws/_law_kernels.py", "dynamics/_moreau_kernels.py"),
-    "dynamics/_body_law_kernels.py": ("dynamics/_body_step_kernels.py",
-                                      "dynamics/_body_kernels.py"),
-    "dynamics/_body_step_kernels.py": ("dynamics/_body_kernels.py",),
-    "laws/_law_kernels.py": ("dynamics/_moreau_kernels.py",),
-    "texture/_tip_kernels.py": ("texture/_spring_kernels.py",),
-    "microslip/_chain_kernels.py": ("microslip/_dynamic_kernels.py",
-                                    "microslip/_march_kernels.py"),
-}
+from asperity.kernel_cache import CALLS, dependents  # noqa: E402 (the package's one list)
+
+KERNEL_DEPENDENTS = {m: dependents(m) for m in {d for deps in CALLS.values() for d in deps}}
 
 TEXTURE = ("test_texture_closed_form.py", "test_law_fitting.py", "test_derive_cli.py")
 FRICTION = ("test_texture_closed_form.py", "test_surface_facets.py", "test_derive_cli.py",

@@ -9,8 +9,11 @@ import math
 import numpy as np
 from numba import njit
 
+from ..kernel_cache import refresh
 from ._body_law_kernels import (_assemble, _eval, _gauge, _group_load, _merit, _ray,
                                 _slip_towards, _solve3)
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 
 @njit(cache=True)

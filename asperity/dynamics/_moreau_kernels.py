@@ -17,9 +17,12 @@ import math
 import numpy as np
 from numba import njit
 
+from ..kernel_cache import refresh
 from ..laws._law_kernels import (WARM_A1, WARM_A2, WARM_NA, WARM_NP, WARM_P1, WARM_P2, WARM_P3,
                                  law_alpha_near, law_alpha_warm, law_point_warm)
 from ..laws._set_kernels import TWO_PI
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 STATUS_OK = 0
 STATUS_NOT_CONVERGED = 1   # the fixed-point iteration hit its limit above the tolerance

@@ -70,7 +70,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_array, check_instance, check_int, check_range
+from ..errors import (InputError, check_array, check_flag, check_instance, check_int,
+                      check_range)
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
 from .body_horizon import rest_time
@@ -239,7 +240,8 @@ def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: floa
     a = math.radians(check_range("texture_angle_deg", texture_angle_deg, -360.0, 360.0,
                                  unit="deg"))
     record_every = check_int("record_every", record_every, 1, int(MAX_STEPS))
-    halt = t_end is None or (bool(until_rest) and force is None)
+    until_rest = check_flag("until_rest", until_rest)
+    halt = t_end is None or (until_rest and force is None)
     if t_end is None:
         if force is not None:
             raise InputError("t_end must be given with an external force (the body need not "

@@ -14,9 +14,12 @@ import math
 import numpy as np
 from numba import njit
 
+from ..kernel_cache import refresh
 from ._set_kernels import SET_STAR, SET_SUPPORT, set_project, set_radial, support_radial
 from ._warm_kernels import (PW_K, PW_SIZE, star_radial_dir, support_project_warm,
                             support_radial_warm)
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 #: columns of a contact's warm-start row (see :func:`law_point_warm`): the projection's
 #: (PW_*), rho_C and rho_D on the ray of the last point, whether they are valid, the star

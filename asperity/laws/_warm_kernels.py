@@ -17,7 +17,10 @@ import math
 
 from numba import njit
 
+from ..kernel_cache import refresh
 from ._set_kernels import TWO_PI, star_radial_edge, support_project_full, tan_integral
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 #: a warm start of the projection onto a support set (columns of a caller's row): the sample
 #: interval, and the offset t in it with cos psi, sin psi, h, tan delta evaluated there

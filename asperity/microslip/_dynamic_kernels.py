@@ -10,7 +10,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..kernel_cache import refresh
 from ._chain_kernels import STATUS_NO_CONVERGENCE, STATUS_OK
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 
 @njit(cache=True)

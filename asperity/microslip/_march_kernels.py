@@ -28,6 +28,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..kernel_cache import refresh
 from ._chain_kernels import (
     _BLOCK_ROUNDS,
     STATUS_NO_CONVERGENCE,
@@ -35,6 +36,8 @@ from ._chain_kernels import (
     rate_statuses,
     solve_lcp,
 )
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 
 @njit(cache=True)

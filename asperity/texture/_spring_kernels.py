@@ -19,7 +19,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from ..kernel_cache import refresh
 from ._tip_kernels import FACE, FREE, height, locate, seg_geom, update_tip
+
+refresh(__file__)     # drop cached kernels compiled against older callees
 
 STATUS_OK = 0
 STATUS_LOCKED = 1          # a tip cannot climb its face: force grows without bound
