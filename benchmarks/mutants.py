@@ -45,6 +45,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 TESTS = REPO / "tests"
+sys.path.insert(0, str(REPO))  # the package of this checkout, installed or not
 
 #: numba kernel modules and the kernel modules that compile them in (numba's cache does not
 #: notice a change in a module a cached kernel calls into: their caches are dropped too)
