@@ -1114,16 +1114,19 @@ MUTANTS = [
 
 
 def snapshot(dest: Path, from_head: bool = False) -> Path:
-    """Copy asperity/ (numba caches included, mtimes kept) into dest, or with ``from_head``
-    the committed package (``git archive HEAD``: no caches, compiled once by the baseline
-    run); returns dest."""
+    """Copy asperity/ (numba caches included, mtimes kept) and benchmarks/ (the benchmark
+    tests run its peers' scripts from the checkout) into dest, or with ``from_head`` the
+    committed ones (``git archive HEAD``: no caches, compiled once by the baseline run);
+    returns dest."""
     if from_head:
         dest.mkdir(parents=True)
-        tar = subprocess.run(["git", "-C", str(REPO), "archive", "HEAD", "asperity"],
+        tar = subprocess.run(["git", "-C", str(REPO), "archive", "HEAD", "asperity", "benchmarks"],
                              capture_output=True, check=True).stdout
         subprocess.run(["tar", "-x", "-C", str(dest)], input=tar, check=True)
     else:
         shutil.copytree(REPO / "asperity", dest / "asperity", copy_function=shutil.copy2)
+        shutil.copytree(REPO / "benchmarks", dest / "benchmarks",
+                        ignore=shutil.ignore_patterns("__pycache__"))
     return dest
 
 
