@@ -378,8 +378,9 @@ def main(argv=None) -> int:
                     help="only these modules (paths under asperity/)")
     ap.add_argument("--fresh", action="store_true", help="run again what is cached")
     ap.add_argument("--ids", nargs="+", default=(), metavar="ID",
-                    help="only these mutants of the sample, run again (e.g. to check a new "
-                         "test: with another --scratch and --cache while a campaign runs)")
+                    help="only these mutants, run again, in the sample or not (e.g. to check "
+                         "a new test: with another --scratch and --cache while a campaign "
+                         "runs)")
     ap.add_argument("--plan", action="store_true", help="population and sample, no run")
     ap.add_argument("--table", action="store_true", help="the table from the cache, no run")
     ap.add_argument("--survivors", action="store_true", help="list survivors with their diffs")
@@ -418,8 +419,10 @@ def main(argv=None) -> int:
             files, k = tests_of(m, root)
             mh = sha((root / "asperity" / m).read_text())
             th = tests_hash(files, root, k)
-            todo = [x for x in pick if (x["id"] in a.ids if a.ids else
-                                        a.fresh or not reusable(results.get(x["id"]), mh, th))]
+            if a.ids:       # any of the module's mutants, in the sample or not
+                todo = [x for x in enumerate_mutants(root, m)[0] if x["id"] in a.ids]
+            else:
+                todo = [x for x in pick if a.fresh or not reusable(results.get(x["id"]), mh, th)]
             if not todo:
                 continue
             bkey = sha(th, *[(root / "asperity" / p).read_bytes()
