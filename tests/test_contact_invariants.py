@@ -126,3 +126,40 @@ def test_effective_modulus_takes_only_physical_materials(args, field):
     with pytest.raises(InputError) as e:
         effective_modulus(*args)
     assert field in str(e.value) and "\n" not in str(e.value)
+
+
+@pytest.mark.parametrize("E1,E2", [(0.5, None), (1e-3, 2e-3), (7e11, 0.25)])
+def test_effective_modulus_is_the_closed_form_over_the_whole_open_range(E1, E2):
+    """Any E > 0, however soft (below 1 Pa too: the range is open at 0, not at 1 Pa), gives
+    1 / E* = (1 - nu1^2) / E1 + (1 - nu2^2) / E2."""
+    from asperity.contact.solver import effective_modulus
+    nu1, nu2 = 0.3, 0.45
+    if E2 is None:
+        assert effective_modulus(E1, nu1) == pytest.approx(E1 / (1 - nu1 ** 2), rel=1e-14)
+    else:
+        want = 1 / ((1 - nu1 ** 2) / E1 + (1 - nu2 ** 2) / E2)
+        assert effective_modulus(E1, nu1, E2, nu2) == pytest.approx(want, rel=1e-14)
+
+
+@pytest.mark.parametrize("shape", [(1, 6), (6, 1), (1, 1)])
+def test_a_map_one_pixel_thin_along_either_side_is_refused_in_one_line(shape):
+    from asperity.errors import InputError
+    with pytest.raises(InputError, match="at least 2 x 2 pixels") as e:
+        solve_contact(np.zeros(shape), 1e-6, 1e9, 1e6)
+    assert "\n" not in str(e.value)
+
+
+def test_the_hardness_must_exceed_the_mean_pressure_over_the_defined_pixels():
+    """13 of 16 pixels defined: the defined pixels carry p * 16 / 13 on average, so a cap
+    just below that (here above p and within 1 Pa of the mean) cannot carry the load and is
+    refused naming the field; just above it is a solve whose pressure stays at the cap."""
+    from asperity.errors import InputError
+    z = np.add.outer(np.arange(4.0), np.arange(4.0)) * 1e-7
+    z[0, :3] = np.nan
+    p = 3.0
+    mean = p * 16 / 13
+    with pytest.raises(InputError, match="hardness") as e:
+        solve_contact(z, 1e-6, 1e6, p, hardness=mean * (1 - 1e-9))
+    assert "\n" not in str(e.value)
+    res = solve_contact(z, 1e-6, 1e6, p, hardness=mean * 1.5)
+    assert np.nanmax(res.pressure) <= mean * 1.5 * (1 + 1e-12)
