@@ -5,7 +5,8 @@ above 1; the reported stop times match the recorded motion; a disc, or points in
 pairs about the y axis, launched exactly along an axis slide the point mass's distance; a
 force across t_a moves a body at rest only beyond the limit set; a force and a torque move a
 pair of points only beyond its limit surface (a closed form on Coulomb friction and
-ellipses), every step checked against its optimality conditions."""
+ellipses), every step checked against its optimality conditions; a warm start
+extrapolated to exactly zero on a body that sticks ends the step at rest."""
 from __future__ import annotations
 
 import math
@@ -174,3 +175,35 @@ def test_a_load_moves_a_pair_of_points_only_beyond_its_limit_surface(law, direct
     assert rep["min_margin"] >= -1e-9, what
     if law != "windward-star":
         assert bool(res.u_final.any()) == (k > 1), what
+
+
+@pytest.mark.parametrize("law", ["collinear", "coulomb"])
+def test_a_warm_start_extrapolated_to_zero_on_a_body_that_sticks_ends_at_rest(law):
+    """The step's Newton iteration starts from 2 u_A - u_P, the extrapolation of the last two
+    velocities: exactly 0 when the velocity halved in one step.  If the body then sticks (its
+    free velocity well inside the limit set), the iteration cannot leave 0 (on a
+    non-associated law no step lowers the residual), and the step must fall back on the
+    stick test along u_A: at rest, status OK.  The step runs compiled and as plain Python
+    (py_func: there an index past an array's end raises, which compiled numba code does not
+    check), with the same result."""
+    import numpy as np
+
+    from asperity.dynamics import _body_kernels as K
+    from asperity.dynamics.body import law_tables
+    from asperity.laws.planar import collinear_law
+    a, m, dt = 0.03, 1.0, 1e-3
+    lw = collinear_law(mu1=0.3, mu2=0.1) if law == "collinear" else coulomb_law(0.3)
+    kind, par, tab, assoc, mu_max = law_tables(lw)
+    ox, oy = np.array([-a, a]), np.zeros(2)
+    md = np.array([m, m, m * a * a])
+    lam = np.full(2, 0.5 * m * G * dt)
+    uA = np.array([0.02 * G * dt, 0.0, 0.0])        # a fifth of what mu = 0.1 stops
+    got = []
+    for step in (K.step_velocity, K.step_velocity.py_func):
+        out = np.full(3, np.nan)
+        its, status, _ = step(uA, 2 * uA, True, uA.copy(), md, ox, oy, lam, kind, par, tab,
+                              assoc, 1e-12, 100, m * G * dt * mu_max / math.sqrt(m), out,
+                              np.empty(3), np.empty((3, 3)), np.empty(16), np.empty(3))
+        assert status == K.STATUS_OK and not out.any(), (status, out)
+        got.append(its)
+    assert got[0] == got[1]
