@@ -69,6 +69,18 @@ EQUIVALENT: dict[str, str] = {
     # ---- the re-run on merged main (issue 25, item 5, second campaign)
     "contact/checks.py:ReplaceComparisonOperator_Eq_LtE:0f2c1d6469":
         "defined <= 0 for defined == 0: defined is np.count_nonzero, never negative",
+    "contact/gaps.py:ReplaceBinaryOperator_Div_Mul:a5a08934d9":
+        "off * reference_length for off / reference_length in complementary(): it is only "
+        "called by the iteration, on heights and pressures in the unit of length L = "
+        "reference_length of the map (solver.solve_on, the plastic outer loop and the load "
+        "curve all go through it), where reference_length is max(range, pbar c) / L = 1 to "
+        "rounding: x * 1 = x / 1",
+    "contact/gaps.py:ReplaceUnaryOperator_USub_Not:d431796714":
+        "np.where(..., not np.inf) takes the other pixels as 0 instead of -inf, so the "
+        "approach of a fully plastic iterate becomes max(gbar, 0): gbar >= 0 already, "
+        "since the heights have their top at 0 (u - h >= u) and some loaded (all plastic) "
+        "pixel has u >= 0 -- the half-space's operator is positive (p.K p >= 0 for p >= 0: "
+        "Love's coefficients > 0 free, 2 / (E* |q|) > 0 periodic)",
     "dynamics/body_bench.py:NumberReplacer:1e7360cfe9":
         "MuJoCo's disc t_max 2 s for 3 s: the peer loop ends when both sliding and spinning "
         "have stopped, 0.41 s after the launch (reports/body-bench.json, MuJoCo 4.0.0; "

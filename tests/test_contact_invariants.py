@@ -163,3 +163,35 @@ def test_the_hardness_must_exceed_the_mean_pressure_over_the_defined_pixels():
     assert "\n" not in str(e.value)
     res = solve_contact(z, 1e-6, 1e6, p, hardness=mean * 1.5)
     assert np.nanmax(res.pressure) <= mean * 1.5 * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("boundary", ["free", "periodic"])
+@pytest.mark.parametrize("plateau", ["one pixel", "2 x 2"])
+def test_complementarity_of_a_fully_plastic_plateau_and_of_a_pixel_through_the_half_space(
+        boundary, plateau):
+    """A plateau of k pixels loaded with exactly k H: every contact pixel at the cap, none
+    free (0 < p < H), so the rigid approach comes from the plastic pixels alone.  The
+    solve's answer satisfies the complementarity the iteration stops on (.gaps), in the
+    iteration's unit of length; the same state with one pixel out of contact lifted half
+    the height range above the plateau (it would cut through the half-space) does not."""
+    from asperity.contact import _pk_kernels as K
+    from asperity.contact import elastic, gaps
+    n, dx, E, H = 16, 1e-6, 1e9, 2e7
+    z = np.zeros((n, n))
+    top = (slice(7, 8), slice(7, 8)) if plateau == "one pixel" else (slice(7, 9), slice(7, 9))
+    z[top] = 1e-6
+    k = int(np.count_nonzero(z))
+    P = H * k / n ** 2
+    res = solve_contact(z, dx, E, P, boundary=boundary, hardness=H)
+    assert res.converged and np.all(res.pressure[top] == H) and res.contact.sum() == k
+    space = elastic.HalfSpace(z.shape, dx, dx, E, boundary)
+    L = gaps.reference_length(space, z, P)
+    h = (z - z.max()) / L
+    p, u = res.pressure / L, np.empty_like(h)
+
+    def holds(heights):
+        return gaps.complementary(K, space, p, u, heights, H / L, 1, 1e-6, P / L)
+    assert holds(h)
+    lifted = h.copy()
+    lifted[0, 0] = 0.5 * (h.max() - h.min())
+    assert not holds(lifted)
