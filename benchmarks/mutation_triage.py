@@ -81,6 +81,13 @@ EQUIVALENT: dict[str, str] = {
         "since the heights have their top at 0 (u - h >= u) and some loaded (all plastic) "
         "pixel has u >= 0 -- the half-space's operator is positive (p.K p >= 0 for p >= 0: "
         "Love's coefficients > 0 free, 2 / (E* |q|) > 0 periodic)",
+    "contact/loads.py:ReplaceComparisonOperator_GtE_Eq:b879edbb89":
+        "trim counts p == H for p >= H: no pressure ever exceeds H (start clips p0 to "
+        "[0, H], rescale and the step clip to it, fill sets H or less), so they are equal",
+    "contact/plastic.py:ReplaceComparisonOperator_LtE_Is:b10bbe86e5":
+        "inner is tol for inner <= tol: inner is either tol itself (inner = tol, or "
+        "max(tol, LOOSE_TOL) returning its first argument when tol >= LOOSE_TOL) or "
+        "LOOSE_TOL > tol, so identity and <= agree on every path",
     "dynamics/body_bench.py:NumberReplacer:1e7360cfe9":
         "MuJoCo's disc t_max 2 s for 3 s: the peer loop ends when both sliding and spinning "
         "have stopped, 0.41 s after the launch (reports/body-bench.json, MuJoCo 4.0.0; "
