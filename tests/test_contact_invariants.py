@@ -213,3 +213,25 @@ def test_unloading_from_a_capped_solution_lands_on_the_cold_answer_as_fast(bound
     warm = solve_contact(z, 1e-6, E, p, boundary=boundary, hardness=H, initial=heavy.pressure)
     assert np.abs(warm.pressure - cold.pressure).max() < 1e-6 * H
     assert warm.iterations <= 1.5 * cold.iterations, (warm.iterations, cold.iterations)
+
+
+@pytest.mark.parametrize("boundary", ["free", "periodic"])
+def test_the_reference_length_is_the_height_range_or_the_nominal_displacement(boundary):
+    """The length the complementarity is measured against (.gaps) is the height range, or,
+    when larger, the displacement of one pixel under the nominal pressure alone: a closed
+    form, the same for the heights shifted by any constant (the datum is arbitrary) and
+    blind to undefined pixels."""
+    from asperity.contact import elastic, gaps
+    z, (dx, dy) = scan(12, 10)
+    space = elastic.HalfSpace(z.shape, dx, dy, E, boundary)
+    span = float(z.max() - z.min())
+    light = 1e-3 * span / space.self_compliance
+    heavy = 1e3 * span / space.self_compliance
+    holed = z.copy()
+    holed[0, 0] = np.nan
+    for shift in (0.0, -z.max(), -z.min(), 1.0, -7e-3):
+        assert gaps.reference_length(space, z + shift, light) == pytest.approx(span, rel=1e-9)
+        assert gaps.reference_length(space, z + shift, heavy) == pytest.approx(
+            heavy * space.self_compliance, rel=1e-12)
+        assert gaps.reference_length(space, holed + shift, light) == pytest.approx(
+            float(np.nanmax(holed) - np.nanmin(holed)), rel=1e-9)
