@@ -6,7 +6,8 @@ pairs about the y axis, launched exactly along an axis slide the point mass's di
 force across t_a moves a body at rest only beyond the limit set; a force and a torque move a
 pair of points only beyond its limit surface (a closed form on Coulomb friction and
 ellipses), every step checked against its optimality conditions; a warm start
-extrapolated to exactly zero on a body that sticks ends the step at rest."""
+extrapolated to exactly zero on a body that sticks ends the step at rest; a run until rest
+at the smallest time steps is sized by the rest horizon, not refused."""
 from __future__ import annotations
 
 import math
@@ -207,3 +208,25 @@ def test_a_warm_start_extrapolated_to_zero_on_a_body_that_sticks_ends_at_rest(la
         assert status == K.STATUS_OK and not out.any(), (status, out)
         got.append(its)
     assert got[0] == got[1]
+
+
+@pytest.mark.parametrize("dt", [1e-8, 1e-9])
+def test_a_run_until_rest_at_tiny_steps_is_sized_by_its_horizon(dt):
+    """A disc launched at 10 um/s stops after v0 / (mu g) = 3.4 us: a run until rest
+    (t_end None) with dt of 1e-8 or 1e-9 s needs some thousand steps, and its end time is
+    the rest horizon's multiple plus a few steps -- a budget in seconds (a run of 10 s is
+    1e9-1e10 steps, beyond any run's limit) would refuse it.  It runs, and stops at the
+    closed form within a step."""
+    from asperity.dynamics.body import simulate_body
+    from asperity.dynamics.body_horizon import HORIZON_FACTOR, rest_time
+    fp = fpm.disc(0.05, contact_points=16)
+    m, mu, v0 = 1.0, 0.3, 1e-5
+    inertia = m * fp.inertia_per_mass
+    law = coulomb_law(mu)
+    h = rest_horizon(fp.points, fp.weights, law, m, inertia, (v0, 0.0, 0.0), G)
+    t = rest_time(fp.points, fp.weights, law, m, inertia, (v0, 0.0, 0.0), G, dt)
+    assert HORIZON_FACTOR * h < t <= HORIZON_FACTOR * h + 100 * dt
+    res = simulate_body(fp.points, fp.weights, law, mass=m, inertia=inertia,
+                        u0=(v0, 0.0, 0.0), dt=dt)
+    assert res.ok and res.rest
+    assert res.slide_stop_time == pytest.approx(v0 / (mu * G), abs=1.01 * dt)
