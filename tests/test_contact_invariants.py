@@ -235,3 +235,24 @@ def test_the_reference_length_is_the_height_range_or_the_nominal_displacement(bo
             heavy * space.self_compliance, rel=1e-12)
         assert gaps.reference_length(space, holed + shift, light) == pytest.approx(
             float(np.nanmax(holed) - np.nanmin(holed)), rel=1e-9)
+
+
+@pytest.mark.parametrize("cap", [1.5, 3.0])
+def test_a_capped_solve_in_other_units_is_the_same_solve(cap):
+    """Lengths times 1e5 (heights and pixels: the same slopes) and E* 1 Pa instead of 1e11
+    with the same p / E* and H / p: the same contact problem, whose pressures scale with E*
+    and whose gaps scale with the lengths.  The solve works in units of its own (every
+    number near 1, whatever the scale), so it is also the same iteration: the pressure
+    field in units of E* agrees, and the iteration counts differ by rounding only (a step
+    that mixes a pressure with a pure number, e.g. a load sum starting at 1, would see it at
+    one scale and not at the other)."""
+    z, (dx, dy) = scan()
+    k, E1 = 1e5, 1.0
+    p = 0.003 * E
+    base = solve_contact(z, (dx, dy), E, p, hardness=cap * p)
+    other = solve_contact(z * k, (dx * k, dy * k), E1, p / E * E1, hardness=cap * p / E * E1)
+    assert base.converged and other.converged
+    np.testing.assert_allclose(other.pressure / E1, base.pressure / E, rtol=0,
+                               atol=1e-6 * base.max_pressure / E)
+    assert abs(other.area_fraction - base.area_fraction) <= 1.0 / z.size    # a pixel
+    assert abs(other.iterations - base.iterations) <= max(3, 0.25 * base.iterations)
