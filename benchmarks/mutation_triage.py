@@ -2,7 +2,8 @@
 id (module:operator:hash of the line's text and column; ``--survivors`` lists them).
 
 EQUIVALENT: survivors no test can kill, each with the reason (the mutant computes the same
-numbers, or differs only where no input can reach).  They leave the score's denominator.
+numbers, or differs only where no input can reach, or only moves the starting point of an
+iteration that converges to the same tolerance).  They leave the score's denominator.
 LEFT: real survivors left without a test, with the reason (e.g. a change of the path of an
 iteration whose answers stay the same: only a test pinning an iteration count could tell).
 """
