@@ -54,6 +54,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(1, str(REPO))      # mutants.py reads asperity.kernel_cache of this tree
 from mutants import KERNEL_DEPENDENTS
 from mutation_triage import EQUIVALENT, LEFT
 
