@@ -32,8 +32,8 @@ for the whole population).  A mutant's id is its module, operator and the text a
 column of its line (not the line number), so it keeps its id, and its place in the sample,
 when other lines move.  Results are cached per id in --cache with the hashes of the module
 and of the test files: a killed mutant is reused while its module is unchanged, a survivor
-while its test files are unchanged too.  Survivors judged equivalent (or left for the body
-solver's rewrite) are listed with the reason in benchmarks/mutation_triage.py.  Score =
+while its test files are unchanged too.  Survivors judged equivalent (or left without a
+test) are listed with the reason in benchmarks/mutation_triage.py.  Score =
 (killed + timeout) / (mutants - equivalent).
 """
 from __future__ import annotations
