@@ -32,8 +32,8 @@ for the whole population).  A mutant's id is its module, operator and the text a
 column of its line (not the line number), so it keeps its id, and its place in the sample,
 when other lines move.  Results are cached per id in --cache with the hashes of the module
 and of the test files: a killed mutant is reused while its module is unchanged, a survivor
-while its test files are unchanged too.  Survivors judged equivalent (or left for the body
-solver's rewrite) are listed with the reason in benchmarks/mutation_triage.py.  Score =
+while its test files are unchanged too.  Survivors judged equivalent (or left without a
+test) are listed with the reason in benchmarks/mutation_triage.py.  Score =
 (killed + timeout) / (mutants - equivalent).
 """
 from __future__ import annotations
@@ -44,6 +44,7 @@ import hashlib
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -53,6 +54,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(1, str(REPO))      # mutants.py reads asperity.kernel_cache of this tree
 from mutants import KERNEL_DEPENDENTS
 from mutation_triage import EQUIVALENT, LEFT
 
@@ -61,11 +63,19 @@ VENV = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "asperit
 SCOPE = ("contact/*.py", "bodies/*.py", "dynamics/body*.py", "dynamics/_body*_kernels.py",
          "laws/family*.py", "friction/elastic*.py", "surface/contact_facets.py",
          "surface/mesh_grid.py")
-#: test files (globs in tests/, missing ones ignored) per module glob: the first match wins
-_CONTACT = ("test_contact_solver.py", "test_contact_invariants.py")
-_BODIES = ("test_bodies_footprint.py", "test_footprint_invariants.py")
-_BODY = ("test_body_invariants.py", "test_body_limits.py", "test_slide_body_cli.py",
-         "test_dynamics_body.py")
+#: test files per module glob, the first match wins: globs in tests/ (missing ones ignored),
+#: "file::test_name" for one test function (all its cases), and an optional third item, a
+#: pytest -k expression over the whole selection (it sees file names too: "not (convergence
+#: and X)" thins that file's cases and leaves the other files whole)
+_CONTACT = ("test_contact_solver.py", "test_contact_invariants.py", "test_contact_capped.py",
+            "test_metamorphic_contact.py", "test_option_pairs.py::test_contact_option_pairs")
+_BODIES = ("test_bodies_footprint.py", "test_footprint_invariants.py",
+           "test_metamorphic_bodies.py")
+_BODY = ("test_body_invariants.py", "test_body_convergence.py", "test_body_limits.py",
+         "test_slide_body_cli.py", "test_dynamics_body.py", "test_metamorphic_bodies.py")
+#: test_body_convergence without what cannot see a kernel's or body.py's mutant (the slip
+#: ratio: body_horizon's own NumPy) and a third of the pivot cases (those launched along x)
+_BODY_K = "not (convergence and (slip_ratio or u02))"
 TESTS = (
     ("contact/bench.py", ("test_contact_bench_limits.py", "test_contact_oracle.py")),
     ("contact/plot.py", ("test_contact_plot.py", "test_contact_cli.py")),
@@ -76,19 +86,26 @@ TESTS = (
     ("bodies/*.py", _BODIES),
     ("dynamics/body_bench.py", ("test_body_bench_measures.py", "test_bench_body.py")),
     ("dynamics/body_api.py", ("test_body_limits.py", "test_slide_body_cli.py",
-                              "test_dynamics_body.py")),
-    ("dynamics/*.py", _BODY),
+                              "test_dynamics_body.py", "test_metamorphic_bodies.py",
+                              "test_body_convergence.py::test_t_end_below_one_step_is_refused",
+                              "test_option_pairs.py::test_slide_body_option_pairs")),
+    ("dynamics/body_horizon.py", _BODY),
+    ("dynamics/*.py", _BODY, _BODY_K),
     ("laws/family_report.py", ("test_family_report.py", "test_family_axes.py",
                                "test_law_family_cli.py")),
     ("laws/family.py", ("test_family_members_and_range.py", "test_law_family.py",
-                        "test_law_family_cli.py")),
+                        "test_law_family_cli.py", "test_metamorphic_laws.py",
+                        "test_option_pairs.py::test_law_pressure_option_pairs")),
     ("friction/elastic_windows.py", ("test_window_defaults.py", "test_contact_windows.py",
-                                     "test_contact_windows_more.py")),
+                                     "test_contact_windows_more.py",
+                                     "test_option_pairs.py::test_contact_window_option_pairs")),
     ("friction/elastic.py", ("test_wedge_resolution.py", "test_contact_friction.py",
-                             "test_contact_friction_cli.py")),
+                             "test_contact_friction_cli.py", "test_metamorphic_contact.py",
+                             "test_option_pairs.py::test_derive_and_fit_elastic_option_pairs")),
     ("surface/contact_facets.py", ("test_elastic_contact_inputs.py", "test_contact_friction.py",
-                                   "test_contact_mesh.py")),
-    ("surface/mesh_grid.py", ("test_mesh_grid_invariants.py", "test_contact_mesh.py")),
+                                   "test_contact_mesh.py", "test_metamorphic_contact.py")),
+    ("surface/mesh_grid.py", ("test_mesh_grid_invariants.py", "test_contact_mesh.py",
+                              "test_metamorphic_contact.py")),
 )
 #: seconds a kernel module's mutant may spend compiling its kernels and their dependents again
 COMPILE_ALLOWANCE = 150.0
@@ -125,18 +142,24 @@ def scope_modules(root: Path) -> list[str]:
                    if p.name != "__init__.py"})
 
 
-def tests_of(module: str, root: Path) -> list[str]:
+def tests_of(module: str, root: Path) -> tuple[list[str], str]:
+    """The module's test selection: files (or file::test), and a -k expression or ''."""
     from fnmatch import fnmatch
-    for pattern, files in TESTS:
+    for pattern, files, *k in TESTS:
         if fnmatch(module, pattern):
-            return list(dict.fromkeys(p.name for f in files for p in sorted((root / "tests").glob(f))))
+            sel = []
+            for f in files:
+                name, sep, node = f.partition("::")
+                sel += [p.name + sep + node for p in sorted((root / "tests").glob(name))]
+            return list(dict.fromkeys(sel)), (k[0] if k else "")
     raise SystemExit(f"no test files for asperity/{module}: add it to TESTS")
 
 
-def tests_hash(files, root: Path) -> str:
+def tests_hash(files, root: Path, k: str = "") -> str:
     helpers = sorted(p for p in (root / "tests").glob("*.py") if not p.name.startswith("test_"))
-    return sha(*[(root / "tests" / f).read_text() for f in files],
-               *[p.read_text() for p in helpers])
+    texts = {f.partition("::")[0]: (root / "tests" / f.partition("::")[0]).read_text()
+             for f in files}
+    return sha(*files, k, *texts.values(), *[p.read_text() for p in helpers])
 
 
 def _spans(tree):
@@ -194,12 +217,12 @@ def enumerate_mutants(root: Path, module: str) -> tuple[list[dict], int]:
     return kept, dropped
 
 
-def plan(root: Path, n: int, seed: int, only=()):
-    """{module: (population, dropped, sample)}: each module the same share of n (its own
-    score then has the same resolution), the sample in rank order, kernel modules last
+def plan(root: Path, per_module: int, seed: int, only=()):
+    """{module: (population, dropped, sample)}: each module the same number of mutants (its
+    own score then has the same resolution), the sample in rank order, kernel modules last
     (their mutants recompile kernels: the slowest)."""
     mods = scope_modules(root)
-    k = -(-n // len(mods))
+    k = per_module
     out = {}
     for m in sorted(mods, key=lambda m: (is_kernel(m), m)):
         kept, dropped = enumerate_mutants(root, m)
@@ -240,10 +263,11 @@ def drop_dependents(root: Path, module: str) -> None:
             c.unlink()
 
 
-def test_command(files) -> str:
+def test_command(files, k: str = "") -> str:
     py = os.environ.get("ASPERITY_MUTATION_PYTHON", sys.executable)
     return (f"{py} -m pytest -q -x -p no:cacheprovider -p no:xdist --no-header -rfE --tb=no "
-            + " ".join(f"tests/{f}" for f in files))
+            + (f"-k {shlex.quote(k)} " if k else "")
+            + " ".join(shlex.quote(f"tests/{f}") for f in files))
 
 
 def first_failure(output: str | None) -> str:
@@ -254,7 +278,7 @@ def first_failure(output: str | None) -> str:
     return tail[-1][:120] if tail else "?"
 
 
-def run_mutant(root: Path, m: dict, files, timeout: float) -> dict:
+def run_mutant(root: Path, m: dict, files, k: str, timeout: float) -> dict:
     from cosmic_ray.mutating import mutate_and_test
     from cosmic_ray.work_item import MutationSpec, TestOutcome, WorkerOutcome
     spec = MutationSpec(root / "asperity" / m["module"], m["operator"], m["occurrence"],
@@ -262,7 +286,7 @@ def run_mutant(root: Path, m: dict, files, timeout: float) -> dict:
     drop_dependents(root, m["module"])
     t0 = time.perf_counter()
     try:
-        r = mutate_and_test([spec], test_command(files), timeout)
+        r = mutate_and_test([spec], test_command(files, k), timeout)
     finally:
         drop_dependents(root, m["module"])
     dt = time.perf_counter() - t0
@@ -282,18 +306,19 @@ def run_mutant(root: Path, m: dict, files, timeout: float) -> dict:
     return {"status": status, "by": by, "seconds": round(dt, 1), "diff": diff[:6]}
 
 
-def baseline(root: Path, files, cache: dict, key: str) -> float:
+def baseline(root: Path, files, k: str, cache: dict, key: str) -> float:
     """Seconds of the test files on the unmutated copy (cached); stops on a failure."""
     if key in cache:
         return cache[key]
     t0 = time.perf_counter()
-    out = subprocess.run(test_command(files).split(), cwd=root, capture_output=True, text=True,
-                         check=False)
+    out = subprocess.run(shlex.split(test_command(files, k)), cwd=root, capture_output=True,
+                         text=True, check=False)
     dt = time.perf_counter() - t0
     if out.returncode:
-        sys.exit(f"baseline fails ({' '.join(files)}): {first_failure(out.stdout)}\n"
+        sys.exit(f"baseline fails ({' '.join(files)} {k}): {first_failure(out.stdout)}\n"
                  "every kill would be meaningless; stopping")
-    print(f"baseline {' '.join(files)}: pass ({dt:.0f} s)", flush=True)
+    print(f"baseline {' '.join(files)}{f' -k {k!r}' if k else ''}: pass ({dt:.0f} s)",
+          flush=True)
     cache[key] = round(dt, 1)
     return dt
 
@@ -343,7 +368,8 @@ def print_table(rows, tot) -> None:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--n", type=int, default=208, help="mutants in the sample (default 208)")
+    ap.add_argument("--per-module", type=int, default=8, metavar="K",
+                    help="mutants sampled in each module (default 8)")
     ap.add_argument("--seed", type=int, default=25, help="sampling seed (default 25)")
     ap.add_argument("--scratch", type=Path, default=Path("/tmp/mutcopy"),
                     help="scratch copy of the working tree (default /tmp/mutcopy)")
@@ -353,8 +379,9 @@ def main(argv=None) -> int:
                     help="only these modules (paths under asperity/)")
     ap.add_argument("--fresh", action="store_true", help="run again what is cached")
     ap.add_argument("--ids", nargs="+", default=(), metavar="ID",
-                    help="only these mutants of the sample, run again (e.g. to check a new "
-                         "test: with another --scratch and --cache while a campaign runs)")
+                    help="only these mutants, run again, in the sample or not (e.g. to check "
+                         "a new test: with another --scratch and --cache while a campaign "
+                         "runs)")
     ap.add_argument("--plan", action="store_true", help="population and sample, no run")
     ap.add_argument("--table", action="store_true", help="the table from the cache, no run")
     ap.add_argument("--survivors", action="store_true", help="list survivors with their diffs")
@@ -373,7 +400,7 @@ def main(argv=None) -> int:
             sys.exit(f"another campaign runs in {a.scratch}; stopping")
     root = sync_scratch(a.scratch) if run else REPO   # reading needs no copy
     only = set(a.only) | {i.split(":")[0] for i in a.ids}
-    sample = plan(root, a.n, a.seed, only)
+    sample = plan(root, a.per_module, a.seed, only)
     data = json.loads(a.cache.read_text()) if a.cache.is_file() else {}
     results, base = data.setdefault("results", {}), data.setdefault("baselines", {})
     if a.merge:
@@ -381,27 +408,32 @@ def main(argv=None) -> int:
         save(a.cache, data)
     if a.plan:
         for m, (n, dropped, pick) in sample.items():
+            files, k = tests_of(m, root)
             print(f"{m:34s} {n:5d} mutants ({dropped} equivalent by construction), "
-                  f"{len(pick)} sampled, tests: {' '.join(tests_of(m, root))}")
+                  f"{len(pick)} sampled, tests: {' '.join(files)}"
+                  + (f" -k {k!r}" if k else ""))
         return 0
     if run:
         os.chdir(root)
         os.environ["PYTHONPATH"] = str(root)
         for m, (_, _, pick) in sample.items():
-            files = tests_of(m, root)
+            files, k = tests_of(m, root)
             mh = sha((root / "asperity" / m).read_text())
-            th = tests_hash(files, root)
-            todo = [x for x in pick if (x["id"] in a.ids if a.ids else
-                                        a.fresh or not reusable(results.get(x["id"]), mh, th))]
+            th = tests_hash(files, root, k)
+            if a.ids:       # any of the module's mutants, in the sample or not
+                todo = [x for x in enumerate_mutants(root, m)[0] if x["id"] in a.ids]
+            else:
+                todo = [x for x in pick if a.fresh or not reusable(results.get(x["id"]), mh, th)]
             if not todo:
                 continue
             bkey = sha(th, *[(root / "asperity" / p).read_bytes()
-                             for p in sorted(scope_modules(root))], *files)
-            timeout = 3 * baseline(root, files, base, bkey) + 60 + COMPILE_ALLOWANCE * is_kernel(m)
+                             for p in sorted(scope_modules(root))], *files, k)
+            timeout = (3 * baseline(root, files, k, base, bkey) + 60
+                       + COMPILE_ALLOWANCE * is_kernel(m))
             for x in todo:
-                r = run_mutant(root, x, files, timeout)
+                r = run_mutant(root, x, files, k, timeout)
                 results[x["id"]] = x | r | {"module_hash": mh, "tests_hash": th,
-                                            "tests": files}
+                                            "tests": files, "k": k}
                 save(a.cache, data)
                 print(f"{r['status']:9s} {x['id']:58s} {r['seconds']:6.1f} s  {r['by']}",
                       flush=True)
@@ -416,7 +448,8 @@ def main(argv=None) -> int:
                           "\n    ".join(d for d in r["diff"] if d[1:].strip()))
     print_table(rows, tot)
     if a.json:
-        save(a.json, {"table": rows + [tot], "seed": a.seed, "n": a.n,
+        save(a.json, {"table": rows + [tot], "seed": a.seed,
+                      "per_module": a.per_module,
                       "results": {x["id"]: results.get(x["id"]) for _, _, p in
                                   sample.values() for x in p}})
     return 0

@@ -1,7 +1,7 @@
 """A law family between and beyond its members: its refusals name the whole pressure
 range, first to last member, whatever the number of members (a family used without a
-pressure, a pressure outside it: no extrapolation); the range's ends are members, taken as
-they are; between two star members t_a turns the short way, across 0/180 deg too."""
+pressure, a pressure outside it: no extrapolation); a pressure a hair outside an end is
+shown apart from that end; the range's ends are members, taken as they are; between two star members t_a turns the short way, across 0/180 deg too."""
 from __future__ import annotations
 
 from dataclasses import replace
@@ -32,6 +32,20 @@ def test_refusals_name_the_first_and_the_last_member(family, n):
     for k in (0, n - 1):
         gl, how = law_at(fam, PRESSURES[k])
         assert gl is fam.members[k] and how["interpolated"] is False
+
+
+@pytest.mark.parametrize("n", [2, 3, 4])
+def test_a_pressure_a_hair_outside_an_end_is_shown_apart_from_it(family, n):
+    """A pressure just outside the first or the last member's (1e-9 relative: the same in
+    the %g the range is written in) is refused showing all its digits, never as the end
+    itself ("2e+07 Pa is outside [.., 2e+07]")."""
+    fam = GaugeFamily(family.pressures[:n], family.members[:n])
+    for end, p in ((PRESSURES[0], PRESSURES[0] * (1 - 1e-9)),
+                   (PRESSURES[n - 1], PRESSURES[n - 1] * (1 + 1e-9))):
+        assert f"{p:g}" == f"{end:g}"
+        with pytest.raises(InputError) as e:
+            law_at(fam, p)
+        assert f"pressure {p!r} Pa is outside" in str(e.value), str(e.value)
 
 
 @pytest.mark.parametrize("d0,d1,mid", [(20.0, 40.0, 30.0), (170.0, 10.0, 0.0),
