@@ -141,7 +141,11 @@ BODIES = [
     (["--t-end", "1", "--force", "1e308", "0"], "--force must be in [-1e+12, 1e+12] N"),
     (["--force", "-1e-1", "0"], "--force, --torque and --force-amplitude need --t-end"),
     (["--omega0", "-1e7"], "--omega0 must be in [-1e+06, 1e+06] rad/s, got -1e+07"),
-    (["--contact-points", "2.5"], "--contact-points must be a whole number, got 2.5"),
+    (["--contact-points", "2.5"], "--contact-points must be a whole number in [1, 1000000]"),
+    (["--max-iterations", "2.5"], "--max-iterations must be a whole number in [1, 1000000]"),
+    # one point: the run's horizon divided by its friction torque (an internal error)
+    (["--contact-points", "1"], "body's contact points (--contact-points, or a body file"),
+    (["--omega0", "1e6", "--dt", "1e-4"], "--t-end must be given: this body may need"),
     (["--texture-angle", "1e5"], "--texture-angle must be in [-360, 360] deg"),
 ]
 
@@ -151,6 +155,53 @@ def test_slide_body_refuses_in_one_line(capsys, extra, msg):
     code, out, err = outcome(capsys, "slide", *BODY, *DISC[:4], *extra)
     assert code == 1 and out == "" and err.count("\n") == 1, err
     assert err.startswith("asperity slide: error: ") and msg in err, err
+
+
+def test_a_body_file_whose_pressure_points_sit_at_one_spot_is_refused(tmp_path, capsys):
+    """A pressure file of one point, or of points at one place: refused in one line (the
+    run's horizon divided by the nil friction torque: an internal error), with or without
+    --t-end and --omega0."""
+    for name, rows in (("one", ["0,0,1000"]), ("spot", ["0.01,0.01,1"] * 3),
+                       ("femto", ["0,0,1", "1e-15,0,1"])):
+        (tmp_path / f"{name}.csv").write_text("x_m,y_m,p_Pa\n" + "\n".join(rows) + "\n")
+        (tmp_path / f"{name}.toml").write_text(
+            f'[body]\nshape = "disc"\nradius = 0.05\nmass = 1.0\npressure_file = "{name}.csv"\n')
+        for extra in ([], ["--omega0", "10"], ["--t-end", "0.1"]):
+            code, out, err = outcome(capsys, "slide", *BODY, "--body", tmp_path / f"{name}.toml",
+                                     *extra)
+            assert code == 1 and out == "" and err.count("\n") == 1, err
+            assert "must not all lie at one spot" in err, err
+
+
+def test_slide_body_refuses_a_footprint_at_one_spot_before_its_horizon():
+    from asperity import InputError, slide_body
+    from asperity.bodies.pressure import from_pressure
+    from asperity.laws.planar import coulomb_law
+    for pts in ([[0.0, 0.0]], [[0.01, 0.02]] * 3):
+        fp = from_pressure(np.array(pts), np.ones(len(pts)))
+        for t_end in (None, 0.1):
+            with pytest.raises(InputError, match="one spot") as e:
+                slide_body(coulomb_law(0.3), fp, 1.0, 30.0, 10.0, dt=1e-3, t_end=t_end,
+                           inertia=1e-3)
+            assert "\n" not in str(e.value)
+
+
+def test_a_whole_number_is_read_exactly_and_refused_with_its_range(capsys):
+    """--window-seed 9223372036854775807 (its largest value) went through a float and was
+    refused as 9223372036854775808; --max-iterations 2.5 said 'a whole number' without the
+    range."""
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "32", "--windows", "1",
+                             "--window-placement", "random", "--window-seed",
+                             str(2 ** 63 - 1), "--json")
+    assert code == 0, err
+    import json
+    assert json.loads(out)["windows"]["seed"] == 2 ** 63 - 1
+    for argv in (["fit", SURF / "wedge-asymmetric.toml", "--directions", "7.5"],
+                 ["law", SURF / "wedge-asymmetric.toml", "--csv-directions", "nan"],
+                 ["bench", "--repeats", "1e400"]):
+        code, out, err = outcome(capsys, *argv)
+        assert code == 1 and out == "" and err.count("\n") == 1, err
+        assert "must be a whole number in [" in err, err
 
 
 @pytest.mark.parametrize("name,msg", [("bad.toml", "not valid TOML"),

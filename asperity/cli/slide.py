@@ -197,7 +197,7 @@ def run(args):
         t_end = 1.5 * u0 / (g * law.min_tangential()) + 10 * dt
     else:
         t_end = check_t_end("--t-end", args.t_end, dt)
-    n = int(round(t_end / dt))
+    n = round(t_end / dt)
     if n > MAX_STEPS:
         raise InputError(f"--t-end / --dt gives {n:.3g} steps, at most {MAX_STEPS:.0e}: raise "
                          "--dt or lower --t-end")
@@ -304,6 +304,11 @@ def run_body(args):
     except InputError as exc:          # the work limits name dt and t_end: say the options
         msg = str(exc).replace("t_end / dt", "--t-end / --dt").replace("raise dt", "raise --dt")
         msg = msg.replace("inertia must", "the body's inertia (its size and --mass) must", 1)
+        msg = msg.replace("t_end must be given", "--t-end must be given", 1)
+        msg = msg.replace("give t_end", "give --t-end")
+        if msg.startswith("points must not all lie at one spot"):
+            msg = ("the body's contact points (--contact-points, or a body file's points) "
+                   + msg[len("points "):])
         raise type(exc)(msg.replace("lower t_end", "lower --t-end")) from None
     obj = run.summary
     if args.gauge:

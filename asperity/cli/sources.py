@@ -307,8 +307,18 @@ def _texture_from_args(args, elastic):
 def spring_model_from_args(args, table: dict):
     from ..texture.spring_model import SpringModel
     d = dict(table)
+    given = {}
     for dest, key in SPRING_FLAGS.items():
         v = getattr(args, dest, None)
         if v is not None:
             d[key] = v
-    return SpringModel.from_dict(d)
+            given[key] = "--" + dest.replace("_", "-")
+    try:
+        return SpringModel.from_dict(d)
+    except InputError as exc:         # a value from a flag: the message names the flag
+        msg = str(exc)
+        for key, flag in given.items():
+            for field in (f"springs.{key} ", f"{key} "):
+                if msg.startswith(field):
+                    raise InputError(flag + " " + msg[len(field):]) from None
+        raise

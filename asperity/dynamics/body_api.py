@@ -229,7 +229,7 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
     Returns a :class:`BodySlide` (its ``summary`` is the JSON of ``asperity slide --body``).
     """
     from ..laws.planar import PlanarLaw
-    from .body import BodySettings, simulate_body
+    from .body import BodySettings, _check_points, simulate_body
     from .body_horizon import rest_time
     from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
     check_instance("law", law, PlanarLaw)
@@ -248,6 +248,9 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
             raise InputError("t_end is required with an external force (the body need not "
                              "come to rest)")
     fp = b.footprint
+    # the footprint first: the horizon below divides by its friction torque, nil for points
+    # at one spot (a one-point footprint, a pressure file's points at one place)
+    _check_points(fp.points, fp.weights)
     a = math.radians(angle)
     u_start = (u0 * math.cos(a), u0 * math.sin(a), omega0)
     if t_end is None:
