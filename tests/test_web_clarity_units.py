@@ -118,7 +118,7 @@ def test_the_elastic_surface_job_fills_the_bar_in_order(recorded, tmp_path, monk
     ctx = {"job_dir": tmp_path, "uploads": tmp_path, "jobs": tmp_path, "names": {}}
     params = {"source": {"kind": "wedge", "alpha_deg": 30.0, "beta_deg": 10.0,
                          "mu_alpha": 0.1, "mu_beta": 0.2}, "directions": 72,
-              "elastic": {"E_star": 1e11, "pressures": [1e6, 1e7, 5e7], "boundary": None,
+              "elastic": {"E_star": 1e9, "pressures": [1e6, 1e7, 5e7], "boundary": None,
                           "hardness": None}}
     with Spy(tmp_path / "progress.json") as bar:
         out = derive_task(params, ctx, bar)
