@@ -100,7 +100,7 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
         raise InputError(f"{name} must be in {rng}{u}, got NaN")
     if math.isinf(x) and not allow_inf:
         raise InputError(f"{name} must be a finite number in {rng}{u}, got {_fmt(x)}")
-    raise InputError(f"{name} must be in {rng}{u}, got {_fmt(x)}")
+    raise InputError(f"{name} must be in {rng}{u}, got {_got(x)}")
 
 
 def check_int(name: str, value, low: int | None = None, high: int | None = None) -> int:
@@ -249,6 +249,17 @@ def is_array(value) -> bool:
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
+
+
+def _got(x: float) -> str:
+    """The value refused, with the digits that tell it from the range's bounds: %g, or as
+    many digits as it takes to read back the same number ('got 1.0000001e+13' beside the
+    bound 1e+13, not 'got 1e+13')."""
+    for digits in (6, 9, 12, 17):
+        t = f"{x:.{digits}g}"
+        if float(t) == x:
+            return t
+    return repr(x)
 
 
 def _fmt_int(n: int) -> str:

@@ -282,3 +282,82 @@ def test_the_real_commands_agree(files):
                    contains="unrecognized arguments: --mu 0.1")
     assert_refused(cli("law", files / "family.json", "--pressure", "-1e-1"),
                    contains="--pressure must be in (0, inf) Pa, got -0.1")
+
+
+def test_a_window_position_is_solved_once_and_the_text_says_so(capsys):
+    """--window 64 --windows 10000 on the 64 x 64 scan solved 10000 identical windows (five
+    minutes for one solve's answer); a grid of 30 windows of 60 pixels repeated positions of
+    the 25 the scan holds.  Each position is solved once, its figures those of one window."""
+    import json
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "64", "--windows",
+                             "10000", "--json")
+    assert code == 0, err
+    s = json.loads(out)
+    wi = s["windows"]
+    assert (wi["asked"], wi["positions"], wi["solved"], wi["used"]) == (10000, 1, 1, 1), wi
+    code, one, err = outcome(capsys, "contact", SCAN, *E, "--window", "64", "--windows", "1",
+                             "--json")
+    assert code == 0, err
+    assert s["area_fraction"] == json.loads(one)["area_fraction"]
+    assert s["area_fraction"]["n"] == 1 and s["area_fraction"]["sd"] is None
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "64", "--windows", "5",
+                             "--window-placement", "random")
+    assert code == 0, err
+    assert "5 windows asked, 1 solved: the scan holds 1 distinct position of a window of 64 " \
+           "pixels" in out and "ESTIMATE from 1 window of" in out, out
+    for placement in ("grid", "random"):
+        code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "60", "--windows",
+                                 "30", "--window-placement", placement, "--json")
+        assert code == 0, err
+        wi = json.loads(out)["windows"]
+        origins = [tuple(w["origin_px"]) for w in json.loads(out)["per_window"]]
+        assert wi["positions"] == 25 and wi["solved"] == len(origins) <= 25, wi
+        if placement == "grid":
+            assert len(set(origins)) == len(origins) == 25, origins
+
+
+_SYNC_RACE = """
+import os, signal, sys, threading, time
+from distributed.utils import LoopRunner, sync
+if sys.argv[1] == "quiet":
+    from asperity.study.clusters import quiet_interrupted_sync
+    quiet_interrupted_sync()
+runner = LoopRunner(asynchronous=False)
+runner.start()
+gate, busy = threading.Event(), threading.Event()
+runner.loop.add_callback(lambda: (busy.set(), gate.wait(10)))   # the loop thread is busy
+busy.wait(10)
+def ctrl_c():                     # Ctrl-C while sync() waits, before its coroutine started
+    time.sleep(0.2)
+    os.kill(os.getpid(), signal.SIGINT)
+    time.sleep(0.3)
+    gate.set()
+threading.Thread(target=ctrl_c).start()
+async def work():
+    return 1
+try:
+    sync(runner.loop, work)
+except KeyboardInterrupt:
+    print("interrupted")
+time.sleep(1.0)
+runner.stop()
+"""
+
+
+def test_ctrl_c_before_a_dask_call_started_prints_no_traceback():
+    """Ctrl-C during 'contact --window ... --workers 2' printed tornado's 'Exception in
+    callback ... NameError: cannot access free variable 'future'' (distributed's sync()
+    interrupted before its coroutine ran): the race reproduced exactly, and silenced by
+    the filter every cluster connection installs."""
+    import subprocess
+    import sys
+
+    from hostile import package_env
+    runs = {}
+    for mode in ("plain", "quiet"):
+        p = subprocess.run([sys.executable, "-c", _SYNC_RACE, mode], capture_output=True,
+                           text=True, timeout=60, env=package_env(), check=False)
+        assert p.stdout == "interrupted\n", (mode, p.stdout, p.stderr)
+        runs[mode] = p.stderr
+    assert "NameError" in runs["plain"] and "Traceback" in runs["plain"], runs["plain"]
+    assert runs["quiet"] == "", runs["quiet"]

@@ -35,6 +35,33 @@ class EngineError(AsperityError):
     """The cluster cannot be reached or cannot run asperity's tasks."""
 
 
+class _InterruptedSync(logging.Filter):
+    """Drops tornado's report of a known race in ``distributed.utils.sync``: Ctrl-C (or
+    SIGTERM) that arrives before the coroutine has started leaves the ``future`` its
+    cancel callback reads unassigned, and tornado logs that NameError with a traceback
+    (``contact --window ... --workers 2`` interrupted).  Nothing is lost: the command has
+    stopped already and says so in its own line."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        exc = record.exc_info[1] if record.exc_info else None
+        return not (isinstance(exc, NameError) and "'future'" in str(exc)
+                    and exc.__traceback__ is not None
+                    and "distributed" in _last_file(exc.__traceback__))
+
+
+def _last_file(tb) -> str:
+    while tb.tb_next is not None:
+        tb = tb.tb_next
+    return tb.tb_frame.f_code.co_filename
+
+
+def quiet_interrupted_sync() -> None:
+    """Install :class:`_InterruptedSync` on tornado's callback logger (once)."""
+    log = logging.getLogger("tornado.application")
+    if not any(isinstance(f, _InterruptedSync) for f in log.filters):
+        log.addFilter(_InterruptedSync())
+
+
 def resolve_scheduler(scheduler: str | None) -> str | None:
     """The scheduler to use, checked: the argument, else $ASPERITY_SCHEDULER, else None
     (a local cluster).  A scheduler file is read for its address."""
@@ -167,6 +194,7 @@ def connect(scheduler: str | None, workers: int | None, per_worker: float | None
     from .. import lifeline
     from ..resources import WORKER_BYTES, local_workers, note
     logging.getLogger("distributed").setLevel(logging.ERROR)
+    quiet_interrupted_sync()
     if scheduler is None:
         nw, why = local_workers(workers, per_worker or WORKER_BYTES)
         if why:
