@@ -213,14 +213,35 @@ def test_slide_refuses_a_body_file_it_cannot_use(files, capsys, name, msg):
     assert code == 1 and out == "" and err.count("\n") == 1 and msg in err, err
 
 
-def test_a_body_launched_at_a_denormal_speed_prints_a_result(capsys):
-    """--u0 5e-324: the text of a run without a rest time and without --t-end raised a
-    TypeError (an internal error, status 70)."""
-    code, out, err = outcome(capsys, "slide", "--mu1", "0.3", "--u0", "5e-324", "--angle", "30",
+def test_a_body_launched_slower_than_the_solver_resolves_is_refused(capsys):
+    """--u0 5e-324 (first an internal error, then a run to the horizon printing "still
+    moving" beside "sliding stopped at 0 s"): the kernels' slip norm underflows below
+    ~1e-154 m/s and takes the body for sticking while it keeps its speed, so a launch
+    slower than 1e-100 m/s (or rad/s) other than 0 is refused, in the CLI and the API;
+    1e-99 comes to rest in one step."""
+    import asperity as a
+    for flag, value, unit in (("--u0", "5e-324", "m/s"), ("--u0", "1e-200", "m/s"),
+                              ("--omega0", "-1e-300", "rad/s")):
+        argv = [*BODY, *DISC, flag, value]
+        code, out, err = outcome(capsys, "slide", *argv)
+        assert code == 1 and out == "" and err.count("\n") == 1, err
+        assert f"{flag} must be 0 or at least 1e-100 {unit} in size, got " in err, err
+    code, out, err = outcome(capsys, "slide", "--mu1", "0.3", "--u0", "1e-99", "--angle", "90",
                              "--dt", "1e-3", *DISC)
     assert code == 0 and err == "", err
-    assert "deflection:" in out and "Newton iterations per step" in out
+    assert "rest at" in out and "(1 step of 0.001 s)" in out, out
     assert_finite_output(out)
+    fp, law = a.disc_footprint(0.05, contact_points=64), a.coulomb_law(0.3)
+    for kw, msg in (({"u0": 5e-324}, "u0 must be 0 or at least 1e-100 m/s"),
+                    ({"u0": 1.0, "omega0": 1e-101}, "omega0 must be 0 or at least 1e-100")):
+        with pytest.raises(a.InputError, match=msg):
+            a.slide_body(law, fp, angle_deg=0.0, **kw)
+    with pytest.raises(a.InputError, match=r"u0 \(vx, vy\) must be 0 or at least 1e-100"):
+        a.simulate_body(fp.points, fp.weights, law, mass=1.0, inertia=1e-3, dt=1e-3,
+                        u0=(1e-300, 1e-300, 0.0))
+    r = a.simulate_body(fp.points, fp.weights, law, mass=1.0, inertia=1e-3, dt=1e-3,
+                        u0=(0.0, 1e-99, 0.0))
+    assert r.stop_time == 1e-3 and not np.any(r.u_final), r
 
 
 def test_a_spinning_body_says_when_its_spin_stopped(capsys):

@@ -229,7 +229,7 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
     Returns a :class:`BodySlide` (its ``summary`` is the JSON of ``asperity slide --body``).
     """
     from ..laws.planar import PlanarLaw
-    from .body import BodySettings, _check_points, simulate_body
+    from .body import BodySettings, _check_points, check_slow, simulate_body
     from .body_horizon import rest_time
     from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
     check_instance("law", law, PlanarLaw)
@@ -247,6 +247,8 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
         if t_end is None:
             raise InputError("t_end is required with an external force (the body need not "
                              "come to rest)")
+    check_slow("u0", u0, "m/s")
+    check_slow("omega0", omega0, "rad/s")
     fp = b.footprint
     # the footprint first: the horizon below divides by its friction torque, nil for points
     # at one spot (a one-point footprint, a pressure file's points at one place)
