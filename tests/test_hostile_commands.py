@@ -382,3 +382,20 @@ def test_ctrl_c_before_a_dask_call_started_prints_no_traceback():
         runs[mode] = p.stderr
     assert "NameError" in runs["plain"] and "Traceback" in runs["plain"], runs["plain"]
     assert runs["quiet"] == "", runs["quiet"]
+
+
+def test_the_text_counts_the_steps_to_the_rest_and_one_iteration(capsys):
+    """'rest ... after 0.1699 s (10000 steps of 0.0001 s)' under --t-end 1 (the steps run,
+    not those to the rest: 0.1699 s is 1699 of them); 'in 1 iterations'."""
+    for extra in ([], DISC):
+        code, out, err = outcome(capsys, "slide", *BODY, *extra, "--t-end", "2")
+        assert code == 0, err
+        line = next(x for x in out.splitlines() if x.startswith("rest at"))
+        t = float(line.split(" after ")[1].split(" s (")[0])
+        k = int(line.split(" s (")[1].split(" step")[0])
+        assert k == round(t / 1e-3) < 2000 and "; run to 2 s)" in line, line
+    code, out, _ = outcome(capsys, "slide", *BODY)
+    assert "run to" not in out, out
+    code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *E,
+                             "--max-iterations", "1")
+    assert code == 3 and out == "" and " in 1 iteration (residual" in err, err

@@ -43,4 +43,8 @@ def say_body(say, obj) -> None:
 
 
 def steps_words(obj) -> str:
-    return f"{obj['steps']} step{'s' * (obj['steps'] != 1)} of {obj['dt']:g} s"
+    """The steps to the rest, and the run's end when it went on (--t-end): 'after 0.17 s
+    (1699 steps of 0.0001 s; run to 1 s)', not '(10000 steps ...)' beside 0.17 s."""
+    k = round(obj["stop_time"] / obj["dt"])
+    more = f"; run to {obj['steps'] * obj['dt']:.6g} s" if obj["steps"] > k else ""
+    return f"{k} step{'s' * (k != 1)} of {obj['dt']:g} s{more}"

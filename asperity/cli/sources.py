@@ -131,7 +131,8 @@ def contact_failed(command: str, exc) -> int:
     import sys
     r = exc.result
     print(f"asperity {command}: error: the elastic contact did not converge at --pressure "
-          f"{r.pressure_asked:g} in {r.iterations} iterations (residual {r.residual:.3g}); "
+          f"{r.pressure_asked:g} in {r.iterations} iteration{'s' * (r.iterations != 1)} "
+          f"(residual {r.residual:.3g}); "
           "nothing written", file=sys.stderr)
     return EXIT_NOT_CONVERGED
 
