@@ -399,3 +399,34 @@ def test_the_text_counts_the_steps_to_the_rest_and_one_iteration(capsys):
     code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *E,
                              "--max-iterations", "1")
     assert code == 3 and out == "" and " in 1 iteration (residual" in err, err
+
+
+def test_a_local_cluster_starts_with_ctrl_c_held_from_its_workers():
+    """Ctrl-C (to the process group, as a terminal sends it) while 'contact --window ...
+    --workers 2' started its cluster printed the workers' KeyboardInterrupt tracebacks as
+    they imported dask, and atexit's 'AssertionError: Status.init' of the half-started
+    cluster.  While it starts SIGINT is ignored (the processes started then inherit that)
+    and SIGTERM is held, then raised as the command's Terminated."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    from asperity.cli.interrupts import Terminated, terminate_as_interrupt
+    from asperity.study.clusters import _held_signals
+    before = signal.getsignal(signal.SIGINT)
+    with terminate_as_interrupt():
+        hold = _held_signals()
+        with hold:
+            code = "import signal; print(int(signal.getsignal(signal.SIGINT)))"
+            child = subprocess.run([sys.executable, "-c", code],
+                                   capture_output=True, text=True, timeout=60, check=True)
+            os.kill(os.getpid(), signal.SIGTERM)
+            for _ in range(1000):             # the handler runs between two bytecodes
+                if hold.got:
+                    break
+        assert int(child.stdout) == signal.SIG_IGN, child
+        assert hold.got == signal.SIGTERM
+        with pytest.raises(Terminated):
+            hold.replay()
+    assert signal.getsignal(signal.SIGINT) is before
