@@ -430,3 +430,19 @@ def test_a_local_cluster_starts_with_ctrl_c_held_from_its_workers():
         with pytest.raises(Terminated):
             hold.replay()
     assert signal.getsignal(signal.SIGINT) is before
+
+
+def test_unit_replaces_a_stated_height_unit_as_its_help_says(capsys):
+    """--help said '--unit ... overrides nothing a file states' while it replaces the
+    stated height unit of a text matrix ('# Value units: m' read as um: a near-flat map, in
+    full contact at p/E* = 0.001) and keeps its '# Width:'."""
+    import json
+    fractions = {}
+    for unit in ([], ["--unit", "um"]):
+        code, out, err = outcome(capsys, "contact", SCAN, *E, *unit, "--json")
+        assert code == 0, err
+        s = json.loads(out)
+        fractions[bool(unit)] = s["area_fraction"]
+    assert fractions[False] < 0.1 and fractions[True] == 1.0, fractions
+    code, out, _ = outcome(capsys, "contact", "--help")
+    assert "overrides nothing" not in out and "--unit replaces it" in " ".join(out.split())

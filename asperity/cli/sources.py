@@ -216,8 +216,11 @@ def add_source_arguments(p, friction: bool = True) -> None:
                        help="local friction per pixel (height maps: same grid) or per triangle "
                             "(meshes), .npy or text; instead of --mu")
     f.add_argument("--unit", metavar="UNIT",
-                   help="length unit of a file that carries none (meshes, .npy, bare text "
-                        "matrices): m, mm, um or nm; overrides nothing a file states")
+                   help="length unit of the file's numbers (and of --pixel-size): m, mm, um "
+                        "or nm; needed where the file states none (meshes, .npy, bare text "
+                        "matrices); where the file states one, --unit replaces it (a file "
+                        "written in another unit than it says: an x3p's heights and spacing, "
+                        "a text matrix's heights; its '# Width:' keeps its own unit)")
     f.add_argument("--pixel-size", type=float, nargs="+", metavar="D",
                    help="pixel size (one value, or dx dy) in --unit, for height maps without sizes")
     f.add_argument("--height-scale", type=float, default=1.0, metavar="F",
