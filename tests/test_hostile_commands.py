@@ -446,3 +446,14 @@ def test_unit_replaces_a_stated_height_unit_as_its_help_says(capsys):
     assert fractions[False] < 0.1 and fractions[True] == 1.0, fractions
     code, out, _ = outcome(capsys, "contact", "--help")
     assert "overrides nothing" not in out and "--unit replaces it" in " ".join(out.split())
+
+
+@pytest.mark.parametrize("command", ["derive", "fit", "law", "risk", "serve", "slide",
+                                     "contact"])
+def test_help_never_says_default_none(capsys, command):
+    """derive --help said '(default: None)' 34 times, and '(None: 8)' for --windows."""
+    code, out, _ = outcome(capsys, command, "--help")
+    text = " ".join(out.split())
+    assert code == 0 and "default: None" not in text and "(None:" not in text, text
+    if command in ("derive", "contact"):
+        assert "number of windows, 1 to 10000 (default 8)" in text, text

@@ -96,3 +96,13 @@ def value_options(parser: argparse.ArgumentParser):
         for a in p._actions:
             if a.option_strings and a.nargs != 0:
                 yield name, p, a
+
+
+class DefaultsHelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Defaults in the help, but not "(default: None)" (derive's help said it 34 times):
+    those options say in words what leaving them out means."""
+
+    def _get_help_string(self, action):
+        if action.default is None:
+            return action.help
+        return super()._get_help_string(action)

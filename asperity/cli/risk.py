@@ -12,6 +12,7 @@ from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS
 from ..microslip.risk_text import format_map, format_text
 from . import add_cluster_arguments, emit, whole_flag
+from .parsing import DefaultsHelpFormatter
 from .sources import (
     WEDGE_FLAGS,
     add_elastic_arguments,
@@ -37,7 +38,7 @@ def add_parser(sub) -> None:
                     "the assembly's contact pressure (strip: p; two-node: N / contact_area); a "
                     "gauge file holding a law family is taken at that pressure.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
                     "of two wedge parameters (alpha, beta, mu_alpha, mu_beta).",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
     p.add_argument("assembly", metavar="ASSEMBLY.toml", help="assembly file (see README)")

@@ -6,21 +6,12 @@ import argparse
 import math
 
 from . import json_text, written_lines
+from .parsing import DefaultsHelpFormatter
 
 LAWS = ("coulomb", "ellipse", "collinear", "star")
 #: rows of the CSV table / points of the plot at most (every k-th step is kept)
 MAX_ROWS = 20000
 EXIT_NOT_CONVERGED = 3
-
-
-class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
-    """Defaults in the help, but not "(default: None)": those options say in words what
-    leaving them out means."""
-
-    def _get_help_string(self, action):
-        if action.default is None:
-            return action.help
-        return super()._get_help_string(action)
 
 
 def add_parser(sub) -> None:
@@ -49,7 +40,7 @@ def add_parser(sub) -> None:
                     "or torque, constant or periodic (--force, --torque, --force-amplitude, "
                     "--waveform, --period), needs --t-end and reports the drift and rotation "
                     "per cycle.",
-        formatter_class=_HelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
     p.add_argument("--law", choices=LAWS, default=None,
                    help="law (default: the gauge file's; without one coulomb if only --mu1 "
