@@ -457,3 +457,17 @@ def test_help_never_says_default_none(capsys, command):
     assert code == 0 and "default: None" not in text and "(None:" not in text, text
     if command in ("derive", "contact"):
         assert "number of windows, 1 to 10000 (default 8)" in text, text
+
+
+def test_a_refused_value_shows_the_digits_that_tell_it_from_its_bounds(capsys):
+    """'--elastic 1.0000001e13' was refused as 'got 1e+13' beside the bound 1e+13; the
+    fix then printed '--pressure 1e300' as 'got 1.0000000000000001e+291' (p/E*)."""
+    for argv, msg in (
+            (["--elastic", "1.0000001e13", "--pressure", "1e6"],
+             "--elastic must be in [1, 1e+13] Pa, got 1.0000001e+13"),
+            (["--elastic", "1e9", "--pressure", "1e300"],
+             "--pressure / --elastic must be in [1e-12, 10], got 1e+291\n"),
+            (["--elastic", "1e9", "--pressure", "1e6", "--tol", "0.10000001"],
+             "--tol must be in [1e-15, 0.1], got 0.10000001\n")):
+        code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *argv)
+        assert code == 1 and out == "" and msg in err, err
