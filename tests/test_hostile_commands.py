@@ -471,3 +471,17 @@ def test_a_refused_value_shows_the_digits_that_tell_it_from_its_bounds(capsys):
              "--tol must be in [1e-15, 0.1], got 0.10000001\n")):
         code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *argv)
         assert code == 1 and out == "" and msg in err, err
+
+
+def test_body_refusals_name_what_the_user_wrote(tmp_path, capsys):
+    """A body file's 'size = [nan, 0.1]' was refused as 'body.a must be ...'; the CLI's
+    renaming of 'profile' made 'a pressure --pressure-profile that does not carry ...'."""
+    f = tmp_path / "nan.toml"
+    f.write_text('[body]\nshape = "rectangle"\nsize = [nan, 0.1]\nmass = 1.0\n')
+    code, out, err = outcome(capsys, "slide", *BODY, "--body", f)
+    assert code == 1 and out == "" and "body.size[0] must be in [1e-09, 1000] m, got NaN" in err
+    code, out, err = outcome(capsys, "slide", *BODY, *DISC, "--pressure-profile", "linear",
+                             "--centre-of-pressure", "0.05", "0")
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert "--centre-of-pressure (0.05, 0) m: a pressure distribution that does not carry " \
+           "the load" in err and "pressure --pressure" not in err, err
