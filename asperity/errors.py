@@ -255,7 +255,7 @@ def _got(x: float, *bounds) -> str:
     """The value refused, in %g unless that reads as one of the range's bounds: then with
     the digits that tell it from them ('got 1.0000001e+13' beside the bound 1e+13, not
     'got 1e+13'; 'got 1e+291', not 'got 1.0000000000000001e+291')."""
-    shown = {_fmt(b) for b in bounds if b is not None}
+    shown = {_fmt(b) for b in bounds if b is not None and b != x}
     for digits in (6, 9, 12, 17):
         t = f"{x:.{digits}g}"
         if t not in shown:

@@ -471,6 +471,19 @@ def test_a_refused_value_shows_the_digits_that_tell_it_from_its_bounds(capsys):
              "--tol must be in [1e-15, 0.1], got 0.10000001\n")):
         code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *argv)
         assert code == 1 and out == "" and msg in err, err
+    # a value at an open bound reads as the bound ('got 1000000', 'got 0.0' for a while)
+    for argv, msg in ((["--pressure", "1e6", "--hardness", "1e6"], "mean pressure), got 1e+06\n"),
+                      (["--pressure", "0"], "--pressure must be in (0, inf) Pa, got 0\n")):
+        code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, "--elastic", "1e9", *argv)
+        assert code == 1 and out == "" and msg in err, err
+
+
+def test_an_assembly_file_with_its_article(tmp_path, capsys):
+    """'not UTF-8 text (byte 1); a assembly file must be UTF-8'."""
+    bad = tmp_path / "bad.toml"
+    bad.write_bytes(b"\x00\xff\xfe[assembly]")
+    code, out, err = outcome(capsys, "risk", SURF / "wedge-asymmetric.toml", bad)
+    assert code == 1 and out == "" and "; an assembly file must be UTF-8" in err, err
 
 
 def test_body_refusals_name_what_the_user_wrote(tmp_path, capsys):
