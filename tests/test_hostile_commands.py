@@ -498,3 +498,11 @@ def test_body_refusals_name_what_the_user_wrote(tmp_path, capsys):
     assert code == 1 and out == "" and err.count("\n") == 1, err
     assert "--centre-of-pressure (0.05, 0) m: a pressure distribution that does not carry " \
            "the load" in err and "pressure --pressure" not in err, err
+
+
+def test_risk_says_where_a_gauge_file_goes(files, capsys):
+    """'risk law.json assembly.toml' said 'unknown surface file format (suffix .json)'
+    though its help speaks of a gauge file holding a law family."""
+    code, out, err = outcome(capsys, "risk", files / "family.json", SURF / "bushing-strip.toml")
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert 'a gauge file goes in the assembly file ([friction] gauge = "law.json")' in err
