@@ -6,7 +6,6 @@ quasi-static ratchet analysis of the assembly under its load cycles -> verdict. 
 """
 from __future__ import annotations
 
-import argparse
 
 from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS

@@ -2,7 +2,6 @@
 solver until it sticks (deflection of the path by anisotropic friction)."""
 from __future__ import annotations
 
-import argparse
 import math
 
 from . import json_text, written_lines
