@@ -1,7 +1,6 @@
 """``asperity derive``: a texture's direction-dependent friction, in numbers and as a picture."""
 from __future__ import annotations
 
-
 from ..progress import progress_bar
 from . import add_cluster_arguments, emit, whole_flag
 from .parsing import DefaultsHelpFormatter

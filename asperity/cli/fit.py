@@ -2,7 +2,6 @@
 directional friction and save it as a gauge file."""
 from __future__ import annotations
 
-
 from ..laws.summary import format_fit, summary
 from . import emit
 from .parsing import DefaultsHelpFormatter

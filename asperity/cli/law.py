@@ -1,7 +1,6 @@
 """``asperity law``: evaluate, draw and export the friction law of a gauge file."""
 from __future__ import annotations
 
-
 from . import json_text, written_lines
 from .parsing import DefaultsHelpFormatter
 

@@ -6,7 +6,6 @@ quasi-static ratchet analysis of the assembly under its load cycles -> verdict. 
 """
 from __future__ import annotations
 
-
 from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS
 from ..microslip.risk_text import format_map, format_text

@@ -1,7 +1,6 @@
 """``asperity serve``: the local web page (texture or scan -> friction law -> risk verdict)."""
 from __future__ import annotations
 
-
 from .parsing import DefaultsHelpFormatter
 
 
