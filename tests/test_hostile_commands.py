@@ -506,3 +506,15 @@ def test_risk_says_where_a_gauge_file_goes(files, capsys):
     code, out, err = outcome(capsys, "risk", files / "family.json", SURF / "bushing-strip.toml")
     assert code == 1 and out == "" and err.count("\n") == 1, err
     assert 'a gauge file goes in the assembly file ([friction] gauge = "law.json")' in err
+
+
+def test_a_contact_footprint_of_one_pixel_is_refused_for_what_it_is():
+    """contact_footprint of a contact on one pixel is one point: slide_body refused it as
+    'inertia must be in [1e-30, 1e+12] kg m^2, got 0' (its inertia computed first)."""
+    import asperity as a
+    h = np.zeros((4, 4))
+    h[1, 1] = 1e-6
+    fp = a.contact_footprint(a.solve_contact(h, 1e-6, 1e9, 1e3))
+    assert fp.points.shape == (1, 2)
+    with pytest.raises(a.InputError, match="points must not all lie at one spot"):
+        a.slide_body(a.coulomb_law(0.3), fp, 1.0, 0.0, omega0=5.0)

@@ -203,6 +203,8 @@ def _as_body(body, mass, inertia):
         raise InputError("body must be a footprint with an extent (disc, ring, rectangle, "
                          "polygon, mesh, pressure), got a point: use asperity.slide for a "
                          "point mass")
+    from .body import _check_points
+    _check_points(body.points, body.weights)    # at one spot: say so, not 'inertia ... got 0'
     mass = 1.0 if mass is None else check_range("mass", mass, *MASS_RANGE, unit="kg")
     if inertia is None:
         inertia = mass * body.inertia_per_mass
