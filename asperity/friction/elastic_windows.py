@@ -311,16 +311,17 @@ def _run(path, elastic, derive, window, windows, placement, seed, unit, pixel_si
     # a window solved twice gives the same result twice: at most one a position (a 64 x 64
     # scan holds one window of 64, and solved 10000 identical ones for --windows 10000)
     k = min(n, window_positions(src.shape, w))
-    origins = tuple(window_origins(src.shape, w, k, placement, seed))
-    if placement == "grid":
-        origins = tuple(dict.fromkeys(origins))
+    origins = window_origins(src.shape, w, k, placement, seed)
+    strata = window_strata(src.shape, w, k) if placement == "random" else None
+    first = sorted({o: i for i, o in reversed(list(enumerate(origins)))}.values())
+    origins = tuple(origins[i] for i in first)      # strata narrower than a pixel repeat
+    strata = None if strata is None else tuple(strata[i] for i in first)
     plan = WindowPlan(src, None if friction_map is None else open_friction_map(friction_map,
                                                                                 src),
                       w, origins, replace(elastic, boundary=boundary),
                       {"detrend": detrend, "mu": mu, "despike": despike,
                        "max_slope": max_slope}, contact, n_dir, derive=derive,
-                      strata=tuple(window_strata(src.shape, w, k))
-                      if placement == "random" else None, seed=seed, asked=n)
+                      strata=strata, seed=seed, asked=n)
     report(0.0, "windows")
     results = _Runner(plan, client, run_windows, "lower --window").map("window", plan,
                                                                        label="windows")

@@ -196,10 +196,11 @@ def _window_notes(s: dict) -> list[str]:
     lines = []
     if wi.get("solved", wi["asked"]) < wi["asked"]:
         pos = wi.get("positions")
-        lines.append(f"{wi['asked']} windows asked, {wi['solved']} solved: the scan holds "
-                     + (f"{pos} distinct position{'s' * (pos != 1)} of a window of "
-                        f"{wi['window_px']} pixels" if pos is not None and pos <= wi["asked"]
-                        else "no more distinct windows on this grid")
+        lines.append(f"{wi['asked']} windows asked, {wi['solved']} solved: "
+                     + (f"the scan holds {pos} distinct position{'s' * (pos != 1)} of a "
+                        f"window of {wi['window_px']} pixels" if pos is not None
+                        and pos <= wi["asked"] else "the others fell on a position already "
+                        "solved (windows closer than a pixel)")
                      + " (the same window twice gives the same result)")
     if wi["redraws"]:
         lines.append(f"{wi['redraws']} random draws had too few defined pixels and were "
