@@ -524,3 +524,23 @@ def test_a_contact_footprint_of_one_pixel_is_refused_for_what_it_is():
     assert fp.points.shape == (1, 2)
     with pytest.raises(a.InputError, match="points must not all lie at one spot"):
         a.slide_body(a.coulomb_law(0.3), fp, 1.0, 0.0, omega0=5.0)
+
+
+def test_window_notes_count_in_words(tmp_path, capsys):
+    """'window: none of the 1 windows ... has enough', '1 windows found a place so', and
+    'N of <asked> windows skipped' counted against the windows asked, not those solved."""
+    h = np.where(np.arange(32)[:, None] < 16, np.nan, np.random.default_rng(1).normal(
+        size=(32, 32)) * 1e-6)
+    np.save(tmp_path / "half.npy", h)
+    base = ["contact", tmp_path / "half.npy", "--unit", "m", "--pixel-size", "1e-6", *E,
+            "--window", "16"]
+    code, out, err = outcome(capsys, *base, "--windows", "1")
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert "--window: the window of 16 x 16 pixels has not enough defined pixels" in err, err
+    code, out, err = outcome(capsys, *base, "--windows", "1", "--window-placement", "random",
+                             "--window-seed", "3")
+    assert code == 0 and "1 window found a place so" in out, out
+    code, out, err = outcome(capsys, *base, "--windows", "100")     # 289 positions: 100
+    assert code == 0 and "of 100 windows skipped" in out, out
+    code, out, err = outcome(capsys, *base, "--windows", "9000")    # 289 solved
+    assert code == 0 and "of 289 windows skipped" in out, out

@@ -91,8 +91,10 @@ def _estimate(plan, k: int) -> str:
 
 
 def _none_used(results, w):
-    return InputError(f"window: none of the {len(results)} windows of {w} x {w} pixels "
-                      f"has enough defined pixels (at least "
+    k = len(results)
+    return InputError(f"--window: {'the' if k == 1 else f'none of the {k}'} window"
+                      f"{'s' * (k != 1)} of {w} x {w} pixels has{' not' * (k == 1)} enough "
+                      f"defined pixels (at least "
                       f"{100 * MIN_DEFINED_SHARE:.0f} %); place them elsewhere (--windows, "
                       f"--window-placement) or lower --window")
 
@@ -203,12 +205,14 @@ def _window_notes(s: dict) -> list[str]:
                         "solved (windows closer than a pixel)")
                      + " (the same window twice gives the same result)")
     if wi["redraws"]:
-        lines.append(f"{wi['redraws']} random draws had too few defined pixels and were "
-                     f"redrawn in their stratum: {wi['redrawn']} windows found a place so "
+        lines.append(f"{_n(wi['redraws'], 'random draw')} had too few defined pixels and "
+                     f"were redrawn in their stratum: {_n(wi['redrawn'], 'window')} found a "
+                     "place so "
                      f"(at most {wi['max_redraws']} redraws a window)")
     if wi["skipped"]:
         bad = [w for w in s["per_window"] if "skipped" in w]
-        lines.append(f"{wi['skipped']} of {wi['asked']} windows skipped: "
+        lines.append(f"{wi['skipped']} of {_n(wi.get('solved', wi['asked']), 'window')} "
+                     "skipped: "
                      + "; ".join(f"at pixel {b['origin_px']}: {b['skipped']}" for b in bad[:3])
                      + (" ..." if len(bad) > 3 else ""))
     if wi["overlap"]:
