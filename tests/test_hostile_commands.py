@@ -544,3 +544,16 @@ def test_window_notes_count_in_words(tmp_path, capsys):
     assert code == 0 and "of 100 windows skipped" in out, out
     code, out, err = outcome(capsys, *base, "--windows", "9000")    # 289 solved
     assert code == 0 and "of 289 windows skipped" in out, out
+
+
+def test_derive_windows_names_its_own_arguments():
+    """derive_windows(placement=..., seed=...) was refused as 'window_placement must ...',
+    'window_seed must ...' (names it does not have)."""
+    import asperity as a
+    el = a.ElasticContact(1e9, 1e6)
+    for kw, msg in (({"placement": "Random"}, "placement must be one of grid, random"),
+                    ({"placement": "random", "seed": 2 ** 64}, "seed must be a whole number"),
+                    ({"windows": 2.5}, "windows must be a whole number in [1, 10000]")):
+        with pytest.raises(a.InputError) as exc:
+            a.derive_windows(SCAN, el, window=32, **kw)
+        assert str(exc.value).startswith(msg), exc.value

@@ -232,8 +232,8 @@ def check_window_request(shape, window, count, placement, seed) -> tuple[int, in
     flag (the seed as an int: 0.0 or numpy.float64(0) does not seed a generator)."""
     w = check_int("window", window, MIN_WINDOW, None)
     n = check_int("windows", count, 1, MAX_WINDOWS)
-    check_choice("window_placement", placement, PLACEMENTS)
-    seed = check_int("window_seed", seed, 0, 2 ** 63 - 1)
+    check_choice("placement", placement, PLACEMENTS)
+    seed = check_int("seed", seed, 0, 2 ** 63 - 1)
     if w > min(shape):
         raise InputError(f"window {w} pixels is larger than the scan ({shape[0]} x "
                          f"{shape[1]} pixels): at most {min(shape)}")
