@@ -461,6 +461,7 @@ def test_help_never_says_default_none(capsys, command):
     code, out, _ = outcome(capsys, command, "--help")
     text = " ".join(out.split())
     assert code == 0 and "default: None" not in text and "(None:" not in text, text
+    assert "(default: False)" not in text, text
     if command in ("derive", "contact"):
         assert "number of windows, 1 to 10000 (default 8)" in text, text
 

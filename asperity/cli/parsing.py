@@ -100,9 +100,10 @@ def value_options(parser: argparse.ArgumentParser):
 
 class DefaultsHelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
     """Defaults in the help, but not "(default: None)" (derive's help said it 34 times):
-    those options say in words what leaving them out means."""
+    those options say in words what leaving them out means; nor "(default: False)" after
+    a switch (--json, -q)."""
 
     def _get_help_string(self, action):
-        if action.default is None:
+        if action.default is None or (action.nargs == 0 and action.default is False):
             return action.help
         return super()._get_help_string(action)

@@ -61,9 +61,12 @@ def add_parser(sub) -> None:
     p.add_argument("--t-end", type=float, default=None, metavar="S",
                    help="end time (s); default: until the body sticks")
     p.add_argument("--tol", type=float, default=1e-12,
-                   help="fixed-point tolerance (friction impulse per normal impulse)")
-    p.add_argument("--max-iterations", type=int, default=2000,
-                   help="fixed-point iteration limit per step")
+                   help="tolerance of each step's solve, in [1e-15, 1e-3]: the point mass's "
+                        "fixed point (friction impulse per normal impulse), a body's Newton "
+                        "iteration (relative residual)")
+    p.add_argument("--max-iterations", type=int, default=2000, metavar="N",
+                   help="iteration limit of each step's solve, 1 to 1e6 (fixed point; a "
+                        "body: Newton)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the path")
     p.add_argument("--csv", metavar="FILE.csv",
