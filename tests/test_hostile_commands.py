@@ -558,3 +558,14 @@ def test_derive_windows_names_its_own_arguments():
         with pytest.raises(a.InputError) as exc:
             a.derive_windows(SCAN, el, window=32, **kw)
         assert str(exc.value).startswith(msg), exc.value
+
+
+def test_window_progress_is_not_numbered_as_a_pass(monkeypatch):
+    """'asperity contact: pass 1: windows 7.0 % after 5 s': windows take one pass (a scan's
+    tiles take several), so their progress is 'windows ...'."""
+    import asperity as a
+    from asperity.friction import tiled
+    labels = []
+    monkeypatch.setattr(tiled, "report", lambda f, label: labels.append(label))
+    a.derive_windows(SCAN, a.ElasticContact(1e9, 1e6), window=32, windows=2)
+    assert labels and set(labels) == {"windows"}, labels

@@ -323,6 +323,6 @@ def _run(path, elastic, derive, window, windows, placement, seed, unit, pixel_si
                        "max_slope": max_slope}, contact, n_dir, derive=derive,
                       strata=strata, seed=seed, asked=n)
     report(0.0, "windows")
-    results = _Runner(plan, client, run_windows, "lower --window").map("window", plan,
-                                                                       label="windows")
+    results = _Runner(plan, client, run_windows, "lower --window").map(
+        "window", plan, label="windows", numbered=False)
     return plan, results
