@@ -100,7 +100,7 @@ def check_range(name: str, value, low: float | None = None, high: float | None =
         raise InputError(f"{name} must be in {rng}{u}, got NaN")
     if math.isinf(x) and not allow_inf:
         raise InputError(f"{name} must be a finite number in {rng}{u}, got {_fmt(x)}")
-    raise InputError(f"{name} must be in {rng}{u}, got {_fmt(x)}")
+    raise InputError(f"{name} must be in {rng}{u}, got {_got(x, low, high)}")
 
 
 def check_int(name: str, value, low: int | None = None, high: int | None = None) -> int:
@@ -249,6 +249,18 @@ def is_array(value) -> bool:
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
+
+
+def _got(x: float, *bounds) -> str:
+    """The value refused, in %g unless that reads as one of the range's bounds: then with
+    the digits that tell it from them ('got 1.0000001e+13' beside the bound 1e+13, not
+    'got 1e+13'; 'got 1e+291', not 'got 1.0000000000000001e+291')."""
+    shown = {_fmt(b) for b in bounds if b is not None and b != x}
+    for digits in (6, 9, 12, 17):
+        t = f"{x:.{digits}g}"
+        if t not in shown:
+            return t
+    return repr(x)
 
 
 def _fmt_int(n: int) -> str:

@@ -290,7 +290,7 @@ def read_text_file(path: str | Path, what: str, error=InputError,
     try:
         size = p.stat().st_size
         if size > max_bytes:
-            raise error(f"{p}: {size / 2**20:.0f} MB is too large for a {what} "
+            raise error(f"{p}: {size / 2**20:.0f} MB is too large for {_a(what)} "
                         f"(at most {max_bytes >> 20} MB)")
         data = p.read_bytes()
     except OSError as exc:
@@ -298,7 +298,12 @@ def read_text_file(path: str | Path, what: str, error=InputError,
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise error(f"{p}: not UTF-8 text (byte {exc.start}); a {what} must be UTF-8") from None
+        raise error(f"{p}: not UTF-8 text (byte {exc.start}); {_a(what)} must be UTF-8") from None
+
+
+def _a(noun: str) -> str:
+    """'a gauge file', 'an assembly file'."""
+    return f"{'an' if noun[:1].lower() in 'aeiou' else 'a'} {noun}"
 
 
 def read_toml(path: str | Path, what: str, allowed: set[str], error) -> dict:

@@ -486,7 +486,7 @@ def test_body_file_mesh_named_relative_to_the_file(tmp_path, meshes):
     ('shape = "disc"\nradius = 0.0\nmass = 1.0', "body.radius"),
     ('shape = "disc"\nradius = nan\nmass = 1.0', "body.radius"),
     ('shape = "disc"\nradius = inf\nmass = 1.0', "body.radius"),
-    ('shape = "rectangle"\nsize = [0.1, -0.1]\nmass = 1.0', "body.b"),
+    ('shape = "rectangle"\nsize = [0.1, -0.1]\nmass = 1.0', "body.size[1] must be"),
     ('shape = "rectangle"\nsize = [0.1]\nmass = 1.0', "size"),
     ('shape = "rectangle"\nsize = [0.1, 0.1, 0.1]\nmass = 1.0', "size"),
     ('shape = "disc"\nmass = 1.0', "body.radius"),

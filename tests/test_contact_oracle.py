@@ -323,8 +323,8 @@ def test_effective_modulus():
 # ---- the benchmark's plumbing (no timing asserted) -------------------------------------
 
 @pytest.mark.parametrize("flags,msg", [
-    (["--contact-size", "10"], "--contact-size must be in [64, 4096], got 10"),
-    (["--repeats", "0"], "--repeats must be in [1, 20], got 0")])
+    (["--contact-size", "10"], "--contact-size must be a whole number in [64, 4096], got 10"),
+    (["--repeats", "0"], "--repeats must be a whole number in [1, 20], got 0")])
 def test_contact_benchmark_flags_refused(capsys, flags, msg):
     from cli_run import run
     code, out, err = run(capsys, "bench", "--only", "contact", *flags)

@@ -141,7 +141,11 @@ BODIES = [
     (["--t-end", "1", "--force", "1e308", "0"], "--force must be in [-1e+12, 1e+12] N"),
     (["--force", "-1e-1", "0"], "--force, --torque and --force-amplitude need --t-end"),
     (["--omega0", "-1e7"], "--omega0 must be in [-1e+06, 1e+06] rad/s, got -1e+07"),
-    (["--contact-points", "2.5"], "--contact-points must be a whole number, got 2.5"),
+    (["--contact-points", "2.5"], "--contact-points must be a whole number in [1, 1000000]"),
+    (["--max-iterations", "2.5"], "--max-iterations must be a whole number in [1, 1000000]"),
+    # one point: the run's horizon divided by its friction torque (an internal error)
+    (["--contact-points", "1"], "body's contact points (--contact-points, or a body file"),
+    (["--omega0", "1e6", "--dt", "1e-4"], "--t-end must be given: this body may need"),
     (["--texture-angle", "1e5"], "--texture-angle must be in [-360, 360] deg"),
 ]
 
@@ -153,6 +157,53 @@ def test_slide_body_refuses_in_one_line(capsys, extra, msg):
     assert err.startswith("asperity slide: error: ") and msg in err, err
 
 
+def test_a_body_file_whose_pressure_points_sit_at_one_spot_is_refused(tmp_path, capsys):
+    """A pressure file of one point, or of points at one place: refused in one line (the
+    run's horizon divided by the nil friction torque: an internal error), with or without
+    --t-end and --omega0."""
+    for name, rows in (("one", ["0,0,1000"]), ("spot", ["0.01,0.01,1"] * 3),
+                       ("femto", ["0,0,1", "1e-15,0,1"])):
+        (tmp_path / f"{name}.csv").write_text("x_m,y_m,p_Pa\n" + "\n".join(rows) + "\n")
+        (tmp_path / f"{name}.toml").write_text(
+            f'[body]\nshape = "disc"\nradius = 0.05\nmass = 1.0\npressure_file = "{name}.csv"\n')
+        for extra in ([], ["--omega0", "10"], ["--t-end", "0.1"]):
+            code, out, err = outcome(capsys, "slide", *BODY, "--body", tmp_path / f"{name}.toml",
+                                     *extra)
+            assert code == 1 and out == "" and err.count("\n") == 1, err
+            assert "must not all lie at one spot" in err, err
+
+
+def test_slide_body_refuses_a_footprint_at_one_spot_before_its_horizon():
+    from asperity import InputError, slide_body
+    from asperity.bodies.pressure import from_pressure
+    from asperity.laws.planar import coulomb_law
+    for pts in ([[0.0, 0.0]], [[0.01, 0.02]] * 3):
+        fp = from_pressure(np.array(pts), np.ones(len(pts)))
+        for t_end in (None, 0.1):
+            with pytest.raises(InputError, match="one spot") as e:
+                slide_body(coulomb_law(0.3), fp, 1.0, 30.0, 10.0, dt=1e-3, t_end=t_end,
+                           inertia=1e-3)
+            assert "\n" not in str(e.value)
+
+
+def test_a_whole_number_is_read_exactly_and_refused_with_its_range(capsys):
+    """--window-seed 9223372036854775807 (its largest value) went through a float and was
+    refused as 9223372036854775808; --max-iterations 2.5 said 'a whole number' without the
+    range."""
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "32", "--windows", "1",
+                             "--window-placement", "random", "--window-seed",
+                             str(2 ** 63 - 1), "--json")
+    assert code == 0, err
+    import json
+    assert json.loads(out)["windows"]["seed"] == 2 ** 63 - 1
+    for argv in (["fit", SURF / "wedge-asymmetric.toml", "--directions", "7.5"],
+                 ["law", SURF / "wedge-asymmetric.toml", "--csv-directions", "nan"],
+                 ["bench", "--repeats", "1e400"]):
+        code, out, err = outcome(capsys, *argv)
+        assert code == 1 and out == "" and err.count("\n") == 1, err
+        assert "must be a whole number in [" in err, err
+
+
 @pytest.mark.parametrize("name,msg", [("bad.toml", "not valid TOML"),
                                       ("neg.toml", "body.radius must be in [1e-09, 1000] m"),
                                       ("flat.toml", "body.vertices: the polygon has zero area"),
@@ -162,14 +213,35 @@ def test_slide_refuses_a_body_file_it_cannot_use(files, capsys, name, msg):
     assert code == 1 and out == "" and err.count("\n") == 1 and msg in err, err
 
 
-def test_a_body_launched_at_a_denormal_speed_prints_a_result(capsys):
-    """--u0 5e-324: the text of a run without a rest time and without --t-end raised a
-    TypeError (an internal error, status 70)."""
-    code, out, err = outcome(capsys, "slide", "--mu1", "0.3", "--u0", "5e-324", "--angle", "30",
+def test_a_body_launched_slower_than_the_solver_resolves_is_refused(capsys):
+    """--u0 5e-324 (first an internal error, then a run to the horizon printing "still
+    moving" beside "sliding stopped at 0 s"): the kernels' slip norm underflows below
+    ~1e-154 m/s and takes the body for sticking while it keeps its speed, so a launch
+    slower than 1e-100 m/s (or rad/s) other than 0 is refused, in the CLI and the API;
+    1e-99 comes to rest in one step."""
+    import asperity as a
+    for flag, value, unit in (("--u0", "5e-324", "m/s"), ("--u0", "1e-200", "m/s"),
+                              ("--omega0", "-1e-300", "rad/s")):
+        argv = [*BODY, *DISC, flag, value]
+        code, out, err = outcome(capsys, "slide", *argv)
+        assert code == 1 and out == "" and err.count("\n") == 1, err
+        assert f"{flag} must be 0 or at least 1e-100 {unit} in size, got " in err, err
+    code, out, err = outcome(capsys, "slide", "--mu1", "0.3", "--u0", "1e-99", "--angle", "90",
                              "--dt", "1e-3", *DISC)
     assert code == 0 and err == "", err
-    assert "deflection:" in out and "Newton iterations per step" in out
+    assert "rest at" in out and "(1 step of 0.001 s)" in out, out
     assert_finite_output(out)
+    fp, law = a.disc_footprint(0.05, contact_points=64), a.coulomb_law(0.3)
+    for kw, msg in (({"u0": 5e-324}, "u0 must be 0 or at least 1e-100 m/s"),
+                    ({"u0": 1.0, "omega0": 1e-101}, "omega0 must be 0 or at least 1e-100")):
+        with pytest.raises(a.InputError, match=msg):
+            a.slide_body(law, fp, angle_deg=0.0, **kw)
+    with pytest.raises(a.InputError, match=r"u0 \(vx, vy\) must be 0 or at least 1e-100"):
+        a.simulate_body(fp.points, fp.weights, law, mass=1.0, inertia=1e-3, dt=1e-3,
+                        u0=(1e-300, 1e-300, 0.0))
+    r = a.simulate_body(fp.points, fp.weights, law, mass=1.0, inertia=1e-3, dt=1e-3,
+                        u0=(0.0, 1e-99, 0.0))
+    assert r.stop_time == 1e-3 and not np.any(r.u_final), r
 
 
 def test_a_spinning_body_says_when_its_spin_stopped(capsys):
@@ -231,3 +303,269 @@ def test_the_real_commands_agree(files):
                    contains="unrecognized arguments: --mu 0.1")
     assert_refused(cli("law", files / "family.json", "--pressure", "-1e-1"),
                    contains="--pressure must be in (0, inf) Pa, got -0.1")
+
+
+def test_a_window_position_is_solved_once_and_the_text_says_so(capsys):
+    """--window 64 --windows 10000 on the 64 x 64 scan solved 10000 identical windows (five
+    minutes for one solve's answer); a grid of 30 windows of 60 pixels repeated positions of
+    the 25 the scan holds.  Each position is solved once, its figures those of one window."""
+    import json
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "64", "--windows",
+                             "10000", "--json")
+    assert code == 0, err
+    s = json.loads(out)
+    wi = s["windows"]
+    assert (wi["asked"], wi["positions"], wi["solved"], wi["used"]) == (10000, 1, 1, 1), wi
+    code, one, err = outcome(capsys, "contact", SCAN, *E, "--window", "64", "--windows", "1",
+                             "--json")
+    assert code == 0, err
+    assert s["area_fraction"] == json.loads(one)["area_fraction"]
+    assert s["area_fraction"]["n"] == 1 and s["area_fraction"]["sd"] is None
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "64", "--windows", "5",
+                             "--window-placement", "random")
+    assert code == 0, err
+    assert "5 windows asked, 1 solved: the scan holds 1 distinct position of a window of 64 " \
+           "pixels" in out and "ESTIMATE from 1 window of" in out, out
+    for placement in ("grid", "random"):
+        code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "60", "--windows",
+                                 "30", "--window-placement", placement, "--json")
+        assert code == 0, err
+        wi = json.loads(out)["windows"]
+        origins = [tuple(w["origin_px"]) for w in json.loads(out)["per_window"]]
+        assert wi["positions"] == 25 and wi["solved"] == len(origins) <= 25, wi
+        assert len(set(origins)) == len(origins), origins
+        if placement == "grid":
+            assert len(origins) == 25, origins
+    # strata narrower than a pixel: two of the 20 random draws fell on one position
+    code, out, err = outcome(capsys, "contact", SCAN, *E, "--window", "60", "--windows", "20",
+                             "--window-placement", "random", "--window-seed", "5")
+    assert code == 0, err
+    assert "20 windows asked, 19 solved: the others fell on a position already solved" in out
+
+
+_SYNC_RACE = """
+import os, signal, sys, threading, time
+from distributed.utils import LoopRunner, sync
+if sys.argv[1] == "quiet":
+    from asperity.study.clusters import quiet_interrupted_sync
+    quiet_interrupted_sync()
+runner = LoopRunner(asynchronous=False)
+runner.start()
+gate, busy = threading.Event(), threading.Event()
+runner.loop.add_callback(lambda: (busy.set(), gate.wait(10)))   # the loop thread is busy
+busy.wait(10)
+def ctrl_c():                     # Ctrl-C while sync() waits, before its coroutine started
+    time.sleep(0.2)
+    os.kill(os.getpid(), signal.SIGINT)
+    time.sleep(0.3)
+    gate.set()
+threading.Thread(target=ctrl_c).start()
+async def work():
+    return 1
+try:
+    sync(runner.loop, work)
+except KeyboardInterrupt:
+    print("interrupted")
+time.sleep(1.0)
+runner.stop()
+"""
+
+
+def test_ctrl_c_before_a_dask_call_started_prints_no_traceback():
+    """Ctrl-C during 'contact --window ... --workers 2' printed tornado's 'Exception in
+    callback ... NameError: cannot access free variable 'future'' (distributed's sync()
+    interrupted before its coroutine ran): the race reproduced exactly, and silenced by
+    the filter every cluster connection installs."""
+    import subprocess
+    import sys
+
+    from hostile import package_env
+    runs = {}
+    for mode in ("plain", "quiet"):
+        p = subprocess.run([sys.executable, "-c", _SYNC_RACE, mode], capture_output=True,
+                           text=True, timeout=60, env=package_env(), check=False)
+        assert p.stdout == "interrupted\n", (mode, p.stdout, p.stderr)
+        runs[mode] = p.stderr
+    assert "NameError" in runs["plain"] and "Traceback" in runs["plain"], runs["plain"]
+    assert runs["quiet"] == "", runs["quiet"]
+
+
+def test_the_text_counts_the_steps_to_the_rest_and_one_iteration(capsys):
+    """'rest ... after 0.1699 s (10000 steps of 0.0001 s)' under --t-end 1 (the steps run,
+    not those to the rest: 0.1699 s is 1699 of them); 'in 1 iterations'."""
+    for extra in ([], DISC):
+        code, out, err = outcome(capsys, "slide", *BODY, *extra, "--t-end", "2")
+        assert code == 0, err
+        line = next(x for x in out.splitlines() if x.startswith("rest at"))
+        t = float(line.split(" after ")[1].split(" s (")[0])
+        k = int(line.split(" s (")[1].split(" step")[0])
+        assert k == round(t / 1e-3) < 2000 and "; run to 2 s)" in line, line
+    code, out, _ = outcome(capsys, "slide", *BODY)
+    assert "run to" not in out, out
+    code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *E,
+                             "--max-iterations", "1")
+    assert code == 3 and out == "" and " in 1 iteration (residual" in err, err
+
+
+def test_a_local_cluster_starts_with_ctrl_c_held_from_its_workers():
+    """Ctrl-C (to the process group, as a terminal sends it) while 'contact --window ...
+    --workers 2' started its cluster printed the workers' KeyboardInterrupt tracebacks as
+    they imported dask, and atexit's 'AssertionError: Status.init' of the half-started
+    cluster.  While it starts SIGINT is ignored (the processes started then inherit that)
+    and SIGTERM is held, then raised as the command's Terminated."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    from asperity.cli.interrupts import Terminated, terminate_as_interrupt
+    from asperity.study.clusters import _held_signals
+    before = signal.getsignal(signal.SIGINT)
+    with terminate_as_interrupt():
+        hold = _held_signals()
+        with hold:
+            code = "import signal; print(int(signal.getsignal(signal.SIGINT)))"
+            child = subprocess.run([sys.executable, "-c", code],
+                                   capture_output=True, text=True, timeout=60, check=True)
+            os.kill(os.getpid(), signal.SIGTERM)
+            for _ in range(1000):             # the handler runs between two bytecodes
+                if hold.got:
+                    break
+        assert int(child.stdout) == signal.SIG_IGN, child
+        assert hold.got == signal.SIGTERM
+        with pytest.raises(Terminated):
+            hold.replay()
+    assert signal.getsignal(signal.SIGINT) is before
+
+
+def test_unit_replaces_a_stated_height_unit_as_its_help_says(capsys):
+    """--help said '--unit ... overrides nothing a file states' while it replaces the
+    stated height unit of a text matrix ('# Value units: m' read as um: a near-flat map, in
+    full contact at p/E* = 0.001) and keeps its '# Width:'."""
+    import json
+    fractions = {}
+    for unit in ([], ["--unit", "um"]):
+        code, out, err = outcome(capsys, "contact", SCAN, *E, *unit, "--json")
+        assert code == 0, err
+        s = json.loads(out)
+        fractions[bool(unit)] = s["area_fraction"]
+    assert fractions[False] < 0.1 and fractions[True] == 1.0, fractions
+    code, out, _ = outcome(capsys, "contact", "--help")
+    assert "overrides nothing" not in out and "--unit replaces it" in " ".join(out.split())
+
+
+@pytest.mark.parametrize("command", ["derive", "fit", "law", "risk", "serve", "slide",
+                                     "contact"])
+def test_help_never_says_default_none(capsys, command):
+    """derive --help said '(default: None)' 34 times, and '(None: 8)' for --windows."""
+    code, out, _ = outcome(capsys, command, "--help")
+    text = " ".join(out.split())
+    assert code == 0 and "default: None" not in text and "(None:" not in text, text
+    assert "(default: False)" not in text, text
+    if command in ("derive", "contact"):
+        assert "number of windows, 1 to 10000 (default 8)" in text, text
+
+
+def test_a_refused_value_shows_the_digits_that_tell_it_from_its_bounds(capsys):
+    """'--elastic 1.0000001e13' was refused as 'got 1e+13' beside the bound 1e+13; the
+    fix then printed '--pressure 1e300' as 'got 1.0000000000000001e+291' (p/E*)."""
+    for argv, msg in (
+            (["--elastic", "1.0000001e13", "--pressure", "1e6"],
+             "--elastic must be in [1, 1e+13] Pa, got 1.0000001e+13"),
+            (["--elastic", "1e9", "--pressure", "1e300"],
+             "--pressure / --elastic must be in [1e-12, 10], got 1e+291\n"),
+            (["--elastic", "1e9", "--pressure", "1e6", "--tol", "0.10000001"],
+             "--tol must be in [1e-15, 0.1], got 0.10000001\n")):
+        code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, *argv)
+        assert code == 1 and out == "" and msg in err, err
+    # a value at an open bound reads as the bound ('got 1000000', 'got 0.0' for a while)
+    for argv, msg in ((["--pressure", "1e6", "--hardness", "1e6"], "mean pressure), got 1e+06\n"),
+                      (["--pressure", "0"], "--pressure must be in (0, inf) Pa, got 0\n")):
+        code, out, err = outcome(capsys, "contact", *WEDGE_FLAGS, "--elastic", "1e9", *argv)
+        assert code == 1 and out == "" and msg in err, err
+
+
+def test_an_assembly_file_with_its_article(tmp_path, capsys):
+    """'not UTF-8 text (byte 1); a assembly file must be UTF-8'."""
+    bad = tmp_path / "bad.toml"
+    bad.write_bytes(b"\x00\xff\xfe[assembly]")
+    code, out, err = outcome(capsys, "risk", SURF / "wedge-asymmetric.toml", bad)
+    assert code == 1 and out == "" and "; an assembly file must be UTF-8" in err, err
+
+
+def test_body_refusals_name_what_the_user_wrote(tmp_path, capsys):
+    """A body file's 'size = [nan, 0.1]' was refused as 'body.a must be ...'; the CLI's
+    renaming of 'profile' made 'a pressure --pressure-profile that does not carry ...'."""
+    f = tmp_path / "nan.toml"
+    f.write_text('[body]\nshape = "rectangle"\nsize = [nan, 0.1]\nmass = 1.0\n')
+    code, out, err = outcome(capsys, "slide", *BODY, "--body", f)
+    assert code == 1 and out == "" and "body.size[0] must be in [1e-09, 1000] m, got NaN" in err
+    code, out, err = outcome(capsys, "slide", *BODY, *DISC, "--pressure-profile", "linear",
+                             "--centre-of-pressure", "0.05", "0")
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert "--centre-of-pressure (0.05, 0) m: a pressure distribution that does not carry " \
+           "the load" in err and "pressure --pressure" not in err, err
+
+
+def test_risk_says_where_a_gauge_file_goes(files, capsys):
+    """'risk law.json assembly.toml' said 'unknown surface file format (suffix .json)'
+    though its help speaks of a gauge file holding a law family."""
+    code, out, err = outcome(capsys, "risk", files / "family.json", SURF / "bushing-strip.toml")
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert 'a gauge file goes in the assembly file ([friction] gauge = "law.json")' in err
+
+
+def test_a_contact_footprint_of_one_pixel_is_refused_for_what_it_is():
+    """contact_footprint of a contact on one pixel is one point: slide_body refused it as
+    'inertia must be in [1e-30, 1e+12] kg m^2, got 0' (its inertia computed first)."""
+    import asperity as a
+    h = np.zeros((4, 4))
+    h[1, 1] = 1e-6
+    fp = a.contact_footprint(a.solve_contact(h, 1e-6, 1e9, 1e3))
+    assert fp.points.shape == (1, 2)
+    with pytest.raises(a.InputError, match="points must not all lie at one spot"):
+        a.slide_body(a.coulomb_law(0.3), fp, 1.0, 0.0, omega0=5.0)
+
+
+def test_window_notes_count_in_words(tmp_path, capsys):
+    """'window: none of the 1 windows ... has enough', '1 windows found a place so', and
+    'N of <asked> windows skipped' counted against the windows asked, not those solved."""
+    h = np.where(np.arange(32)[:, None] < 16, np.nan, np.random.default_rng(1).normal(
+        size=(32, 32)) * 1e-6)
+    np.save(tmp_path / "half.npy", h)
+    base = ["contact", tmp_path / "half.npy", "--unit", "m", "--pixel-size", "1e-6", *E,
+            "--window", "16"]
+    code, out, err = outcome(capsys, *base, "--windows", "1")
+    assert code == 1 and out == "" and err.count("\n") == 1, err
+    assert "--window: the window of 16 x 16 pixels has not enough defined pixels" in err, err
+    code, out, err = outcome(capsys, *base, "--windows", "1", "--window-placement", "random",
+                             "--window-seed", "3")
+    assert code == 0 and "1 window found a place so" in out, out
+    code, out, err = outcome(capsys, *base, "--windows", "100")     # 289 positions: 100
+    assert code == 0 and "of 100 windows skipped" in out, out
+    code, out, err = outcome(capsys, *base, "--windows", "9000")    # 289 solved
+    assert code == 0 and "of 289 windows skipped" in out, out
+
+
+def test_derive_windows_names_its_own_arguments():
+    """derive_windows(placement=..., seed=...) was refused as 'window_placement must ...',
+    'window_seed must ...' (names it does not have)."""
+    import asperity as a
+    el = a.ElasticContact(1e9, 1e6)
+    for kw, msg in (({"placement": "Random"}, "placement must be one of grid, random"),
+                    ({"placement": "random", "seed": 2 ** 64}, "seed must be a whole number"),
+                    ({"windows": 2.5}, "windows must be a whole number in [1, 10000]")):
+        with pytest.raises(a.InputError) as exc:
+            a.derive_windows(SCAN, el, window=32, **kw)
+        assert str(exc.value).startswith(msg), exc.value
+
+
+def test_window_progress_is_not_numbered_as_a_pass(monkeypatch):
+    """'asperity contact: pass 1: windows 7.0 % after 5 s': windows take one pass (a scan's
+    tiles take several), so their progress is 'windows ...'."""
+    import asperity as a
+    from asperity.friction import tiled
+    labels = []
+    monkeypatch.setattr(tiled, "report", lambda f, label: labels.append(label))
+    a.derive_windows(SCAN, a.ElasticContact(1e9, 1e6), window=32, windows=2)
+    assert labels and set(labels) == {"windows"}, labels

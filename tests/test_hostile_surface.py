@@ -429,7 +429,7 @@ def _resource_cases(tmp_path) -> dict:
         "<Record2>", "<Record2>" + "<a/>" * 100_001)}))
     cases["x3p 1e5 elements"] = (["derive", many], "more than 100000 elements")
     cases["bench --facets 16384"] = (["bench", "--only", "facets", "--facets", "16384"],
-                                     "--facets must be in [2, 8192]")
+                                     "--facets must be a whole number in [2, 8192]")
     cases["bench work"] = (["bench", "--only", "facets", "--facets", "8192", "--directions",
                             "100000"], "lower --directions or --facets")
     cases["bench NumPy work"] = (["bench", "--only", "facets", "--facets", "8192",

@@ -450,8 +450,8 @@ def test_ctrl_c_stops_a_tiled_derive(tmp_path):
     assert err.count("\n") == 1, err
 
 
-BENCH_FLAGS = [(["--scan-sizes", "10"], "--scan-sizes must be in [64, 32768], got 10"),
-               (["--repeats", "0"], "--repeats must be in [1, 20], got 0"),
+BENCH_FLAGS = [(["--scan-sizes", "10"], "--scan-sizes must be a whole number in [64, 32768], got 10"),
+               (["--repeats", "0"], "--repeats must be a whole number in [1, 20], got 0"),
                (["--scan-dir", "/no/such/folder"], "--scan-dir '/no/such/folder' is not a folder")]
 
 

@@ -111,6 +111,8 @@ def _body(data: dict, p: Path) -> Body:
             size = b["size"]
             if not isinstance(size, list) or len(size) != 2:
                 raise InputError("size must be [a, b] (m), two numbers")
+            for i, v in enumerate(size):    # named as the file names them (not 'a', 'b')
+                check_range(f"size[{i}]", v, *fpm.LENGTH_RANGE, unit="m")
             fp = fpm.rectangle(size[0], size[1], **kw)
         elif shape == "polygon":
             fp = fpm.polygon(b["vertices"], **kw)

@@ -67,7 +67,7 @@ RING_POWER = 0.25
 MAX_CONTACT_POINTS = 1_000_000
 #: memory a contact point costs in a footprint and a solver (points, weights, work arrays)
 BYTES_PER_POINT = 512
-NOT_CARRIED = "a pressure profile that does not carry the load"
+NOT_CARRIED = "a pressure distribution that does not carry the load"
 GOLDEN_ANGLE = math.pi * (3.0 - math.sqrt(5.0))
 
 

@@ -77,4 +77,8 @@ def whole_flag(flag: str, text, low: int, high: int) -> int | None:
     """A whole number typed on the command line ('200', '1e7') in [low, high]; None stays
     None (a flag not given)."""
     from ..errors import check_int, number_from_text
-    return None if text is None else check_int(flag, number_from_text(flag, text), low, high)
+    from .parsing import _WHOLE
+    if text is None:
+        return None
+    t = str(text).strip()        # digits alone: exactly (2**63 - 1 is no float)
+    return check_int(flag, int(t) if _WHOLE.match(t) else number_from_text(flag, t), low, high)

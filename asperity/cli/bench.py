@@ -71,7 +71,7 @@ def add_parser(sub) -> None:
 
 def main(args) -> int:
     from .. import bench
-    from ..errors import check_range
+    from ..errors import check_int, check_range
     seconds = check_range("--seconds", args.seconds, 0.05, 600)
     # every flag in its widest range, whichever benchmark reads it (a value for a benchmark
     # not asked for was ignored: 'bench --workers -1' ran the default benchmarks)
@@ -81,28 +81,28 @@ def main(args) -> int:
             ("--workers", args.workers, 1, 64), ("--repeats", args.repeats, 1, 20),
             ("--contact-size", args.contact_size, 64, 4096),
             *(("--scan-sizes", n, 64, 32768) for n in args.scan_sizes)):
-        check_range(flag, value, low, high)
+        check_int(flag, value, low, high)
     parts = [args.only] if args.only else ["closed-form", "springs"]
     if args.facets is not None and "facets" not in parts:
         parts.append("facets")
     if "facets" in parts:                      # every request checked before any work
-        n_grid = int(check_range("--facets", 2048 if args.facets is None else args.facets,
-                                 2, MAX_FACETS_GRID))
-        n_dir = int(check_range("--directions", args.directions, 1, 1_000_000))
-        n_np = int(check_range("--numpy-directions", args.numpy_directions, 1, 1_000_000))
+        n_grid = check_int("--facets", 2048 if args.facets is None else args.facets,
+                           2, MAX_FACETS_GRID)
+        n_dir = check_int("--directions", args.directions, 1, 1_000_000)
+        n_np = check_int("--numpy-directions", args.numpy_directions, 1, 1_000_000)
         bench.check_facets_request(n_grid, n_dir, n_np)
     if "study" in parts:
-        workers = int(check_range("--workers", args.workers, 1, 64))
+        workers = check_int("--workers", args.workers, 1, 64)
     if "big-scan" in parts:
-        sizes = [int(check_range("--scan-sizes", n, 64, 32768)) for n in args.scan_sizes]
-        repeats = int(check_range("--repeats", args.repeats, 1, 20))
-        n_dir = int(check_range("--directions", args.directions, 8, 100_000))
+        sizes = [check_int("--scan-sizes", n, 64, 32768) for n in args.scan_sizes]
+        repeats = check_int("--repeats", args.repeats, 1, 20)
+        n_dir = check_int("--directions", args.directions, 8, 100_000)
         if args.scan_dir is not None and not os.path.isdir(args.scan_dir):
             from ..errors import InputError
             raise InputError(f"--scan-dir {args.scan_dir!r} is not a folder")
     if "contact" in parts:
-        contact_n = int(check_range("--contact-size", args.contact_size, 64, 4096))
-        repeats = int(check_range("--repeats", args.repeats, 1, 20))
+        contact_n = check_int("--contact-size", args.contact_size, 64, 4096)
+        repeats = check_int("--repeats", args.repeats, 1, 20)
     out = {}
     if "closed-form" in parts:
         out["closed_form"] = bench.bench_closed_form(seconds)

@@ -1,10 +1,9 @@
 """``asperity derive``: a texture's direction-dependent friction, in numbers and as a picture."""
 from __future__ import annotations
 
-import argparse
-
 from ..progress import progress_bar
 from . import add_cluster_arguments, emit, whole_flag
+from .parsing import DefaultsHelpFormatter
 from .sources import (
     add_elastic_arguments,
     add_source_arguments,
@@ -30,7 +29,7 @@ def add_parser(sub) -> None:
                     "(.stl .obj .ply), a height map (.npy, text matrix) or an instrument file "
                     "(.x3p .mi .sur .opd .datx ..., needs pip install 'asperity[metrology]'); "
                     "a trailing .gz is read too.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
     p.add_argument("--method", choices=["closed-form", "springs"], default="closed-form",

@@ -22,14 +22,14 @@ def add_window_arguments(p, what: str) -> None:
         "its pixels defined is redrawn in its stratum (at most 16 times; the output counts "
         "them).  --workers / --scheduler run the windows on a Dask cluster.")
     w.add_argument("--window", metavar="W", default=None,
-                   help="window side in pixels, 16 to the scan's smaller side (None: no windows)")
+                   help="window side in pixels, 16 to the scan's smaller side (default: none, no windows)")
     w.add_argument("--windows", metavar="K", default=None,
-                   help="number of windows, 1 to 10000 (None: 8)")
+                   help="number of windows, 1 to 10000 (default 8)")
     w.add_argument("--window-placement", choices=["grid", "random"], default=None,
                    help="grid: a regular grid from edge to edge of the scan; random: a uniform "
-                        "position in each stratum (--window-seed) (None: grid)")
+                        "position in each stratum (--window-seed) (default grid)")
     w.add_argument("--window-seed", metavar="S", default=None,
-                   help="seed of --window-placement random (None: 0)")
+                   help="seed of --window-placement random (default 0)")
     if not any(a.dest == "workers" for a in p._actions):
         add_cluster_arguments(w, "run the windows on a local Dask cluster of N worker "
                                  "processes (1 to 4096; 0: in this process, the default)",

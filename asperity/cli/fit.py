@@ -2,10 +2,9 @@
 directional friction and save it as a gauge file."""
 from __future__ import annotations
 
-import argparse
-
 from ..laws.summary import format_fit, summary
 from . import emit
+from .parsing import DefaultsHelpFormatter
 
 LAWS = {"ellipse": "truncated-ellipse", "star": "star"}
 
@@ -27,7 +26,7 @@ def add_parser(sub) -> None:
                     "--pressure values (strictly increasing) one law is fitted a pressure, "
                     "the same kind for each: a law family, written as a version-2 gauge file "
                     "(README); --plot then draws the members' reservoirs coloured by pressure.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
     p.add_argument("--law", choices=sorted(LAWS), default="star", help="law to fit")

@@ -1,9 +1,8 @@
 """``asperity law``: evaluate, draw and export the friction law of a gauge file."""
 from __future__ import annotations
 
-import argparse
-
 from . import json_text, written_lines
+from .parsing import DefaultsHelpFormatter
 
 
 def add_parser(sub) -> None:
@@ -24,7 +23,7 @@ def add_parser(sub) -> None:
                     "taken at --pressure; without it --csv adds a pressure_Pa column and holds "
                     "every member, --abaqus writes one block a member, --plot draws the "
                     "members' reservoirs coloured by pressure.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     p.add_argument("gauge", metavar="GAUGE.json", help="gauge file written by asperity fit")
     p.add_argument("--psi", type=float, metavar="DEG", help="sliding direction in degrees")
     p.add_argument("--pressure", type=float, metavar="P_PA",

@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import re
 
 #: a bad value (also the status of every AsperityError)
@@ -27,6 +28,8 @@ EXIT_USAGE = 2
 #: an infinity or NaN (a value, never an option)
 NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",
                              re.IGNORECASE)
+#: a whole number typed as such (read exactly, whatever its size)
+_WHOLE = re.compile(r"^[-+]?\d+$")
 
 
 def flag_of(action) -> str:
@@ -64,12 +67,18 @@ class Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
     def _get_value(self, action, arg_string):
-        from ..errors import check_int, number_from_text
+        from ..errors import number_from_text
         if action.type is float:
             return number_from_text(flag_of(action), arg_string)
         if action.type is int:
-            name = flag_of(action)
-            return check_int(name, number_from_text(name, arg_string))
+            # a whole number as typed (2**63 - 1 exactly, not through a float); any other
+            # number goes on as it is, for the command's check_int to refuse with the
+            # flag's range ("--max-iterations must be a whole number in [1, 1000000]")
+            text = str(arg_string).strip()
+            if _WHOLE.match(text):
+                return int(text)
+            x = number_from_text(flag_of(action), text)
+            return int(x) if math.isfinite(x) and x.is_integer() else x
         return super()._get_value(action, arg_string)
 
     def _check_value(self, action, value):
@@ -87,3 +96,14 @@ def value_options(parser: argparse.ArgumentParser):
         for a in p._actions:
             if a.option_strings and a.nargs != 0:
                 yield name, p, a
+
+
+class DefaultsHelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Defaults in the help, but not "(default: None)" (derive's help said it 34 times):
+    those options say in words what leaving them out means; nor "(default: False)" after
+    a switch (--json, -q)."""
+
+    def _get_help_string(self, action):
+        if action.default is None or (action.nargs == 0 and action.default is False):
+            return action.help
+        return super()._get_help_string(action)

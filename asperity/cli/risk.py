@@ -6,12 +6,11 @@ quasi-static ratchet analysis of the assembly under its load cycles -> verdict. 
 """
 from __future__ import annotations
 
-import argparse
-
 from ..errors import InputError
 from ..microslip.risk import MAP_PARAMS
 from ..microslip.risk_text import format_map, format_text
 from . import add_cluster_arguments, emit, whole_flag
+from .parsing import DefaultsHelpFormatter
 from .sources import (
     WEDGE_FLAGS,
     add_elastic_arguments,
@@ -35,9 +34,9 @@ def add_parser(sub) -> None:
                     "tolerance is reached.  Without a texture the assembly file's [friction] "
                     "table is used.  With --elastic and no --pressure the contact is solved at "
                     "the assembly's contact pressure (strip: p; two-node: N / contact_area); a "
-                    "gauge file holding a law family is taken at that pressure.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
+                    "gauge file holding a law family ([friction] gauge) is taken at that pressure.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
                     "of two wedge parameters (alpha, beta, mu_alpha, mu_beta).",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
     p.add_argument("assembly", metavar="ASSEMBLY.toml", help="assembly file (see README)")
@@ -104,6 +103,10 @@ def run(args) -> dict:
     private key "_chain", the slider chain for plots)."""
     from ..microslip.assembly import load_assembly
     from ..microslip.risk import assembly_friction, assess_assembly
+    if args.texture is not None and str(args.texture).lower().endswith(".json"):
+        raise InputError(f"{args.texture}: a gauge file goes in the assembly file ([friction] "
+                         "gauge = \"law.json\"); the argument before ASSEMBLY.toml is a "
+                         "texture or surface file")
     asm = load_assembly(args.assembly)
     cycles, tol, mm, dyn = _settings(args, asm)
     pressure = _elastic_pressure(args, asm)

@@ -1,7 +1,7 @@
 """``asperity serve``: the local web page (texture or scan -> friction law -> risk verdict)."""
 from __future__ import annotations
 
-import argparse
+from .parsing import DefaultsHelpFormatter
 
 
 def add_parser(sub) -> None:
@@ -17,7 +17,7 @@ def add_parser(sub) -> None:
                     "served on 127.0.0.1 only, unless --allow-remote; then every request needs "
                     "the access token printed at start. Open the printed link in a browser; "
                     "Ctrl-C stops the server.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     p.add_argument("--host", default=DEFAULT_HOST,
                    help="address to listen on; other than a loopback address only with "
                         "--allow-remote")

@@ -2,25 +2,15 @@
 solver until it sticks (deflection of the path by anisotropic friction)."""
 from __future__ import annotations
 
-import argparse
 import math
 
 from . import json_text, written_lines
+from .parsing import DefaultsHelpFormatter
 
 LAWS = ("coulomb", "ellipse", "collinear", "star")
 #: rows of the CSV table / points of the plot at most (every k-th step is kept)
 MAX_ROWS = 20000
 EXIT_NOT_CONVERGED = 3
-
-
-class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
-    """Defaults in the help, but not "(default: None)": those options say in words what
-    leaving them out means."""
-
-    def _get_help_string(self, action):
-        if action.default is None:
-            return action.help
-        return super()._get_help_string(action)
 
 
 def add_parser(sub) -> None:
@@ -49,7 +39,7 @@ def add_parser(sub) -> None:
                     "or torque, constant or periodic (--force, --torque, --force-amplitude, "
                     "--waveform, --period), needs --t-end and reports the drift and rotation "
                     "per cycle.",
-        formatter_class=_HelpFormatter)
+        formatter_class=DefaultsHelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
     p.add_argument("--law", choices=LAWS, default=None,
                    help="law (default: the gauge file's; without one coulomb if only --mu1 "
@@ -71,9 +61,12 @@ def add_parser(sub) -> None:
     p.add_argument("--t-end", type=float, default=None, metavar="S",
                    help="end time (s); default: until the body sticks")
     p.add_argument("--tol", type=float, default=1e-12,
-                   help="fixed-point tolerance (friction impulse per normal impulse)")
-    p.add_argument("--max-iterations", type=int, default=2000,
-                   help="fixed-point iteration limit per step")
+                   help="tolerance of each step's solve, in [1e-15, 1e-3]: the point mass's "
+                        "fixed point (friction impulse per normal impulse), a body's Newton "
+                        "iteration (relative residual)")
+    p.add_argument("--max-iterations", type=int, default=2000, metavar="N",
+                   help="iteration limit of each step's solve, 1 to 1e6 (fixed point; a "
+                        "body: Newton)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the path")
     p.add_argument("--csv", metavar="FILE.csv",
@@ -197,7 +190,7 @@ def run(args):
         t_end = 1.5 * u0 / (g * law.min_tangential()) + 10 * dt
     else:
         t_end = check_t_end("--t-end", args.t_end, dt)
-    n = int(round(t_end / dt))
+    n = round(t_end / dt)
     if n > MAX_STEPS:
         raise InputError(f"--t-end / --dt gives {n:.3g} steps, at most {MAX_STEPS:.0e}: raise "
                          "--dt or lower --t-end")
@@ -273,6 +266,15 @@ def _force(args):
                  waveform=wave or "none")
 
 
+_OPTION_WORDS = (("t_end / dt", "--t-end / --dt"), ("raise dt", "raise --dt"),
+                 ("inertia must", "the body's inertia (its size and --mass) must"),
+                 ("t_end must be given", "--t-end must be given"), ("give t_end", "give --t-end"),
+                 ("lower t_end", "lower --t-end"), ("u0 must", "--u0 must"),
+                 ("omega0 must", "--omega0 must"),
+                 ("points must not all lie at one spot", ("the body's contact points "
+                  "(--contact-points, or a body file's points) must not all lie at one spot")))
+
+
 def run_body(args):
     """``asperity slide --body ...``: (law, BodyResult, the JSON object); the body run is
     :func:`asperity.dynamics.body_api.slide_body`."""
@@ -301,10 +303,11 @@ def run_body(args):
         run = slide_body(law, body, u0, angle, omega0, g=g, dt=dt, t_end=t_end, force=force,
                          texture_angle_deg=tex,
                          settings=BodySettings(tol=tol, max_iterations=maxit))
-    except InputError as exc:          # the work limits name dt and t_end: say the options
-        msg = str(exc).replace("t_end / dt", "--t-end / --dt").replace("raise dt", "raise --dt")
-        msg = msg.replace("inertia must", "the body's inertia (its size and --mass) must", 1)
-        raise type(exc)(msg.replace("lower t_end", "lower --t-end")) from None
+    except InputError as exc:          # the API's names said as the options
+        msg = str(exc)
+        for a, b in _OPTION_WORDS:
+            msg = msg.replace(a, b, 1)
+        raise type(exc)(msg) from None
     obj = run.summary
     if args.gauge:
         obj["gauge"] = str(args.gauge)
@@ -322,46 +325,10 @@ def run_body(args):
     return law, run.result, obj
 
 
-def _say_body(say, obj) -> None:
-    """The text of a body's slide."""
-    from ..dynamics.body_api import body_words
-    b = obj["body"]
-    say(body_words(b))
-    th = obj["final_angle_rad"]
-    if obj["rest"] is not None:
-        say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m, angle {th:.6g} rad "
-            f"({math.degrees(th):.4g} deg), after {obj['stop_time']:.6g} s ({obj['steps']} "
-            f"steps of {obj['dt']:g} s), distance {obj['distance']:.6g} m")
-    else:                        # t_end None: no rest within the horizon of the launch
-        say(f"still moving at t = {obj['t_end'] or obj['steps'] * obj['dt']:g} s: position "
-            f"({obj['final_position'][0]:.6g}, {obj['final_position'][1]:.6g}) m, angle "
-            f"{th:.6g} rad ({math.degrees(th):.4g} deg)")
-    ts, tw = obj["slide_stop_time"], obj["spin_stop_time"]
-    words = ["did not slide" if ts == 0 and obj["u0"] == 0 else
-             f"sliding stopped at {ts:.6g} s" if ts is not None else "still sliding",
-             "did not spin" if tw == 0 and obj["omega0"] == 0 else
-             f"spin stopped at {tw:.6g} s" if tw is not None else "still spinning"]
-    if obj["together"] is not None:
-        words.append("together" if obj["together"] else "not together")
-    say(", ".join(words))
-    if obj["terminal_ratio"] is not None:
-        from ..bodies.closed_forms import TERMINAL_RATIO
-        ref = TERMINAL_RATIO.get(b["kind"])
-        say(f"terminal ratio v/(R omega): {obj['terminal_ratio']:.4g} (closed form of a "
-            f"uniformly loaded {b['kind']}: {ref:.4g})")
-    if obj["load"] is not None:
-        ld = obj["load"]
-        if ld["drift_per_cycle"] is not None:
-            say(f"per cycle ({ld['cycles']} cycles): drift ({ld['drift_per_cycle'][0]:.6g}, "
-                f"{ld['drift_per_cycle'][1]:.6g}) m, rotation {ld['rotation_per_cycle']:.6g} rad")
-        if ld["drift_velocity"] is not None:
-            say(f"mean drift velocity ({ld['drift_velocity'][0]:.6g}, "
-                f"{ld['drift_velocity'][1]:.6g}) m/s, rotation rate {ld['rotation_rate']:.6g} "
-                "rad/s")
-
-
 def main(args) -> int:
     import sys
+
+    from .slide_text import say_body, steps_words
     law, res, obj = run(args)
     outputs = [(what, getattr(args, flag)) for flag, what in
                (("csv", "path table"), ("plot", "plot")) if getattr(args, flag)]
@@ -377,10 +344,10 @@ def main(args) -> int:
             from ..laws.family import how_words
             say(how_words(obj["family_pressure"]))
         if "body" in obj:
-            _say_body(say, obj)
+            say_body(say, obj)
         elif obj["rest"] is not None:
             say(f"rest at ({obj['rest'][0]:.6g}, {obj['rest'][1]:.6g}) m after "
-                f"{obj['stop_time']:.6g} s ({obj['steps']} steps of {obj['dt']:g} s), "
+                f"{obj['stop_time']:.6g} s ({steps_words(obj)}), "
                 f"distance {obj['distance']:.6g} m")
         else:
             say(f"still moving at t = {obj['t_end']:g} s: position "

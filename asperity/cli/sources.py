@@ -131,7 +131,8 @@ def contact_failed(command: str, exc) -> int:
     import sys
     r = exc.result
     print(f"asperity {command}: error: the elastic contact did not converge at --pressure "
-          f"{r.pressure_asked:g} in {r.iterations} iterations (residual {r.residual:.3g}); "
+          f"{r.pressure_asked:g} in {r.iterations} iteration{'s' * (r.iterations != 1)} "
+          f"(residual {r.residual:.3g}); "
           "nothing written", file=sys.stderr)
     return EXIT_NOT_CONVERGED
 
@@ -215,8 +216,11 @@ def add_source_arguments(p, friction: bool = True) -> None:
                        help="local friction per pixel (height maps: same grid) or per triangle "
                             "(meshes), .npy or text; instead of --mu")
     f.add_argument("--unit", metavar="UNIT",
-                   help="length unit of a file that carries none (meshes, .npy, bare text "
-                        "matrices): m, mm, um or nm; overrides nothing a file states")
+                   help="length unit of the file's numbers (and of --pixel-size): m, mm, um "
+                        "or nm; needed where the file states none (meshes, .npy, bare text "
+                        "matrices); where the file states one, --unit replaces it (a file "
+                        "written in another unit than it says: an x3p's heights and spacing, "
+                        "a text matrix's heights; its '# Width:' keeps its own unit)")
     f.add_argument("--pixel-size", type=float, nargs="+", metavar="D",
                    help="pixel size (one value, or dx dy) in --unit, for height maps without sizes")
     f.add_argument("--height-scale", type=float, default=1.0, metavar="F",
@@ -307,8 +311,18 @@ def _texture_from_args(args, elastic):
 def spring_model_from_args(args, table: dict):
     from ..texture.spring_model import SpringModel
     d = dict(table)
+    given = {}
     for dest, key in SPRING_FLAGS.items():
         v = getattr(args, dest, None)
         if v is not None:
             d[key] = v
-    return SpringModel.from_dict(d)
+            given[key] = "--" + dest.replace("_", "-")
+    try:
+        return SpringModel.from_dict(d)
+    except InputError as exc:         # a value from a flag: the message names the flag
+        msg = str(exc)
+        for key, flag in given.items():
+            for field in (f"springs.{key} ", f"{key} "):
+                if msg.startswith(field):
+                    raise InputError(flag + " " + msg[len(field):]) from None
+        raise

@@ -241,7 +241,8 @@ def solve_on(space, z, pbar: float, H, n_def: int, tol: float, maxit: int, p0,
                         pixel_size=(space.dx, space.dy), pressure_asked=pbar)
     if not res.converged:
         raise ContactNotConverged(
-            f"the contact solve did not converge in {res.iterations} iterations (residual "
+            f"the contact solve did not converge in {res.iterations} "
+            f"iteration{'s' * (res.iterations != 1)} (residual "
             f"{res.residual:.3g}, tolerance {tol:g}); allow more iterations or a looser "
             f"tolerance", res)
     return res

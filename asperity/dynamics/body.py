@@ -191,6 +191,19 @@ def _check_points(points, weights) -> tuple[np.ndarray, np.ndarray]:
     return np.ascontiguousarray(p), np.ascontiguousarray(w / w.sum())
 
 
+#: the slowest launch speed (m/s) and spin (rad/s) other than 0: the kernels take a slip
+#: whose square underflows (below ~1e-154 m/s) for a sticking point, so a body launched
+#: slower never stops (u0 = 5e-324 m/s ran to its horizon "still moving")
+SLOWEST = 1e-100
+
+
+def check_slow(name: str, x: float, unit: str) -> None:
+    """Refuse a launch velocity below :data:`SLOWEST` other than 0."""
+    if 0.0 < abs(x) < SLOWEST:
+        raise InputError(f"{name} must be 0 or at least {SLOWEST:g} {unit} in size, got "
+                         f"{abs(x):.3g}")
+
+
 def _rot(a: float) -> np.ndarray:
     c, s = math.cos(a), math.sin(a)
     return np.array([[c, -s], [s, c]])
@@ -232,6 +245,8 @@ def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: floa
     if np.any(np.abs(u0[:2]) > LIMITS["u0"][1]) or abs(u0[2]) > 1e6:
         raise InputError(f"u0 must be (vx, vy, omega) within +-{LIMITS['u0'][1]:g} m/s and "
                          f"+-1e6 rad/s, got {u0}")
+    check_slow("u0 (vx, vy)", math.hypot(u0[0], u0[1]), "m/s")
+    check_slow("u0 (omega)", u0[2], "rad/s")
     q0 = np.array(check_array("q0", q0, shape=(3,)), dtype=float)
     if np.any(np.abs(q0) > 1e9):
         raise InputError(f"q0 must be (x, y, theta) within +-1e9, got {q0}")

@@ -203,6 +203,8 @@ def _as_body(body, mass, inertia):
         raise InputError("body must be a footprint with an extent (disc, ring, rectangle, "
                          "polygon, mesh, pressure), got a point: use asperity.slide for a "
                          "point mass")
+    from .body import _check_points
+    _check_points(body.points, body.weights)    # at one spot: say so, not 'inertia ... got 0'
     mass = 1.0 if mass is None else check_range("mass", mass, *MASS_RANGE, unit="kg")
     if inertia is None:
         inertia = mass * body.inertia_per_mass
@@ -229,7 +231,7 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
     Returns a :class:`BodySlide` (its ``summary`` is the JSON of ``asperity slide --body``).
     """
     from ..laws.planar import PlanarLaw
-    from .body import BodySettings, simulate_body
+    from .body import BodySettings, _check_points, check_slow, simulate_body
     from .body_horizon import rest_time
     from .moreau import LIMITS, MAX_STEPS, Force, check_t_end
     check_instance("law", law, PlanarLaw)
@@ -247,7 +249,12 @@ def slide_body(law, body, u0: float, angle_deg: float, omega0: float = 0.0, *,
         if t_end is None:
             raise InputError("t_end is required with an external force (the body need not "
                              "come to rest)")
+    check_slow("u0", u0, "m/s")
+    check_slow("omega0", omega0, "rad/s")
     fp = b.footprint
+    # the footprint first: the horizon below divides by its friction torque, nil for points
+    # at one spot (a one-point footprint, a pressure file's points at one place)
+    _check_points(fp.points, fp.weights)
     a = math.radians(angle)
     u_start = (u0 * math.cos(a), u0 * math.sin(a), omega0)
     if t_end is None:

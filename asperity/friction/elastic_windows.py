@@ -66,6 +66,7 @@ class WindowPlan:
     derive: bool = True             # False: the contact figures only (asperity contact)
     strata: tuple | None = None     # random placement: each window's stratum, for redraws
     seed: int = 0
+    asked: int | None = None        # windows asked (None: as many as origins)
 
     @property
     def n_tiles(self) -> int:       # the runner of .tiled counts its items so
@@ -95,9 +96,15 @@ def _draw(stratum, shape, window, rng) -> tuple[int, int]:
     return (min(sx - 1, int(x0 + u * (x1 - x0))), min(sy - 1, int(y0 + v * (y1 - y0))))
 
 
+def window_positions(shape, window: int) -> int:
+    """How many distinct windows of ``window`` pixels a map of ``shape`` holds (origins)."""
+    return (shape[0] - window + 1) * (shape[1] - window + 1)
+
+
 def window_origins(shape, window: int, count: int, placement: str = "grid",
                    seed: int = 0) -> list[tuple[int, int]]:
-    """Origins (i0, j0) of ``count`` windows of ``window`` pixels in a map of ``shape``."""
+    """Origins (i0, j0) of ``count`` windows of ``window`` pixels in a map of ``shape``
+    (a grid finer than the positions repeats some: :func:`_run` solves each once)."""
     sx, sy = shape[0] - window + 1, shape[1] - window + 1
     rng = np.random.default_rng(seed)
     out = []
@@ -225,8 +232,8 @@ def check_window_request(shape, window, count, placement, seed) -> tuple[int, in
     flag (the seed as an int: 0.0 or numpy.float64(0) does not seed a generator)."""
     w = check_int("window", window, MIN_WINDOW, None)
     n = check_int("windows", count, 1, MAX_WINDOWS)
-    check_choice("window_placement", placement, PLACEMENTS)
-    seed = check_int("window_seed", seed, 0, 2 ** 63 - 1)
+    check_choice("placement", placement, PLACEMENTS)
+    seed = check_int("seed", seed, 0, 2 ** 63 - 1)
     if w > min(shape):
         raise InputError(f"window {w} pixels is larger than the scan ({shape[0]} x "
                          f"{shape[1]} pixels): at most {min(shape)}")
@@ -301,15 +308,21 @@ def _run(path, elastic, derive, window, windows, placement, seed, unit, pixel_si
     from ..resources import check_memory
     check_memory(window_bytes(w, boundary), f"a window of {w} x {w} pixels",
                  "lower --window")
+    # a window solved twice gives the same result twice: at most one a position (a 64 x 64
+    # scan holds one window of 64, and solved 10000 identical ones for --windows 10000)
+    k = min(n, window_positions(src.shape, w))
+    origins = window_origins(src.shape, w, k, placement, seed)
+    strata = window_strata(src.shape, w, k) if placement == "random" else None
+    first = sorted({o: i for i, o in reversed(list(enumerate(origins)))}.values())
+    origins = tuple(origins[i] for i in first)      # strata narrower than a pixel repeat
+    strata = None if strata is None else tuple(strata[i] for i in first)
     plan = WindowPlan(src, None if friction_map is None else open_friction_map(friction_map,
                                                                                 src),
-                      w, tuple(window_origins(src.shape, w, n, placement, seed)),
-                      replace(elastic, boundary=boundary),
+                      w, origins, replace(elastic, boundary=boundary),
                       {"detrend": detrend, "mu": mu, "despike": despike,
                        "max_slope": max_slope}, contact, n_dir, derive=derive,
-                      strata=tuple(window_strata(src.shape, w, n))
-                      if placement == "random" else None, seed=seed)
+                      strata=strata, seed=seed, asked=n)
     report(0.0, "windows")
-    results = _Runner(plan, client, run_windows, "lower --window").map("window", plan,
-                                                                       label="windows")
+    results = _Runner(plan, client, run_windows, "lower --window").map(
+        "window", plan, label="windows", numbered=False)
     return plan, results

@@ -64,9 +64,10 @@ class _Runner:
             edges = np.linspace(0, self.n, k + 1).round().astype(int)
             self.groups = [list(range(a, b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
 
-    def map(self, kind, plan, args=(), label="tiles") -> list:
+    def map(self, kind, plan, args=(), label="tiles", numbered=True) -> list:
         self.passes += 1
-        label = f"pass {self.passes}: {label}"
+        if numbered:                        # a scan's tiles take passes; windows one
+            label = f"pass {self.passes}: {label}"
         report(0.0, label)
         if self.client is None:
             out = []

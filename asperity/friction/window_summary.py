@@ -70,8 +70,10 @@ def windows_block(plan, results: list, placement: str, seed: int) -> dict:
     src, w = plan.heights, plan.window
     used = [r for r in results if "skipped" not in r]
     redrawn = [r for r in results if r.get("redrawn_from")]
-    return {"window_px": w, "window_m": [w * src.dx, w * src.dy], "asked": len(results),
-            "used": len(used), "skipped": len(results) - len(used),
+    return {"window_px": w, "window_m": [w * src.dx, w * src.dy],
+            "asked": plan.asked or len(results),
+            "positions": (src.shape[0] - w + 1) * (src.shape[1] - w + 1),
+            "solved": len(results), "used": len(used), "skipped": len(results) - len(used),
             "redrawn": sum(1 for r in redrawn if "skipped" not in r),
             "redraws": sum(len(r["redrawn_from"]) for r in redrawn),
             "max_redraws": MAX_REDRAWS if placement == "random" else 0,
@@ -83,14 +85,16 @@ def windows_block(plan, results: list, placement: str, seed: int) -> dict:
 def _estimate(plan, k: int) -> str:
     src, w = plan.heights, plan.window
     nx, ny = src.shape
-    return (f"estimate from {k} windows of {w} x {w} pixels ({w * src.dx:.4g} x "
+    return (f"estimate from {_n(k, 'window')} of {w} x {w} pixels ({w * src.dx:.4g} x "
             f"{w * src.dy:.4g} m) of a {nx} x {ny} scan, each solved on its own: not the "
             f"whole scan's contact")
 
 
 def _none_used(results, w):
-    return InputError(f"window: none of the {len(results)} windows of {w} x {w} pixels "
-                      f"has enough defined pixels (at least "
+    k = len(results)
+    return InputError(f"--window: {'the' if k == 1 else f'none of the {k}'} window"
+                      f"{'s' * (k != 1)} of {w} x {w} pixels has{' not' * (k == 1)} enough "
+                      f"defined pixels (at least "
                       f"{100 * MIN_DEFINED_SHARE:.0f} %); place them elsewhere (--windows, "
                       f"--window-placement) or lower --window")
 
@@ -176,14 +180,15 @@ def contact_window_text(s: dict) -> str:
             lines.append(f"  {label:<22}{_f(x['mean'], fmt):<12}{_f(x['sd'], fmt):<12}"
                          f"{_f(x['min'], fmt):<12}{_f(x['max'], fmt):<12}{x['n']}")
         if r["full_contact_windows"]:
-            lines.append(f"  full contact in {r['full_contact_windows']} windows (a result)")
+            lines.append(f"  full contact in {_n(r['full_contact_windows'], 'window')} (a "
+                         "result)")
     return "\n".join(lines + _window_notes(s))
 
 
 def _estimate_line(wi) -> str:
     place = "a regular grid" if wi["placement"] == "grid" else \
         f"stratified random (seed {wi['seed']})"
-    return (f"ESTIMATE from {wi['used']} windows of {wi['window_px']} x {wi['window_px']} "
+    return (f"ESTIMATE from {_n(wi['used'], 'window')} of {wi['window_px']} x {wi['window_px']} "
             f"pixels ({wi['window_m'][0]:.4g} x {wi['window_m'][1]:.4g} m), placed on "
             f"{place}; each window is solved on its own: not the whole scan's contact")
 
@@ -191,13 +196,23 @@ def _estimate_line(wi) -> str:
 def _window_notes(s: dict) -> list[str]:
     wi = s["windows"]
     lines = []
+    if wi.get("solved", wi["asked"]) < wi["asked"]:
+        pos = wi.get("positions")
+        lines.append(f"{wi['asked']} windows asked, {wi['solved']} solved: "
+                     + (f"the scan holds {pos} distinct position{'s' * (pos != 1)} of a "
+                        f"window of {wi['window_px']} pixels" if pos is not None
+                        and pos <= wi["asked"] else "the others fell on a position already "
+                        "solved (windows closer than a pixel)")
+                     + " (the same window twice gives the same result)")
     if wi["redraws"]:
-        lines.append(f"{wi['redraws']} random draws had too few defined pixels and were "
-                     f"redrawn in their stratum: {wi['redrawn']} windows found a place so "
+        lines.append(f"{_n(wi['redraws'], 'random draw')} had too few defined pixels and "
+                     f"were redrawn in their stratum: {_n(wi['redrawn'], 'window')} found a "
+                     "place so "
                      f"(at most {wi['max_redraws']} redraws a window)")
     if wi["skipped"]:
         bad = [w for w in s["per_window"] if "skipped" in w]
-        lines.append(f"{wi['skipped']} of {wi['asked']} windows skipped: "
+        lines.append(f"{wi['skipped']} of {_n(wi.get('solved', wi['asked']), 'window')} "
+                     "skipped: "
                      + "; ".join(f"at pixel {b['origin_px']}: {b['skipped']}" for b in bad[:3])
                      + (" ..." if len(bad) > 3 else ""))
     if wi["overlap"]:
@@ -294,6 +309,11 @@ def _overlap(origins, w: int) -> bool:
     return False
 
 
+def _n(k: int, noun: str) -> str:
+    """'1 window', '2 windows'."""
+    return f"{k} {noun}{'s' * (k != 1)}"
+
+
 def _f(x, fmt=".6f") -> str:
     return "-" if x is None else format(x, fmt)
 
@@ -307,7 +327,7 @@ def window_text(s: dict) -> str:
         f"stratified random (seed {wi['seed']})"
     lines = [f"scan: {s['scan']['file']}, {s['scan']['shape'][0]} x {s['scan']['shape'][1]} "
              f"pixels",
-             f"ESTIMATE from {wi['used']} windows of {wi['window_px']} x {wi['window_px']} "
+             f"ESTIMATE from {_n(wi['used'], 'window')} of {wi['window_px']} x {wi['window_px']} "
              f"pixels ({wi['window_m'][0]:.4g} x {wi['window_m'][1]:.4g} m), placed on "
              f"{place}; each window is solved on its own: not the whole scan's contact",
              f"elastic contact: p = {s['pressure_Pa']:.4g} Pa (p/E* = "
@@ -325,7 +345,7 @@ def window_text(s: dict) -> str:
     lines.append(f"  t_a (deg)         {pd['mean']:.2f} (axial mean; windows within "
                  f"{pd['max_deviation']:.2f} deg of it)")
     if s["self_locking_windows"]:
-        lines.append(f"SELF-LOCKING in {s['self_locking_windows']} windows (in some "
+        lines.append(f"SELF-LOCKING in {_n(s['self_locking_windows'], 'window')} (in some "
                      "directions; their values are left out of the spread)")
     return "\n".join(lines + _window_notes(s))
 

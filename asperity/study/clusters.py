@@ -35,6 +35,69 @@ class EngineError(AsperityError):
     """The cluster cannot be reached or cannot run asperity's tasks."""
 
 
+class _InterruptedSync(logging.Filter):
+    """Drops tornado's report of a known race in ``distributed.utils.sync``: Ctrl-C (or
+    SIGTERM) that arrives before the coroutine has started leaves the ``future`` its
+    cancel callback reads unassigned, and tornado logs that NameError with a traceback
+    (``contact --window ... --workers 2`` interrupted).  Nothing is lost: the command has
+    stopped already and says so in its own line."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        exc = record.exc_info[1] if record.exc_info else None
+        return not (isinstance(exc, NameError) and "'future'" in str(exc)
+                    and exc.__traceback__ is not None
+                    and "distributed" in _last_file(exc.__traceback__))
+
+
+def _last_file(tb) -> str:
+    while tb.tb_next is not None:
+        tb = tb.tb_next
+    return tb.tb_frame.f_code.co_filename
+
+
+def quiet_interrupted_sync() -> None:
+    """Install :class:`_InterruptedSync` on tornado's callback logger (once)."""
+    log = logging.getLogger("tornado.application")
+    if not any(isinstance(f, _InterruptedSync) for f in log.filters):
+        log.addFilter(_InterruptedSync())
+
+
+class _held_signals:
+    """Signals held while a local cluster starts: one that came in the middle of
+    LocalCluster() left it half started (atexit's close_clusters then failed with
+    'AssertionError: Status.init'), and a terminal's Ctrl-C, sent to the whole process
+    group, reached the worker processes as they imported dask (their KeyboardInterrupt
+    tracebacks, 'Nanny failed to start').  Within the block SIGINT is ignored: the workers
+    start with it ignored (an exec keeps an ignored signal, and Python then leaves it
+    so) and the command closes them itself; a Ctrl-C in the second or two the workers take
+    to start is not seen (press it again).  SIGTERM is recorded and raised after the block
+    (:meth:`replay`).  Outside the main thread a no-op."""
+
+    def __enter__(self):
+        import signal
+        import threading
+        self.got, self.old = None, {}
+        if threading.current_thread() is threading.main_thread():
+            self.old = {signal.SIGINT: signal.signal(signal.SIGINT, signal.SIG_IGN),
+                        signal.SIGTERM: signal.signal(signal.SIGTERM, self._hold)}
+        return self
+
+    def _hold(self, signum, frame):
+        self.got = signum
+
+    def __exit__(self, *exc):
+        import signal
+        for s, handler in self.old.items():
+            signal.signal(s, handler)
+        return False
+
+    def replay(self) -> None:
+        """Raise the signal held (to the handler restored: Terminated)."""
+        import signal
+        if self.got:
+            signal.raise_signal(self.got)
+
+
 def resolve_scheduler(scheduler: str | None) -> str | None:
     """The scheduler to use, checked: the argument, else $ASPERITY_SCHEDULER, else None
     (a local cluster).  A scheduler file is read for its address."""
@@ -167,24 +230,36 @@ def connect(scheduler: str | None, workers: int | None, per_worker: float | None
     from .. import lifeline
     from ..resources import WORKER_BYTES, local_workers, note
     logging.getLogger("distributed").setLevel(logging.ERROR)
+    quiet_interrupted_sync()
     if scheduler is None:
         nw, why = local_workers(workers, per_worker or WORKER_BYTES)
         if why:
             note(why)
         import warnings
+        cluster = client = None
+        hold = _held_signals()
         try:
             # one core per worker: the numba kernels must not start a thread per core in
             # every worker (oversubscription)
-            with warnings.catch_warnings():     # e.g. a note on a busy port: not the user's
+            with hold, warnings.catch_warnings():   # e.g. a note on a busy port
                 warnings.simplefilter("ignore")
                 cluster = distributed.LocalCluster(
                     n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
                     dashboard_address=None, silence_logs=logging.ERROR,
                     preload=[lifeline.PRELOAD],
                     env={"NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
-        except OSError as exc:
-            raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
-        return distributed.Client(cluster), cluster, f"LocalCluster ({nw} workers)", nw
+                client = distributed.Client(cluster)
+            hold.replay()
+        except KeyboardInterrupt:
+            if cluster is not None:
+                close(client, cluster)
+            raise
+        except Exception as exc:
+            hold.replay()           # the workers ended by the SIGTERM held: that, not this
+            if isinstance(exc, OSError):
+                raise EngineError(f"cannot start a local Dask cluster ({exc})") from None
+            raise
+        return client, cluster, f"LocalCluster ({nw} workers)", nw
     try:
         client = distributed.Client(scheduler, timeout="10s")
     except (OSError, TimeoutError, ValueError) as exc:

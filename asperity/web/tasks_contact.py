@@ -38,7 +38,8 @@ ASSUMES = ("The load shares come from a normal, frictionless elastic contact: th
 def not_converged(exc) -> str:
     r = exc.result
     return (f"the elastic contact did not converge at pressure {r.pressure_asked:g} Pa in "
-            f"{r.iterations} iterations (residual {r.residual:.3g}); nothing computed")
+            f"{r.iterations} iteration{'s' * (r.iterations != 1)} (residual "
+            f"{r.residual:.3g}); nothing computed")
 
 
 def elastic_textures_of(src: dict, params: dict, ctx: dict, bar):
