@@ -322,3 +322,24 @@ def test_a_body_file_the_solver_cannot_take_is_one_line_at_the_file(server):
         assert [x.name for x in f.fields if x.label == f.errors[0][0]][0] == "body_file"
         msg = f.errors[0][1]
         assert msg.startswith("part.toml") and words in msg and "uploads" not in msg, msg
+
+
+def test_the_motion_figure_marks_each_stop_at_its_own_time():
+    """A body that stops sliding before it stops spinning gets two marks, each at its own
+    time and named for it (a disc stops both together, which hides a swap of the two)."""
+    from types import SimpleNamespace
+
+    from asperity.web.figures_body import motion_figure
+    t = np.linspace(0.0, 1.0, 11)
+    u = np.zeros((11, 3))
+    u[:4, 0], u[:8, 2] = 0.1, 5.0
+    fig = motion_figure(SimpleNamespace(t=t, u=u),
+                        {"slide_stop_time": 0.3, "spin_stop_time": 0.7})
+    marks = {round(s["x0"], 12): s["line"]["color"] for s in fig["layout"]["shapes"]}
+    notes = {a["text"]: a["x"] for a in fig["layout"]["annotations"]}
+    assert notes == {"slide stops 0.3 s": 0.3, "spin stops 0.7 s": 0.7}
+    assert marks[0.3] == fig["data"][0]["line"]["color"]      # the speed's colour
+    assert marks[0.7] == fig["data"][1]["line"]["color"]      # the spin's colour
+    one = motion_figure(SimpleNamespace(t=t, u=u), {"slide_stop_time": 0.3,
+                                                    "spin_stop_time": None})
+    assert [s["x0"] for s in one["layout"]["shapes"]] == [0.3]
