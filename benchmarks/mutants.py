@@ -575,8 +575,7 @@ MUTANTS = [
            "results that differ only by their max slope look alike in the lists"),
     Mutant("web-slide-law-of-a-gauge-file", "web/tasks_motion.py",
            "return params.get(\"law_text\") or f\"the {law.name} law of result "
-           "{spec['job']}\", name",
-           "return law.description, name", WEB_PAGES,
+           "{spec['job']}{at}\", \\", "return law.description, \\", WEB_PAGES,
            "a slide on a fitted law titled 'law of a gauge file'"),
     Mutant("web-home-numbered-twice", "web/static/style.css",
            ".steps { list-style: none; padding-left: 0; }", ".steps { padding-left: 0; }",
@@ -586,7 +585,8 @@ MUTANTS = [
            "{ overflow-wrap: anywhere; }", "", WEB_BROWSER,
            "long values run out of their cards at 1280 px"),
     Mutant("web-prose-cells-nowrap", "web/static/style.css",
-           "table.numbers.prose td:nth-child(2) { white-space: normal; }", "", WEB_BROWSER,
+           "table.numbers.prose td:nth-child(2), table.numbers.prose th { white-space: normal; }",
+           "", WEB_BROWSER,
            "the data-quality notes kept on one line, past the card's edge"),
     Mutant("web-title-under-toolbar", "web/static/app.js",
            "delete fig.layout.title;", "", WEB_BROWSER,
@@ -730,7 +730,7 @@ MUTANTS = [
            "a service that sends nothing (an HTTP server) is said to answer in another "
            "protocol (handing it to Dask instead hangs the client: no mutant for that)"),
     Mutant("failed-run-leaves-its-store", "study/run.py",
-           "        store.discard()", "        store.close()",
+           "        if store.discard() and", "        if store.close() and",
            (f"{PROCS}::test_a_run_that_fails_before_its_first_case_leaves_the_folder_as_it_"
             "was",),
            "a run that fails before its first case leaves an empty store behind"),
@@ -1014,8 +1014,8 @@ MUTANTS = [
            'return {"elastic": e, "family"', 'return {"elastic": {**e, "pressures": ps[:1]}, '
            '"family"', WEB_FAMILY, "the family chosen on the Law page fitted at one pressure"),
     Mutant("web-family-motion-pressure-ignored", "web/tasks_motion.py",
-           'law_at(read_gauge(path), spec.get("pressure"),',
-           'law_at(read_gauge(path), spec.get("pressure") and read_gauge(path).pressures[0],',
+           'law_at(gauge, spec.get("pressure"), PRESSURE',
+           'law_at(gauge, spec.get("pressure") and gauge.pressures[0], PRESSURE',
            WEB_FAMILY, "the Motion page slides on a family's first member whatever pressure "
            "was given"),
     Mutant("web-family-motion-range-unchecked", "web/pages_motion.py",
@@ -1048,7 +1048,7 @@ MUTANTS = [
            "EDGE_EPS = -1e-9", MESH_CONTACT,
            "nodes on a triangle's edge or vertex belong to none (holes along every edge)"),
     Mutant("mesh-grid-one-node-short", "surface/mesh_grid.py",
-           "(hi[k] - lo[k]) / step * (1 + 1e-12))) + 1", "(hi[k] - lo[k]) / step * (1 + 1e-12)))",
+           "min(c, MAX_NODES_PER_SIDE)) + 1 for c", "min(c, MAX_NODES_PER_SIDE)) for c",
            MESH_CONTACT, "the grid stops one node short of the mesh's far edges"),
     Mutant("mesh-force-edge-node-to-each", "surface/_mesh_grid_kernels.py",
            "                            out[t] += p[i, j] / count[i, j]",
@@ -1066,7 +1066,8 @@ MUTANTS = [
            "origin = _draw(plan.strata[k], src.shape, w, rng)", "origin = plan.origins[k]",
            WINDOWS_MORE, "a skipped random window 'redrawn' at the same place"),
     Mutant("window-grid-redrawn", "friction/elastic_windows.py",
-           'if placement == "random" else None, seed=seed)', "if placement else None, seed=seed)",
+           'window_strata(src.shape, w, k) if placement == "random" else None',
+           "window_strata(src.shape, w, k) if placement else None",
            WINDOWS_MORE, "grid windows moved when they have too few defined pixels"),
     Mutant("window-family-first-member", "friction/window_summary.py",
            '**r["members"][i]}', '**r["members"][0]}', WINDOWS_MORE,
