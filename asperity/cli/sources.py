@@ -321,6 +321,9 @@ def spring_model_from_args(args, table: dict):
         return SpringModel.from_dict(d)
     except InputError as exc:         # a value from a flag: the message names the flag
         msg = str(exc)
+        for field in ("springs.k_f / k_n ", "k_f / k_n "):    # the ratio of two flags
+            if msg.startswith(field) and given.keys() & {"k_f", "k_n"}:
+                raise InputError("--k-f / --k-n " + msg[len(field):]) from None
         for key, flag in given.items():
             for field in (f"springs.{key} ", f"{key} "):
                 if msg.startswith(field):
