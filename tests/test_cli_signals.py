@@ -15,23 +15,13 @@ from pathlib import Path
 
 import pytest
 from hostile import Running
+from test_study_engine import SLOW
 
 from asperity import progress
 
 ROOT = Path(__file__).resolve().parents[1]
 SURF = ROOT / "surfaces"
-STUDY = """
-[study]
-kind = "monte-carlo"
-samples = 3000
-seed = 3
-stages = ["fit", "risk"]
-texture = "SURF/wedge-asymmetric.toml"
-assembly = "SURF/bushing-strip.toml"
-[parameters]
-"texture.alpha_deg" = { distribution = "normal", mean = 30.0, sd = 1.5 }
-"loading.dT_max" = { distribution = "uniform", low = 20.0, high = 140.0 }
-"""
+STUDY = SLOW.replace("samples = N", "samples = 3000")   # ~3 ms a case: long enough
 
 
 def long_runs(tmp: Path) -> dict:

@@ -15,7 +15,6 @@ solver's numbers at the ends of the float range (issue 25, item 2).
 """
 from __future__ import annotations
 
-import math
 import sys
 from functools import cache
 from itertools import pairwise
@@ -24,14 +23,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 from cli_run import run_json
+from test_contact_solver import gap_violation as violations
 
 from asperity.contact import solve_contact
 from asperity.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
-from contact_peers import self_affine  # noqa: E402
-from plain_contact import make_operator  # noqa: E402
+from contact_peers import self_affine
 
 WEDGE_FILE = ROOT / "surfaces" / "wedge-asymmetric.toml"
 E, P = 1e9, 1e7                                # the issue's command
@@ -46,24 +45,6 @@ def wedge_profile(n: int = 512):
     dx = prof.period / n
     z = prof.height(np.arange(n) * dx)
     return np.repeat(z[:, None], 2, axis=1), dx
-
-
-def violations(z, res):
-    """(penetration out of contact, |gap| of the free pixels, gap of the pixels at H) over
-    the height range, with the displacement of the plain reference operator (not the
-    solver's)."""
-    p = np.nan_to_num(res.pressure)
-    dx, dy = res.pixel_size
-    u = make_operator(p.shape, dx, dy, res.E_star, res.boundary)(p)
-    g = u - z + res.approach
-    H = math.inf if res.hardness is None else res.hardness
-    ok = np.isfinite(z)
-    out, pl = ok & (p == 0), ok & (p >= H)
-    el = ok & (p > 0) & ~pl
-    ref = np.nanmax(z) - np.nanmin(z)
-    return (max(0.0, -g[out].min()) / ref if out.any() else 0.0,
-            np.abs(g[el]).max() / ref if el.any() else 0.0,
-            max(0.0, g[pl].max()) / ref if pl.any() else 0.0)
 
 
 def check_capped(z, res, pbar, H):
