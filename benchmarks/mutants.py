@@ -875,7 +875,8 @@ MUTANTS = [
            "window's x and y origins swapped"),
     Mutant("window-origin-past-the-edge", "friction/elastic_windows.py",
            "sx, sy = nx - window + 1, ny - window + 1", "sx, sy = nx - window + 2, ny - window + 2",
-           WINDOWS, "window origins one pixel too far: the last window runs past the scan"),
+           WINDOWS, "random windows' strata one origin wider than the scan holds (the last stratum's "
+           "draws piled on the edge)"),
     Mutant("window-sd-population", "friction/window_summary.py",
            "float(v.std(ddof=1))", "float(v.std())", WINDOWS,
            "the spread between windows as the population sd (n) instead of the sample's "

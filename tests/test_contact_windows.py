@@ -8,12 +8,13 @@ friction (a window of one period is a cyclic shift of the tile); windows read fr
 in lines equal windows of the same map read whole; a map of two different halves has a
 spread; the Dask path equals the serial one; the placement; bad inputs in one line."""
 import json
+import math
 
 import numpy as np
 import pytest
 from cli_run import run, run_json
 
-from asperity.friction.elastic_windows import read_window, window_origins
+from asperity.friction.elastic_windows import read_window, window_origins, window_strata
 from asperity.surface.readers._streams import open_lines
 
 N = 48                                   # pixels of one period
@@ -148,6 +149,28 @@ def test_origins_lie_in_the_scan_one_a_stratum():
     assert set(g[:, 0]) == {40} and list(g[:, 1]) == [0, 56, 112, 168, 224, 280]
     g = window_origins((64, 64), 32, 4, "grid")                 # four windows tile the scan
     assert sorted(g) == [(0, 0), (0, 32), (32, 0), (32, 32)]
+
+
+def test_random_windows_draw_from_strata_that_tile_the_origins_exactly():
+    """The strata of a random placement cover the origins available, (n - w + 1) along each
+    side, once and no further (a stratum past the last origin piles its draws on the edge),
+    and each random origin lies in its own stratum."""
+    for shape, w, k in (((100, 300), 20, 7), ((64, 64), 64, 3), ((500, 90), 30, 12),
+                        ((41, 41), 40, 5), ((200, 50), 10, 1)):
+        sx, sy = shape[0] - w + 1, shape[1] - w + 1
+        st = window_strata(shape, w, k)
+        cells = {s[4:6]: s[:4] for s in st}
+        r, c = st[0][6], st[0][7]
+        assert min(s[0] for s in st) == 0 and min(s[2] for s in st) == 0
+        assert max(s[1] for s in st) == pytest.approx(sx, rel=1e-15)
+        assert max(s[3] for s in st) == pytest.approx(sy, rel=1e-15)
+        for (a, b), (x0, x1, y0, y1) in cells.items():      # the r x c grid of equal cells
+            assert (x0, x1) == pytest.approx((a * sx / r, (a + 1) * sx / r), rel=1e-15)
+            assert (y0, y1) == pytest.approx((b * sy / c, (b + 1) * sy / c), rel=1e-15)
+        for seed in (1, 2, 3):
+            for (i, j), s in zip(window_origins(shape, w, k, "random", seed), st):
+                assert math.floor(s[0]) <= i < max(math.ceil(s[1]), math.floor(s[0]) + 1)
+                assert math.floor(s[2]) <= j < max(math.ceil(s[3]), math.floor(s[2]) + 1)
 
 
 def test_windows_on_two_local_workers_equal_the_serial_ones(repeated, capsys):
