@@ -223,11 +223,12 @@ def componentwise_law(mu_f: float, mu_b: float, mu_t: float) -> PlanarLaw:
     """Componentwise rule (Hu, Nirody, Scott and Shelley, PNAS 2009): for the unit slip
     u = (cos psi, sin psi), p = (mu_{f|b} u_x, mu_t u_y) (mu_f where u_x >= 0; the force on
     the body is -p N).  The Walker-Leine law with C the truncated ellipse (mu_f, mu_b, mu_t)
-    and D the one of semi-axes sqrt(mu_f), sqrt(mu_b), sqrt(mu_t): D's boundary point of
-    normal u lies on the ray of (mu_{f|b} u_x, mu_t u_y), which is on C."""
-    mu = (_mu("mu_f", mu_f), _mu("mu_b", mu_b), _mu("mu_t", mu_t))
-    f, b, t = mu
-    D = TruncatedEllipse(*(math.sqrt(v) for v in (f, b, t, t)))
+    and D the one of semi-axes sqrt(mu_f), sqrt(mu_b), sqrt(mu_t) times sqrt(min mu) (inside
+    C, touching it): D's boundary point of normal u lies on the ray of (mu_{f|b} u_x,
+    mu_t u_y), which is on C."""
+    f, b, t = _mu("mu_f", mu_f), _mu("mu_b", mu_b), _mu("mu_t", mu_t)
+    m = min(f, b, t)
+    D = TruncatedEllipse(*(math.sqrt(v * m) for v in (f, b, t, t)))
     return PlanarLaw("componentwise", WalkerLeineLaw(TruncatedEllipse(f, b, t, t), D),
                      f"componentwise (Hu et al.): mu_f = {f:g} (+t_a), mu_b = {b:g} (-t_a), "
                      f"mu_t = {t:g} (+-t_b)")
