@@ -26,6 +26,22 @@ def closed_form(psi, mu_f: float, mu_b: float, mu_t: float) -> np.ndarray:
     return np.column_stack([np.where(c >= 0, mu_f, mu_b) * c, mu_t * s])
 
 
+def componentwise_pair(mu_f: float, mu_b: float, mu_t: float):
+    """The WalkerLeineLaw of the rule: C the truncated ellipse (mu_f, mu_b, mu_t, mu_t), D
+    the one of semi-axes sqrt(mu_i min mu) (inside C, touching it on the smallest axis).
+
+    D's boundary point of outward normal u is (A^2 u_x, B^2 u_y) / h(u) with A^2 =
+    mu_{f|b} min mu, B^2 = mu_t min mu: on the ray of (mu_{f|b} u_x, mu_t u_y), a point
+    of C's boundary -- the force of the rule."""
+    from .geometry import check_mu_law
+    from .sets import TruncatedEllipse
+    from .walker_leine import WalkerLeineLaw
+    f, b, t = (check_mu_law(n, v) for n, v in zip(NAMES, (mu_f, mu_b, mu_t)))
+    m = min(f, b, t)
+    D = TruncatedEllipse(*(math.sqrt(v * m) for v in (f, b, t, t)))
+    return WalkerLeineLaw(TruncatedEllipse(f, b, t, t), D)
+
+
 def coefficients(law) -> dict:
     """{"mu_f", "mu_b", "mu_t"} of a componentwise PlanarLaw or WalkerLeineLaw (from C)."""
     C = getattr(law, "law", law).C
@@ -39,17 +55,15 @@ def parameters(law) -> dict:
 
 def from_parameters(prm: dict):
     """The WalkerLeineLaw of a gauge file's ``parameters`` (schema-checked)."""
-    from .planar import componentwise_law
-    return componentwise_law(prm["mu_f"], prm["mu_b"], prm["mu_t"]).law
+    return componentwise_pair(prm["mu_f"], prm["mu_b"], prm["mu_t"])
 
 
 def componentwise_gauge(mu_f: float, mu_b: float, mu_t: float, directions: int = 360):
     """The GaugeLaw of the componentwise law (write it with :func:`write_gauge`)."""
     from ..errors import check_int
     from .fitting import GaugeLaw, ReservoirData, _quality
-    from .planar import componentwise_law
     n = check_int("directions", directions, 8, 100_000)
-    law = componentwise_law(mu_f, mu_b, mu_t)
+    law = componentwise_pair(mu_f, mu_b, mu_t)
     k = coefficients(law)
     psi = 2 * math.pi * np.arange(n) / n
     data = ReservoirData(psi, closed_form(psi, k["mu_f"], k["mu_b"], k["mu_t"]),
@@ -57,4 +71,4 @@ def componentwise_gauge(mu_f: float, mu_b: float, mu_t: float, directions: int =
     source = {"texture": {"kind": "coefficients", "rule": RULE, **k,
                           "reference": "Hu, Nirody, Scott and Shelley, PNAS 106:10081 (2009)"},
               "contact": CONTACT, "n_directions": n}
-    return GaugeLaw(RULE, law.law, data, _quality(law.law, data, {}), source, 0.0)
+    return GaugeLaw(RULE, law, data, _quality(law, data, {}), source, 0.0)

@@ -226,11 +226,10 @@ def componentwise_law(mu_f: float, mu_b: float, mu_t: float) -> PlanarLaw:
     and D the one of semi-axes sqrt(mu_f), sqrt(mu_b), sqrt(mu_t) times sqrt(min mu) (inside
     C, touching it): D's boundary point of normal u lies on the ray of (mu_{f|b} u_x,
     mu_t u_y), which is on C."""
-    f, b, t = _mu("mu_f", mu_f), _mu("mu_b", mu_b), _mu("mu_t", mu_t)
-    m = min(f, b, t)
-    D = TruncatedEllipse(*(math.sqrt(v * m) for v in (f, b, t, t)))
-    return PlanarLaw("componentwise", WalkerLeineLaw(TruncatedEllipse(f, b, t, t), D),
-                     f"componentwise (Hu et al.): mu_f = {f:g} (+t_a), mu_b = {b:g} (-t_a), "
+    from .componentwise import componentwise_pair
+    law = componentwise_pair(mu_f, mu_b, mu_t)
+    f, b, t = law.C.mu_a_plus, law.C.mu_a_minus, law.C.mu_b_plus
+    return PlanarLaw("componentwise", law, f"componentwise (Hu et al.): mu_f = {f:g} (+t_a), mu_b = {b:g} (-t_a), "
                      f"mu_t = {t:g} (+-t_b)")
 
 
