@@ -229,8 +229,8 @@ def componentwise_law(mu_f: float, mu_b: float, mu_t: float) -> PlanarLaw:
     from .componentwise import componentwise_pair
     law = componentwise_pair(mu_f, mu_b, mu_t)
     f, b, t = law.C.mu_a_plus, law.C.mu_a_minus, law.C.mu_b_plus
-    return PlanarLaw("componentwise", law, f"componentwise (Hu et al.): mu_f = {f:g} (+t_a), mu_b = {b:g} (-t_a), "
-                     f"mu_t = {t:g} (+-t_b)")
+    return PlanarLaw("componentwise", law, f"componentwise (Hu et al.): mu_f = {f:g} (+t_a), "
+                     f"mu_b = {b:g} (-t_a), mu_t = {t:g} (+-t_b)")
 
 
 def _directions(n) -> int:
