@@ -67,7 +67,7 @@ def test_law_psi_json_gives_the_closed_form_in_360_directions(capsys, tmp_path):
     mu = (0.3, 0.6, 0.9)
     path = tmp_path / "cw.json"
     code, _, err = run(capsys, "law", "--mu-f", mu[0], "--mu-b", mu[1], "--mu-t", mu[2],
-                       "--save", path)
+                       "--output", path)
     assert code == 0, err
     for k in range(360):
         obj = run_json(capsys, "law", path, "--psi", k)
@@ -148,7 +148,7 @@ def test_a_gauge_file_round_trip_keeps_the_rule_and_the_coefficients(tmp_path, c
     assert law_from_gauge(path, "collinear").name == "collinear"
     # the CLI writes the same file, and its summary names the rule and the coefficients
     cli = tmp_path / "cli.json"
-    assert run(capsys, "law", "--mu-f", 0.3, "--mu-b", 0.6, "--mu-t", 0.9, "--save", cli)[0] == 0
+    assert run(capsys, "law", "--mu-f", 0.3, "--mu-b", 0.6, "--mu-t", 0.9, "--output", cli)[0] == 0
     assert json.loads(cli.read_text())["parameters"] == obj["parameters"]
     s = run_json(capsys, "law", cli)
     assert s["law"] == "componentwise" and s["parameters"] == obj["parameters"]

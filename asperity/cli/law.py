@@ -24,15 +24,16 @@ def add_parser(sub) -> None:
                     "every member, --abaqus writes one block a member, --plot draws the "
                     "members' reservoirs coloured by pressure. Instead of a gauge file, --mu-f --mu-b "
                     "--mu-t give the componentwise law (Hu et al.: p = (mu_f or mu_b) (u.t_a) "
-                    "t_a + mu_t (u.t_b) t_b for the unit slip u, forward = +t_a); --save "
+                    "t_a + mu_t (u.t_b) t_b for the unit slip u, forward = +t_a); --output "
                     "writes its gauge file.",
         formatter_class=DefaultsHelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json",
-                   help="gauge file written by asperity fit (or --save)")
+                   help="gauge file written by asperity fit (or law --output)")
     from .parsing import add_componentwise_flags
     add_componentwise_flags(p, "the componentwise law instead of a gauge file")
-    p.add_argument("--save", metavar="FILE.json",
-                   help="write the componentwise law of --mu-f --mu-b --mu-t as a gauge file")
+    p.add_argument("-o", "--output", metavar="GAUGE.json",
+                   help="write the componentwise law of --mu-f --mu-b --mu-t as a gauge file "
+                        "(as `asperity fit -o` writes a fitted one)")
     p.add_argument("--psi", type=float, metavar="DEG", help="sliding direction in degrees")
     p.add_argument("--pressure", type=float, metavar="P_PA",
                    help="a law family (version-2 gauge file): take the law at this nominal "
@@ -48,7 +49,7 @@ def add_parser(sub) -> None:
                         "approximation of the gauge's own law)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False),
                                        ("--abaqus", "abaqus", False),
-                                       ("--save", "save", False)],
+                                       ("--output", "output", False)],
                    inputs=["gauge"])
 
 
@@ -61,8 +62,8 @@ def run(args) -> dict:
         check_range("--psi", args.psi, -3600.0, 3600.0, unit="deg")
     check_int("--csv-directions", args.csv_directions, 4, 1_000_000)
     from .parsing import componentwise_given
-    if args.gauge is not None and (componentwise_given(args) or args.save):
-        raise InputError("--mu-f/--mu-b/--mu-t and --save make a componentwise law; they do "
+    if args.gauge is not None and (componentwise_given(args) or args.output):
+        raise InputError("--mu-f/--mu-b/--mu-t and --output make a componentwise law; they do "
                          "not apply with a gauge file")
     if args.pressure is not None and args.gauge is None:
         raise InputError("--pressure applies to a law family (a version-2 gauge file)")
@@ -90,7 +91,7 @@ def run(args) -> dict:
 
 
 def _componentwise(args):
-    """The GaugeLaw of --mu-f --mu-b --mu-t (written to --save)."""
+    """The GaugeLaw of --mu-f --mu-b --mu-t (written to --output)."""
     from ..errors import InputError
     from ..laws.componentwise import componentwise_gauge, coefficients
     from .parsing import componentwise_from_args, componentwise_given
@@ -98,9 +99,9 @@ def _componentwise(args):
         raise InputError("give a gauge file (GAUGE.json) or the componentwise law's --mu-f "
                          "--mu-b --mu-t")
     gl = componentwise_gauge(**coefficients(componentwise_from_args(args)))
-    if args.save:
+    if args.output:
         from ..laws.gauge_file import write_gauge
-        write_gauge(args.save, gl)
+        write_gauge(args.output, gl)
     return gl
 
 
@@ -127,7 +128,7 @@ def main(args) -> int:
     gl, obj = run(args)
     outputs = [(what, getattr(args, flag)) for flag, what in
                (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot"),
-                ("save", "gauge file"))
+                ("output", "gauge file"))
                if getattr(args, flag)]
     stream = sys.stderr if any(v == "-" for _, v in outputs) else sys.stdout
 
@@ -146,7 +147,7 @@ def main(args) -> int:
                 f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
     else:
         from ..laws.family import GaugeFamily
-        say(f"gauge file: {args.gauge or args.save or '(not saved: --save FILE.json)'}")
+        say(f"gauge file: {args.gauge or args.output or '(not written: --output GAUGE.json)'}")
         if isinstance(gl, GaugeFamily):
             from ..laws.family_report import format_family
             say(format_family(gl))
