@@ -345,3 +345,44 @@ def test_the_motion_page_builds_the_law_from_its_three_fields():
     np.testing.assert_allclose(law.force(PSI), closed_form(PSI, 0.3, 0.6, 0.9), atol=1e-13)
     text, stem = _law_words(spec, law, {}, {})
     assert "mu_t = 0.9" in text and stem.startswith("componentwise")
+
+
+def test_the_motion_form_slides_on_the_componentwise_law(tmp_path):
+    """The Motion page's form (in-process app, 127.0.0.1): the three fields give the
+    library's path; a bad coefficient is one line at its field (422, as mu1/mu2)."""
+    pytest.importorskip("fastapi")
+    import re
+    import time
+    import warnings
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*httpx2.*")
+        from fastapi.testclient import TestClient
+
+    from asperity.web.app import create_app
+    from asperity.web.settings import make_settings, prepare_data_dir
+    settings = make_settings(data_dir=tmp_path / "data", workers=1)
+    prepare_data_dir(settings.data_dir)
+    form = {"law": "componentwise", "mu_f": "0.3", "mu_b": "0.6", "mu_t": "0.9", "u0": "0.5",
+            "angle_deg": "30"}
+    with TestClient(create_app(settings), base_url="http://127.0.0.1:8765",
+                    follow_redirects=False) as client:
+        page = client.get("/motion").text
+        assert 'value="componentwise"' in page and 'name="mu_t"' in page
+        r = client.post("/motion/slide", data=form)
+        assert r.status_code == 303, r.text[:500]
+        jid = r.headers["location"].rsplit("/", 1)[-1]
+        t0 = time.monotonic()
+        while client.get(f"/api/jobs/{jid}").json()["status"] in ("queued", "running"):
+            assert time.monotonic() - t0 < 120, "job did not finish"
+            time.sleep(0.1)
+        assert client.get(f"/api/jobs/{jid}").json()["status"] == "done"
+        page = client.get(f"/jobs/{jid}").text
+        assert "componentwise" in page and 'id="deflection"' in page
+        rows = client.get(f"/jobs/{jid}/files/path.csv").text.strip().splitlines()
+        last = [float(v) for v in rows[-1].split(",")]
+        res = _slide(componentwise_law(0.3, 0.6, 0.9), 0.5, 30.0)
+        assert last[1:3] == pytest.approx(res.q[-1].tolist(), abs=1e-9)
+        r = client.post("/motion/slide", data={**form, "mu_t": "-1"})
+        assert r.status_code == 422 and "Traceback" not in r.text
+        msg = re.findall(r'class="field-error">([^<]*)<', r.text)
+        assert len(msg) == 1 and "mu_t" in msg[0] and "\n" not in msg[0], msg
