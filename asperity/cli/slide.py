@@ -155,7 +155,8 @@ def _build(args):
         kind = args.law
         if kind == "ellipse" and gl.kind != "truncated-ellipse":
             raise InputError(f"--law ellipse needs a truncated-ellipse gauge file, "
-                             f"{args.gauge} holds a {gl.kind} law (use --law star or collinear)")
+                             f"{args.gauge} holds a {gl.kind} law (use --law collinear or the "
+                             "file's own)")
         if kind in ("star", "componentwise") and gl.kind != kind:
             raise InputError(f"--law {kind} needs a {kind} gauge file, {args.gauge} holds a "
                              f"{gl.kind} law (use --law collinear or the file's own)")
