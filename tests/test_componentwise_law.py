@@ -246,6 +246,29 @@ def test_every_step_of_an_oblique_slide_decelerates_by_the_componentwise_rule(mu
     fast = np.hypot(U[:, 0], U[:, 1]) > 0.3 * u0
     inv = np.log(np.abs(U[fast, 1])) - mu[2] / mx0 * np.log(np.abs(U[fast, 0]))
     assert np.ptp(inv) < 5e-3, np.ptp(inv)
+    # rest point and stop time against the ODE dv/dt = -g p(angle v), integrated here
+    t_ref, rest_ref = _ode_rest(mu, u0, angle)
+    assert np.hypot(*(Q[-1] - rest_ref)) < u0 * dt, (Q[-1], rest_ref)
+    assert res.stop_step * dt == pytest.approx(t_ref, abs=1.5 * dt)
+
+
+def _ode_rest(mu, u0, angle_deg):
+    """(stop time, rest point) of dx/dt = v, dv/dt = -g p(angle v) (DOP853), stopped at
+    |v| = 1e-10 u0 (the remaining path, < 1e-20 u0^2 / g, is left out)."""
+    from scipy.integrate import solve_ivp
+    a = math.radians(angle_deg)
+
+    def rhs(_, y):
+        p = closed_form(np.array([math.atan2(y[3], y[2])]), *mu)[0]
+        return [y[2], y[3], -G * p[0], -G * p[1]]
+
+    def slow(_, y):
+        return math.hypot(y[2], y[3]) - 1e-10 * u0
+    slow.terminal = True
+    sol = solve_ivp(rhs, (0.0, 10 * u0 / (G * min(mu))), [0.0, 0.0, u0 * math.cos(a),
+                    u0 * math.sin(a)], method="DOP853", rtol=1e-11, atol=1e-14, events=slow)
+    assert sol.status == 1
+    return float(sol.t[-1]), sol.y[:2, -1]
 
 
 def test_a_disc_on_the_law_comes_to_rest_and_every_step_passes_the_kkt_check():
