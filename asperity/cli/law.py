@@ -93,7 +93,7 @@ def run(args) -> dict:
 def _componentwise(args):
     """The GaugeLaw of --mu-f --mu-b --mu-t (written to --output)."""
     from ..errors import InputError
-    from ..laws.componentwise import componentwise_gauge, coefficients
+    from ..laws.componentwise import coefficients, componentwise_gauge
     from .parsing import componentwise_from_args, componentwise_given
     if not componentwise_given(args):
         raise InputError("give a gauge file (GAUGE.json) or the componentwise law's --mu-f "
