@@ -45,6 +45,7 @@ _LAZY = {
     "ellipse_law": "asperity.laws.planar",
     "truncated_ellipse_law": "asperity.laws.planar",
     "collinear_law": "asperity.laws.planar",
+    "componentwise_law": "asperity.laws.planar",
     "star_law": "asperity.laws.planar",
     "windward_star_law": "asperity.laws.planar",
     "law_from_gauge": "asperity.laws.planar",

@@ -252,7 +252,7 @@ def test_the_real_command_follows_the_rule():
     assert_refused(cli("slide", "--mu1", "x", "--u0", "1", "--angle", "0"), code=1,
                    contains="asperity slide: error: --mu1 must be a number, got 'x'")
     assert_refused(cli("slide", "--law", "spline"), code=1,
-                   contains="--law must be one of coulomb, ellipse, collinear, star")
+                   contains="--law must be one of coulomb, ellipse, collinear, componentwise, star")
     assert_refused(cli("slide", "--mu1"), code=2, contains="expected one argument")
     assert_refused(cli("frobnicate"), code=2, contains="invalid choice")
     assert_refused(cli("contact", "--pressure", "1e6", "--elastic", "1e9", "--materials", "1",

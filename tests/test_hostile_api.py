@@ -375,6 +375,8 @@ def api_table(folder: Path) -> list[Row]:
                  theta=number(-4 * math.pi, 4 * math.pi))),
         Row("collinear_law", A.collinear_law, dict(C=None, mu1=0.2, mu2=0.1),
             dict(C=instance(none=True), mu1=law_mu, mu2=law_mu)),
+        Row("componentwise_law", A.componentwise_law, dict(mu_f=0.2, mu_b=0.3, mu_t=0.4),
+            dict(mu_f=law_mu, mu_b=law_mu, mu_t=law_mu)),
         Row("star_law", A.star_law, dict(mu1=0.2, mu2=0.1, directions=360),
             dict(mu1=law_mu, mu2=law_mu, directions=whole(8, 100_000))),
         Row("windward_star_law", A.windward_star_law,

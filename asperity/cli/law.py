@@ -22,9 +22,18 @@ def add_parser(sub) -> None:
                     "stating what the ellipse loses). A law family (a version-2 gauge file) is "
                     "taken at --pressure; without it --csv adds a pressure_Pa column and holds "
                     "every member, --abaqus writes one block a member, --plot draws the "
-                    "members' reservoirs coloured by pressure.",
+                    "members' reservoirs coloured by pressure. Instead of a gauge file, --mu-f --mu-b "
+                    "--mu-t give the componentwise law (Hu et al.: p = (mu_f or mu_b) (u.t_a) "
+                    "t_a + mu_t (u.t_b) t_b for the unit slip u, forward = +t_a); --output "
+                    "writes its gauge file.",
         formatter_class=DefaultsHelpFormatter)
-    p.add_argument("gauge", metavar="GAUGE.json", help="gauge file written by asperity fit")
+    p.add_argument("gauge", nargs="?", metavar="GAUGE.json",
+                   help="gauge file written by asperity fit (or law --output)")
+    from .parsing import add_componentwise_flags
+    add_componentwise_flags(p, "the componentwise law instead of a gauge file")
+    p.add_argument("-o", "--output", metavar="GAUGE.json",
+                   help="write the componentwise law of --mu-f --mu-b --mu-t as a gauge file "
+                        "(as `asperity fit -o` writes a fitted one)")
     p.add_argument("--psi", type=float, metavar="DEG", help="sliding direction in degrees")
     p.add_argument("--pressure", type=float, metavar="P_PA",
                    help="a law family (version-2 gauge file): take the law at this nominal "
@@ -39,7 +48,8 @@ def add_parser(sub) -> None:
                    help="write an Abaqus *FRICTION, ANISOTROPIC block (symmetric orthotropic "
                         "approximation of the gauge's own law)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False),
-                                       ("--abaqus", "abaqus", False)],
+                                       ("--abaqus", "abaqus", False),
+                                       ("--output", "output", False)],
                    inputs=["gauge"])
 
 
@@ -51,7 +61,13 @@ def run(args) -> dict:
     if args.psi is not None:
         check_range("--psi", args.psi, -3600.0, 3600.0, unit="deg")
     check_int("--csv-directions", args.csv_directions, 4, 1_000_000)
-    gl = read_gauge(args.gauge)
+    from .parsing import componentwise_given
+    if args.gauge is not None and (componentwise_given(args) or args.output):
+        raise InputError("--mu-f/--mu-b/--mu-t and --output make a componentwise law; they do "
+                         "not apply with a gauge file")
+    if args.pressure is not None and args.gauge is None:
+        raise InputError("--pressure applies to a law family (a version-2 gauge file)")
+    gl = _componentwise(args) if args.gauge is None else read_gauge(args.gauge)
     from ..laws.family import GaugeFamily, law_at
     if isinstance(gl, GaugeFamily) and args.pressure is None:
         return _family(args, gl)
@@ -72,6 +88,21 @@ def run(args) -> dict:
         from ..laws.plot import plot_law
         plot_law(gl, args.plot)
     return gl, obj
+
+
+def _componentwise(args):
+    """The GaugeLaw of --mu-f --mu-b --mu-t (written to --output)."""
+    from ..errors import InputError
+    from ..laws.componentwise import coefficients, componentwise_gauge
+    from .parsing import componentwise_from_args, componentwise_given
+    if not componentwise_given(args):
+        raise InputError("give a gauge file (GAUGE.json) or the componentwise law's --mu-f "
+                         "--mu-b --mu-t")
+    gl = componentwise_gauge(**coefficients(componentwise_from_args(args)))
+    if args.output:
+        from ..laws.gauge_file import write_gauge
+        write_gauge(args.output, gl)
+    return gl
 
 
 def _family(args, fam):
@@ -96,7 +127,8 @@ def main(args) -> int:
     import sys
     gl, obj = run(args)
     outputs = [(what, getattr(args, flag)) for flag, what in
-               (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot"))
+               (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot"),
+                ("output", "gauge file"))
                if getattr(args, flag)]
     stream = sys.stderr if any(v == "-" for _, v in outputs) else sys.stdout
 
@@ -115,7 +147,7 @@ def main(args) -> int:
                 f"({b[0]:.6f}, {b[1]:.6f}) slides in this direction")
     else:
         from ..laws.family import GaugeFamily
-        say(f"gauge file: {args.gauge}")
+        say(f"gauge file: {args.gauge or args.output or '(not written: --output GAUGE.json)'}")
         if isinstance(gl, GaugeFamily):
             from ..laws.family_report import format_family
             say(format_family(gl))

@@ -107,3 +107,35 @@ class DefaultsHelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
         if action.default is None or (action.nargs == 0 and action.default is False):
             return action.help
         return super()._get_help_string(action)
+
+
+#: the componentwise law's flags (forward = +t_a, backward = -t_a, transverse = +-t_b)
+COMPONENTWISE_FLAGS = (("mu_f", "--mu-f", "forward (+t_a, towards the head)"),
+                       ("mu_b", "--mu-b", "backward (-t_a)"),
+                       ("mu_t", "--mu-t", "transverse (+-t_b)"))
+
+
+def add_componentwise_flags(p, what: str = "--law componentwise") -> None:
+    """--mu-f --mu-b --mu-t: the three coefficients of the componentwise law (Hu et al.)."""
+    for _, flag, words in COMPONENTWISE_FLAGS:
+        p.add_argument(flag, type=float, metavar="MU",
+                       help=f"{what}: {words} friction coefficient, in [1e-6, 100]")
+
+
+def componentwise_given(args) -> bool:
+    return any(getattr(args, d, None) is not None for d, _, _ in COMPONENTWISE_FLAGS)
+
+
+def componentwise_from_args(args):
+    """The componentwise PlanarLaw of --mu-f --mu-b --mu-t (all three required)."""
+    from ..errors import InputError, check_range
+    from ..laws.geometry import MU_MAX, MU_MIN
+    from ..laws.planar import componentwise_law
+    mu = {}
+    for dest, flag, words in COMPONENTWISE_FLAGS:
+        v = getattr(args, dest, None)
+        if v is None:
+            raise InputError(f"the componentwise law needs {flag} ({words} friction "
+                             f"coefficient, in [{MU_MIN:g}, {MU_MAX:g}])")
+        mu[dest] = check_range(flag, v, MU_MIN, MU_MAX)
+    return componentwise_law(**mu)

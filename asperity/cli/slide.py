@@ -7,7 +7,7 @@ import math
 from . import json_text, written_lines
 from .parsing import DefaultsHelpFormatter
 
-LAWS = ("coulomb", "ellipse", "collinear", "star")
+LAWS = ("coulomb", "ellipse", "collinear", "componentwise", "star")
 #: rows of the CSV table / points of the plot at most (every k-th step is kept)
 MAX_ROWS = 20000
 EXIT_NOT_CONVERGED = 3
@@ -24,8 +24,10 @@ def add_parser(sub) -> None:
                     "collinear a force along the sliding direction with the file's magnitudes) "
                     "or a built-in one: coulomb (mu1 alone, or mu1 = mu2), ellipse (associated "
                     "orthotropic), collinear (force along the sliding direction, magnitude from "
-                    "the ellipse) or star (non-convex windward wedge reservoir stretched to mu1 "
-                    "along t_a and mu2 along t_b). Prints the rest point, stop time and the "
+                    "the ellipse), star (non-convex windward wedge reservoir stretched to mu1 "
+                    "along t_a and mu2 along t_b) or componentwise (Hu et al.'s rule of --mu-f, "
+                    "--mu-b, --mu-t: each component of the unit slip scaled by its own "
+                    "coefficient, forward = +t_a). Prints the rest point, stop time and the "
                     "deflection: the signed angle from the initial velocity to the line from "
                     "start to rest (positive towards t_b). Exit status 3 if the fixed-point "
                     "iteration did not converge at some step (reported, with the residual). A "
@@ -42,14 +44,17 @@ def add_parser(sub) -> None:
         formatter_class=DefaultsHelpFormatter)
     p.add_argument("gauge", nargs="?", metavar="GAUGE.json", help="gauge file (asperity fit)")
     p.add_argument("--law", choices=LAWS, default=None,
-                   help="law (default: the gauge file's; without one coulomb if only --mu1 "
-                        "is given or mu1 = mu2, else ellipse)")
+                   help="law (default: the gauge file's; without one componentwise if "
+                        "--mu-f/--mu-b/--mu-t are given, coulomb if only --mu1 is given or "
+                        "mu1 = mu2, else ellipse)")
     p.add_argument("--pressure", type=float, metavar="P_PA",
                    help="nominal normal pressure of the body on the plane, Pa: required when "
                         "the gauge file holds a law family (version 2), whose law is taken at "
                         "it (interpolated between the members); refused otherwise")
     p.add_argument("--mu1", type=float, metavar="X", help="friction coefficient along t_a")
     p.add_argument("--mu2", type=float, metavar="Y", help="friction coefficient along t_b")
+    from .parsing import add_componentwise_flags
+    add_componentwise_flags(p)
     p.add_argument("--u0", type=float, required=True, metavar="M_S", help="initial speed (m/s)")
     p.add_argument("--angle", type=float, required=True, metavar="DEG",
                    help="direction of the initial velocity (deg from t_a towards t_b)")
@@ -128,7 +133,14 @@ def _build(args):
     if args.pressure is not None and not args.gauge:
         raise InputError("--pressure takes the law of a law family (a version-2 gauge file) at "
                          "the body's nominal pressure; built-in laws do not depend on it")
+    from .parsing import componentwise_from_args, componentwise_given
+    cw = componentwise_given(args)
+    if cw and args.law not in (None, "componentwise"):
+        raise InputError(f"--mu-f/--mu-b/--mu-t are the componentwise law's, not --law {args.law}'s")
     if args.gauge:
+        if cw:
+            raise InputError("--mu-f/--mu-b/--mu-t do not apply with a gauge file (the file "
+                             "holds the law)")
         if args.mu1 is not None or args.mu2 is not None:
             raise InputError("--mu1/--mu2 do not apply with a gauge file (the file holds the law)")
         if args.law == "coulomb":
@@ -143,11 +155,17 @@ def _build(args):
         kind = args.law
         if kind == "ellipse" and gl.kind != "truncated-ellipse":
             raise InputError(f"--law ellipse needs a truncated-ellipse gauge file, "
-                             f"{args.gauge} holds a {gl.kind} law (use --law star or collinear)")
-        if kind == "star" and gl.kind != "star":
-            raise InputError(f"--law star needs a star gauge file, {args.gauge} holds a "
-                             f"{gl.kind} law (use --law ellipse or collinear)")
+                             f"{args.gauge} holds a {gl.kind} law (use --law collinear or the "
+                             "file's own)")
+        if kind in ("star", "componentwise") and gl.kind != kind:
+            raise InputError(f"--law {kind} needs a {kind} gauge file, {args.gauge} holds a "
+                             f"{gl.kind} law (use --law collinear or the file's own)")
         return L.from_gauge(gl, None if kind in (None, "ellipse", "star") else kind), how
+    if cw or args.law == "componentwise":
+        if args.mu1 is not None or args.mu2 is not None:
+            raise InputError("--mu1/--mu2 do not apply to the componentwise law (it takes "
+                             "--mu-f, --mu-b, --mu-t)")
+        return componentwise_from_args(args), None
     if args.mu1 is None:
         raise InputError("--mu1 is required without a gauge file (friction coefficient along "
                          "t_a, in [1e-6, 100])")

@@ -141,6 +141,9 @@ def source_words(source: dict) -> str:
     tex = source.get("texture", {}) if isinstance(source, dict) else {}
     tex = tex if isinstance(tex, dict) else {}
     kind = str(tex.get("kind", "texture"))
+    if tex.get("rule"):
+        return (f"the {tex['rule']} rule's coefficients (mu_f {tex.get('mu_f'):g}, mu_b "
+                f"{tex.get('mu_b'):g}, mu_t {tex.get('mu_t'):g})")
     if "alpha_deg" in tex:
         what = (f"a {kind} texture (alpha {tex.get('alpha_deg'):g} deg, beta "
                 f"{tex.get('beta_deg'):g} deg, mu {tex.get('mu_alpha'):g} / "

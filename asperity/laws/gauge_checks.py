@@ -40,6 +40,9 @@ def check_ranges(obj: dict) -> None:
         for k in ("mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"):
             _in(f"parameters.{k}", [prm[k]], MU_MIN, MU_MAX)
         _in("parameters.theta_rad", [prm["theta_rad"]], 0.0, 2 * TWO_PI)
+    elif obj["law"] == "componentwise":
+        for k in ("mu_f", "mu_b", "mu_t"):
+            _in(f"parameters.{k}", [prm[k]], MU_MIN, MU_MAX)
     else:
         pts = np.asarray(prm["C"]["points"], dtype=float)
         _in("parameters.C.points (|p|)", np.hypot(pts[:, 0], pts[:, 1]), MU_MIN, MU_MAX)

@@ -43,6 +43,9 @@ def to_dict(gl: GaugeLaw) -> dict:
     if gl.kind == "truncated-ellipse":
         e = law.C
         params = {**e.axes, "theta_rad": float(e.theta)}
+    elif gl.kind == "componentwise":
+        from .componentwise import parameters
+        params = parameters(law)
     else:
         params = {"C": {"points": law.C.points.tolist()},
                   "D": {"psi_rad": law.D.psi.tolist(), "h": law.D.h.tolist(),
@@ -133,6 +136,9 @@ def from_dict(obj):
         e = TruncatedEllipse(prm["mu_a_plus"], prm["mu_a_minus"], prm["mu_b_plus"],
                              prm["mu_b_minus"], theta=prm["theta_rad"])
         law = associated(e)
+    elif kind == "componentwise":
+        from .componentwise import from_parameters
+        law = from_parameters(prm)
     else:
         try:
             C = StarSet(np.array(prm["C"]["points"], dtype=float))

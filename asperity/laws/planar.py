@@ -11,6 +11,8 @@ the frame of the law (``t_a`` = x, ``t_b`` = y).  The built-in laws:
   associated: asymmetric friction, e.g. for ratcheting;
 * :func:`collinear_law` -- force parallel to the sliding direction with magnitude from a
   radial function (C = the given set, D = a disc: its normal cone is the ray of the force);
+* :func:`componentwise_law` -- Hu et al.'s componentwise rule (forward, backward and
+  transverse coefficients), a Walker-Leine law of two truncated ellipses;
 * :func:`star_law` -- Walker-Leine law with a non-convex, star-shaped C and convex D: the
   windward wedge reservoir (alpha = beta = 30 deg, mu = 0.3, rigid asperities) stretched
   along t_a and t_b to mu1 and mu2 (:func:`windward_star_law` gives it unstretched);
@@ -41,7 +43,7 @@ from .walker_leine import WalkerLeineLaw, associated
 
 #: set kinds of the kernels (same numbers as asperity.laws._set_kernels.SET_*)
 SET_DISC, SET_ELLIPSE, SET_STAR, SET_SUPPORT = 0, 1, 2, 3
-LAW_NAMES = ("coulomb", "ellipse", "truncated-ellipse", "collinear", "star")
+LAW_NAMES = ("coulomb", "ellipse", "truncated-ellipse", "collinear", "componentwise", "star")
 #: directions sampled when D is fitted inside C
 _SCALE_DIRECTIONS = 7200
 
@@ -95,7 +97,7 @@ def scale_set(S, c: float):
 class PlanarLaw:
     """A friction law of the solver: a Walker-Leine pair (C, D) with a name.
 
-    name : "coulomb", "ellipse", "truncated-ellipse", "collinear" or "star"
+    name : one of LAW_NAMES
     law  : the WalkerLeineLaw (C reservoir, D sliding set); ``law.force(psi)`` is the
            sliding force per unit normal load
     description : one line saying what the law is
@@ -217,6 +219,20 @@ def collinear_law(C=None, mu1: float | None = None, mu2: float | None = None) ->
                      f"function of the {what}")
 
 
+def componentwise_law(mu_f: float, mu_b: float, mu_t: float) -> PlanarLaw:
+    """Componentwise rule (Hu, Nirody, Scott and Shelley, PNAS 2009): for the unit slip
+    u = (cos psi, sin psi), p = (mu_{f|b} u_x, mu_t u_y) (mu_f where u_x >= 0; the force on
+    the body is -p N).  The Walker-Leine law with C the truncated ellipse (mu_f, mu_b, mu_t)
+    and D the one of semi-axes sqrt(mu_f), sqrt(mu_b), sqrt(mu_t) times sqrt(min mu) (inside
+    C, touching it): D's boundary point of normal u lies on the ray of (mu_{f|b} u_x,
+    mu_t u_y), which is on C."""
+    from .componentwise import componentwise_pair
+    law = componentwise_pair(mu_f, mu_b, mu_t)
+    f, b, t = law.C.mu_a_plus, law.C.mu_a_minus, law.C.mu_b_plus
+    return PlanarLaw("componentwise", law, f"componentwise (Hu et al.): mu_f = {f:g} (+t_a), "
+                     f"mu_b = {b:g} (-t_a), mu_t = {t:g} (+-t_b)")
+
+
 def _directions(n) -> int:
     """Directions of a star law's fit: as ``derive``'s."""
     from ..errors import check_int
@@ -274,8 +290,8 @@ def star_law(mu1: float, mu2: float, directions: int = 360) -> PlanarLaw:
 def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
     """The law of a gauge file (path or GaugeLaw).
 
-    kind: None or the file's own law ("ellipse" for a truncated-ellipse file, "star" for a
-    star file), or "collinear" (force along the sliding direction, |p| from the file's C)."""
+    kind: None or the file's own law ("ellipse" for a truncated-ellipse file, "star" or
+    "componentwise" for such a file), or "collinear" (force along the sliding direction, |p| from the file's C)."""
     from .family import GaugeFamily
     from .fitting import GaugeLaw
     if not isinstance(gauge, (GaugeLaw, GaugeFamily)):
@@ -285,8 +301,11 @@ def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
         raise InputError(f"the gauge file holds a law family over the pressures "
                          f"{gauge.pressures[0]:g} to {gauge.pressures[-1]:g} Pa: take its law "
                          "at the nominal pressure first (GaugeFamily.at, or --pressure)")
-    own = "ellipse" if gauge.kind == "truncated-ellipse" else "star"
+    own = {"truncated-ellipse": "ellipse"}.get(gauge.kind, gauge.kind)
     kind = own if kind is None else check_choice("kind", kind, (own, "collinear"))
+    if kind == "componentwise":
+        from .componentwise import coefficients
+        return componentwise_law(**coefficients(gauge.law))
     src = gauge.source.get("texture", {})
     what = src.get("kind", "?") if isinstance(src, dict) else "?"
     if kind == "collinear":

@@ -27,6 +27,11 @@ def draw_law(ax, gl: GaugeLaw, *, arrows: int = 24, color: str = "tab:blue") -> 
         Db = _closed(law.D.boundary.points)
         ax.plot(Db[:, 0], Db[:, 1], color="tab:orange", lw=1.2, ls="--",
                 label="D (sliding set, scale arbitrary)")
+    elif law.D != law.C:
+        rD = law.D.radial(phi)
+        Dc = (rD * np.min(law.C.radial(phi) / rD))[:, None] * unit(phi)
+        ax.plot(Dc[:, 0], Dc[:, 1], color="tab:orange", lw=1.2, ls="--",
+                label="D (sliding set, scaled inside C)")
     else:
         ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label="D = C (associated)")
     psi = np.radians(gl.principal_direction_deg) + 2 * np.pi * np.arange(arrows) / arrows
@@ -54,6 +59,9 @@ def _law_title(gl: GaugeLaw) -> str:
                 f"mu_alpha={tex.get('mu_alpha'):g}, mu_beta={tex.get('mu_beta'):g}")
     else:
         what = str(tex.get("source", tex.get("kind", "surface")))
+    if tex.get("rule"):
+        what = (f"rule {tex['rule']}: mu_f = {tex.get('mu_f'):g}, mu_b = {tex.get('mu_b'):g}, "
+                f"mu_t = {tex.get('mu_t'):g}")
     return f"{gl.kind} law, {gl.source.get('contact')}\n{what}"
 
 

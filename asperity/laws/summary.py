@@ -14,6 +14,9 @@ def summary(gl) -> dict:
            "principal_direction_deg": gl.principal_direction_deg, "fit": gl.fit.to_dict()}
     if gl.kind == "truncated-ellipse":
         out["parameters"] = {**gl.law.C.axes, "theta_rad": gl.law.C.theta}
+    elif gl.kind == "componentwise":
+        from .componentwise import parameters
+        out["parameters"] = parameters(gl.law)
     else:
         out["parameters"] = {"C_vertices": int(gl.law.C.n), "D_samples": int(gl.law.D.psi.size),
                              "D_flat_edges_deg": [math.degrees(x) for x in gl.law.D.edges]}
@@ -37,6 +40,11 @@ def format_fit(gl) -> str:
                      f"mu_b+ = {e.mu_b_plus:.6f}  mu_b- = {e.mu_b_minus:.6f}"
                      + (f"  (t_a at {gl.principal_direction_deg:.3f} deg)"
                         if gl.principal_direction_deg else ""))
+    elif gl.kind == "componentwise":
+        from .componentwise import coefficients
+        k = coefficients(gl.law)
+        lines.append(f"  rule: componentwise (Hu et al.)  mu_f = {k['mu_f']:.6f} (+t_a)  "
+                     f"mu_b = {k['mu_b']:.6f} (-t_a)  mu_t = {k['mu_t']:.6f} (+-t_b)")
     lines += [f"radial error at the data: max {r.max_radial_error:.3e}, rms {r.rms_radial_error:.3e}",
               f"largest angle between the data force and the law's force: "
               f"{r.max_angle_error_deg:.4g} deg"]

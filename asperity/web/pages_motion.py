@@ -17,6 +17,8 @@ BUILTIN = (("ellipse", "built in: ellipse (associated orthotropic, mu1 along t_a
            ("coulomb", "built in: coulomb (isotropic, mu1)"),
            ("collinear", "built in: collinear (force along the sliding direction)"),
            ("star", "built in: star (windward wedge reservoir, mu1 / mu2)"),
+           ("componentwise", ("built in: componentwise (Hu et al.: forward, backward, "
+                              "transverse coefficients)")),
            ("upload", "a gauge file (upload below)"))
 #: the Motion page's pressure field, for a law family (a gauge file of version 2)
 PRESSURE = "nominal pressure, Pa"
@@ -132,6 +134,10 @@ async def _slide_params(web, form: Form, kept: dict) -> tuple[dict, str]:
         spec = {"kind": "builtin", "law": choice, "mu1": mu1, "mu2": mu2}
         what = f"{article(choice)} law, mu1 = {mu1:g}" + ("" if mu2 is None else
                                                          f", mu2 = {mu2:g}")
+    elif choice == "componentwise":
+        mu = {k: form.number(k, label=k) for k in ("mu_f", "mu_b", "mu_t")}
+        spec = {"kind": "builtin", "law": choice, **mu}
+        what = ("the componentwise law, " + ", ".join(f"{k} = {v:g}" for k, v in mu.items()))
     else:
         raise FormError(f"unknown friction law {choice[:40]!r}; pick one from the list", "law")
     if spec.get("pressure") is not None:

@@ -3,7 +3,8 @@ verdict of an assembly under load cycles (``risk``).
 
 A *law* for ``slide``: ``{"kind": "job", "job": ID}`` (the gauge file of a Law result),
 ``{"kind": "upload", "upload": ID, "name": ...}`` (a gauge file) or ``{"kind": "builtin",
-"law": coulomb|ellipse|collinear|star, "mu1", "mu2"}``.  The *friction* of ``risk``:
+"law": coulomb|ellipse|collinear|star, "mu1", "mu2"}`` or ``{"kind": "builtin", "law":
+"componentwise", "mu_f", "mu_b", "mu_t"}``.  The *friction* of ``risk``:
 ``{"kind": "wedge", ...}``, ``{"kind": "job", "job": ID}`` (a Surface result's source),
 ``{"kind": "file", ...}`` (an uploaded texture or surface), ``{"kind": "law", "job": ID}``
 (a Law result's gauge file), ``{"kind": "mu", "mu_plus", "mu_minus"}`` or ``{"kind":
@@ -58,7 +59,10 @@ def build_law(spec: dict, ctx: dict):
         return collinear_law(mu1=mu1, mu2=mu2)
     if name == "star":
         return star_law(mu1, mu2)
-    raise InputError("law must be one of coulomb, ellipse, collinear, star")
+    if name == "componentwise":
+        from .. import componentwise_law
+        return componentwise_law(spec.get("mu_f"), spec.get("mu_b"), spec.get("mu_t"))
+    raise InputError("law must be one of coulomb, ellipse, collinear, star, componentwise")
 
 
 def slide_task(params: dict, ctx: dict, bar) -> dict:
@@ -110,6 +114,9 @@ def _law_words(spec: dict, law, params: dict, ctx: dict) -> tuple[str, str]:
         shown = str(spec.get("name"))
         return f"the {law.name} law of gauge file {shown}{at}", \
             law_stem(stem(shown), law.name) + tail
+    if spec.get("law") == "componentwise":
+        mu = "mu" + "-".join(f"{spec.get(k):g}" for k in ("mu_f", "mu_b", "mu_t"))
+        return law.description, clean(f"componentwise-{mu}")
     mu = f"mu{spec.get('mu1'):g}" + ("" if spec.get("mu2") is None else f"-{spec['mu2']:g}")
     return law.description, clean(f"{spec.get('law')}-{mu}")
 

@@ -45,7 +45,8 @@ SURFACE = {"unit": ("unit", "length unit"), "pixel_size": ("pixel_size", "pixel 
 SLIDE = {"u0": ("u0", "u0 (m/s)"), "angle": ("angle_deg", "direction (deg)"),
          "angle_deg": ("angle_deg", "direction (deg)"), "mass": ("mass", "mass (kg)"),
          "g": ("g", "g (m/s^2)"), "dt": ("dt", "time step (s)"), "mu1": ("mu1", "mu1"),
-         "mu2": ("mu2", "mu2")}
+         "mu2": ("mu2", "mu2"), "mu_f": ("mu_f", "mu_f"), "mu_b": ("mu_b", "mu_b"),
+         "mu_t": ("mu_t", "mu_t")}
 #: what the command line's advice becomes on a page: (pattern, words, the key of the
 #: field it is about)
 PHRASES = ((re.compile(r" ?\(on the command line --[\w-]+\)"), "", None),
