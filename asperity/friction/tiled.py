@@ -122,7 +122,7 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
     from ..surface.facet_checks import check_options
     from ..surface.facets import DEFAULT_MU, DETREND
     from ..surface.friction_map import MAX_MU
-    from ..surface.tiles import TilePlan, open_friction_map, open_scan
+    from ..surface.tiles import open_scan
     from .reservoir import check_contact
     check_choice("detrend", detrend, tuple(DETREND))
     rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, False, None)
@@ -144,6 +144,20 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
         mu = check_mu("mu", DEFAULT_MU if mu is None else mu, MAX_MU)
     src = source if source is not None else open_scan(
         path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
+    try:
+        return _derive_opened(src, path, detrend, mu, friction_map, rest_level,
+                              bearing_fraction, despike, max_slope, contact, n, tile_lines,
+                              client, other_contact, height_scale)
+    finally:
+        if source is None:         # the file's handles (reopened if read again); a refusal
+            src.close()            # midway left them to the garbage collector
+
+
+def _derive_opened(src, path, detrend, mu, friction_map, rest_level, bearing_fraction,
+                   despike, max_slope, contact, n, tile_lines, client, other_contact,
+                   height_scale):
+    """derive_scan's work on the opened scan ``src``."""
+    from ..surface.tiles import TilePlan, open_friction_map
     if min(src.shape) < 2:
         raise InputError(f"{src.source}: a height map needs at least 2 x 2 pixels, got "
                          f"{src.shape}")

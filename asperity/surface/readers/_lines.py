@@ -27,6 +27,9 @@ class LineSource:
     def n_lines(self) -> int:
         return self.shape[self.axis]
 
+    def close(self) -> None:
+        """Close the file handles kept between reads (none here; a later read reopens)."""
+
     def lines(self, a: int, b: int) -> np.ndarray:
         """float64 heights[a:b, :] (axis 0) or heights[:, a:b] (axis 1), m, NaN undefined."""
         raise NotImplementedError
