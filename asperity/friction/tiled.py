@@ -122,7 +122,7 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
     from ..surface.facet_checks import check_options
     from ..surface.facets import DEFAULT_MU, DETREND
     from ..surface.friction_map import MAX_MU
-    from ..surface.tiles import open_scan
+    from ..surface.tiles import TilePlan, open_friction_map, open_scan
     from .reservoir import check_contact
     check_choice("detrend", detrend, tuple(DETREND))
     rest_level, bearing_fraction = check_options(rest_level, bearing_fraction, False, None)
@@ -145,47 +145,37 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
     src = source if source is not None else open_scan(
         path, unit=unit, pixel_size=pixel_size, height_scale=height_scale)
     try:
-        return _derive_opened(src, path, detrend, mu, friction_map, rest_level,
-                              bearing_fraction, despike, max_slope, contact, n, tile_lines,
-                              client, other_contact, height_scale)
+        if min(src.shape) < 2:
+            raise InputError(f"{src.source}: a height map needs at least 2 x 2 pixels, got "
+                             f"{src.shape}")
+        from ..resources import check_work
+        nx, ny = src.shape
+        check_work(2.0 * (nx - 1) * (ny - 1) * 3 * n, MAX_SCAN_WORK,
+                   f"{src.source}: a {nx} x {ny} grid x {n} directions (facet-directions)",
+                   "lower --directions or crop the scan")
+        lines = default_tile_lines(src) if tile_lines is None else \
+            check_int("tile_lines", tile_lines, 1, 10 ** 9)
+        lines = min(lines, src.n_lines)
+        if client is not None and not src.streams:
+            raise InputError(f"{src.source}: this file is read whole (gzip, .npz, instrument "
+                             f"formats); tiles on Dask workers need .npy, .x3p or a text matrix")
+        _check_tile_memory(src, lines)
+        plan = TilePlan(heights=src, tile_lines=lines, despike=despike, mu=mu,
+                        mu_map=None if friction_map is None else open_friction_map(friction_map,
+                                                                                   src),
+                        max_slope=max_slope)
+        run = _Runner(plan, client)
+        from .tile_reduce import assemble, bearing_level, prepare
+        plan, info, prep = prepare(run, plan, path, detrend, friction_map, height_scale)
+        if bearing_fraction is not None:
+            plan = plan.with_(rest_level=bearing_level(run, plan, bearing_fraction))
+            info["bearing_fraction"] = float(bearing_fraction)
+        elif rest_level is not None:
+            plan = plan.with_(rest_level=float(rest_level), need_z=True)
+        return assemble(run, plan, info, prep, contact, n, other_contact)
     finally:
         if source is None:         # the file's handles (reopened if read again); a refusal
             src.close()            # midway left them to the garbage collector
-
-
-def _derive_opened(src, path, detrend, mu, friction_map, rest_level, bearing_fraction,
-                   despike, max_slope, contact, n, tile_lines, client, other_contact,
-                   height_scale):
-    """derive_scan's work on the opened scan ``src``."""
-    from ..surface.tiles import TilePlan, open_friction_map
-    if min(src.shape) < 2:
-        raise InputError(f"{src.source}: a height map needs at least 2 x 2 pixels, got "
-                         f"{src.shape}")
-    from ..resources import check_work
-    nx, ny = src.shape
-    check_work(2.0 * (nx - 1) * (ny - 1) * 3 * n, MAX_SCAN_WORK,
-               f"{src.source}: a {nx} x {ny} grid x {n} directions (facet-directions)",
-               "lower --directions or crop the scan")
-    lines = default_tile_lines(src) if tile_lines is None else \
-        check_int("tile_lines", tile_lines, 1, 10 ** 9)
-    lines = min(lines, src.n_lines)
-    if client is not None and not src.streams:
-        raise InputError(f"{src.source}: this file is read whole (gzip, .npz, instrument "
-                         f"formats); tiles on Dask workers need .npy, .x3p or a text matrix")
-    _check_tile_memory(src, lines)
-    plan = TilePlan(heights=src, tile_lines=lines, despike=despike, mu=mu,
-                    mu_map=None if friction_map is None else open_friction_map(friction_map,
-                                                                               src),
-                    max_slope=max_slope)
-    run = _Runner(plan, client)
-    from .tile_reduce import assemble, bearing_level, prepare
-    plan, info, prep = prepare(run, plan, path, detrend, friction_map, height_scale)
-    if bearing_fraction is not None:
-        plan = plan.with_(rest_level=bearing_level(run, plan, bearing_fraction))
-        info["bearing_fraction"] = float(bearing_fraction)
-    elif rest_level is not None:
-        plan = plan.with_(rest_level=float(rest_level), need_z=True)
-    return assemble(run, plan, info, prep, contact, n, other_contact)
 
 
 def tile_bytes(src, lines=None) -> float:
