@@ -63,7 +63,11 @@ _PHRASES = (("pass unit and pixel_size", "pass --unit and --pixel-size"),
 
 class flag_names:
     """Library field names at the start of an InputError's message (and a few phrases
-    after a file's name) -> the user's flags."""
+    after a file's name) -> the user's flags; ``fields``: {field: flag} to use instead of
+    the surface flags' (the first that starts the message is taken)."""
+
+    def __init__(self, fields=None):
+        self.fields = _FIELD_FLAGS if fields is None else fields
 
     def __enter__(self):
         return self
@@ -71,7 +75,7 @@ class flag_names:
     def __exit__(self, kind, exc, tb):
         if kind is not None and issubclass(kind, InputError):
             msg = str(exc)
-            for field, flag in _FIELD_FLAGS.items():
+            for field, flag in self.fields.items():
                 if msg.startswith(field):
                     raise kind(flag + msg[len(field):]) from None
             new = msg
@@ -298,34 +302,23 @@ def _texture_from_args(args, elastic):
         if k not in given:
             raise InputError(f"missing --{k.replace('_', '-')} (a wedge given by flags needs "
                              "--alpha, --beta, --mu-alpha, --mu-beta)")
-    try:
+    with flag_names({field + " ": "--" + flag.replace("_", "-") + " "
+                     for flag, field in WEDGE_FLAGS.items()}):
         return WedgeTexture(**{WEDGE_FLAGS[k]: v for k, v in given.items()}), {}
-    except InputError as exc:
-        msg = str(exc)
-        for flag, field in WEDGE_FLAGS.items():
-            if msg.startswith(field + " "):
-                msg = "--" + flag.replace("_", "-") + msg[len(field):]
-        raise InputError(msg) from None
 
 
 def spring_model_from_args(args, table: dict):
     from ..texture.spring_model import SpringModel
     d = dict(table)
-    given = {}
+    fields = {}                       # a value from a flag: the message names the flag
     for dest, key in SPRING_FLAGS.items():
         v = getattr(args, dest, None)
         if v is not None:
             d[key] = v
-            given[key] = "--" + dest.replace("_", "-")
-    try:
+            if key in ("k_f", "k_n"):     # the ratio of the two, before either alone
+                fields = {"springs.k_f / k_n ": "--k-f / --k-n ",
+                          "k_f / k_n ": "--k-f / --k-n ", **fields}
+            flag = "--" + dest.replace("_", "-") + " "
+            fields.update({f"springs.{key} ": flag, f"{key} ": flag})
+    with flag_names(fields):
         return SpringModel.from_dict(d)
-    except InputError as exc:         # a value from a flag: the message names the flag
-        msg = str(exc)
-        for field in ("springs.k_f / k_n ", "k_f / k_n "):    # the ratio of two flags
-            if msg.startswith(field) and given.keys() & {"k_f", "k_n"}:
-                raise InputError("--k-f / --k-n " + msg[len(field):]) from None
-        for key, flag in given.items():
-            for field in (f"springs.{key} ", f"{key} "):
-                if msg.startswith(field):
-                    raise InputError(flag + " " + msg[len(field):]) from None
-        raise
