@@ -128,14 +128,13 @@ def componentwise_given(args) -> bool:
 
 def componentwise_from_args(args):
     """The componentwise PlanarLaw of --mu-f --mu-b --mu-t (all three required)."""
-    from ..errors import InputError, check_range
+    from ..errors import InputError
     from ..laws.geometry import MU_MAX, MU_MIN
     from ..laws.planar import componentwise_law
-    mu = {}
+    from .sources import flag_names
     for dest, flag, words in COMPONENTWISE_FLAGS:
-        v = getattr(args, dest, None)
-        if v is None:
+        if getattr(args, dest, None) is None:
             raise InputError(f"the componentwise law needs {flag} ({words} friction "
                              f"coefficient, in [{MU_MIN:g}, {MU_MAX:g}])")
-        mu[dest] = check_range(flag, v, MU_MIN, MU_MAX)
-    return componentwise_law(**mu)
+    with flag_names({dest + " ": flag + " " for dest, flag, _ in COMPONENTWISE_FLAGS}):
+        return componentwise_law(*(getattr(args, d) for d, _, _ in COMPONENTWISE_FLAGS))
