@@ -1112,6 +1112,15 @@ MUTANTS = [
            "    R = _rot(-a)\n    c = np.asarray(force.constant)",
            "    R = _rot(a)\n    c = np.asarray(force.constant)", METAMORPHIC_BODIES,
            "an external force turned the wrong way into the frame of a turned law"),
+    # ---- command-line names of library fields
+    Mutant("cli-spring-ratio-flags-dropped", "cli/sources.py",
+           '{"springs.k_f / k_n ": "--k-f / --k-n ", **fields}', "{**fields}",
+           ("test_hostile_texture.py",),
+           "the spring stiffness ratio's refusal names k_f / k_n, not the flags given"),
+    Mutant("cli-componentwise-field-not-flag", "cli/parsing.py",
+           'with flag_names({dest + " ": flag + " "', 'with flag_names({dest + " ": dest + " "',
+           ("test_componentwise_law.py",),
+           "a componentwise coefficient refused under its field name, not its flag"),
 ]
 
 

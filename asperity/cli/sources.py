@@ -316,9 +316,7 @@ def spring_model_from_args(args, table: dict):
         if v is not None:
             d[key] = v
             if key in ("k_f", "k_n"):     # the ratio of the two, before either alone
-                fields = {"springs.k_f / k_n ": "--k-f / --k-n ",
-                          "k_f / k_n ": "--k-f / --k-n ", **fields}
-            flag = "--" + dest.replace("_", "-") + " "
-            fields.update({f"springs.{key} ": flag, f"{key} ": flag})
-    with flag_names(fields):
+                fields = {"springs.k_f / k_n ": "--k-f / --k-n ", **fields}
+            fields[f"springs.{key} "] = "--" + dest.replace("_", "-") + " "
+    with flag_names(fields):          # (from_dict's messages start with springs.)
         return SpringModel.from_dict(d)
