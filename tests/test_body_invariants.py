@@ -196,13 +196,14 @@ def test_a_warm_start_extrapolated_to_zero_on_a_body_that_sticks_ends_at_rest(la
     lw = collinear_law(mu1=0.3, mu2=0.1) if law == "collinear" else coulomb_law(0.3)
     kind, par, tab, assoc, mu_max = law_tables(lw)
     ox, oy = np.array([-a, a]), np.zeros(2)
+    ext = np.zeros((0, 4))          # a rigid footprint: no slip offsets, one law orientation
     md = np.array([m, m, m * a * a])
     lam = np.full(2, 0.5 * m * G * dt)
     uA = np.array([0.02 * G * dt, 0.0, 0.0])        # a fifth of what mu = 0.1 stops
     got = []
     for step in (K.step_velocity, K.step_velocity.py_func):
         out = np.full(3, np.nan)
-        its, status, _ = step(uA, 2 * uA, True, uA.copy(), md, ox, oy, lam, kind, par, tab,
+        its, status, _ = step(uA, 2 * uA, True, uA.copy(), md, ox, oy, ext, lam, kind, par, tab,
                               assoc, 1e-12, 100, m * G * dt * mu_max / math.sqrt(m), out,
                               np.empty(3), np.empty((3, 3)), np.empty(16), np.empty(3))
         assert status == K.STATUS_OK and not out.any(), (status, out)

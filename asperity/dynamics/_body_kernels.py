@@ -66,8 +66,8 @@ def _force(fpar, t, out):
 
 
 @njit(cache=True)
-def step_velocity(uA, uP, warm, uf, md, ox, oy, lam, kind, par, tab, assoc, tol, maxit, scale,
-                  out, R, J, ev, work):
+def step_velocity(uA, uP, warm, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, tol, maxit,
+                  scale, out, R, J, ev, work):
     """The end velocity of one step (out) from the start velocity uA (uP the one before,
     used if warm) and the free velocity uf.  scale: the impulse scale
     sum_i lam_i mu_max / sqrt(m) of the tolerances.  Returns (iterations, status, relative residual)."""
@@ -93,7 +93,7 @@ def step_velocity(uA, uP, warm, uf, md, ox, oy, lam, kind, par, tab, assoc, tol,
         # stick of the body is caught inside _slide
         for j in range(3):
             out[j] = 2.0 * uA[j] - uP[j] if warm else uA[j]
-        k, conv, rn = _slide(out, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tola,
+        k, conv, rn = _slide(out, uf, b, md, ox, oy, ext, lam, kind, par, tab, assoc, tola,
                              maxit, R, J, ev, dx, un)
         its += k
         if conv:
@@ -109,23 +109,23 @@ def step_velocity(uA, uP, warm, uf, md, ox, oy, lam, kind, par, tab, assoc, tol,
         for j in range(3):
             d[j] = uf[j]
     for attempt in range(4):
-        s = _ray(d, b, md, ox, oy, lam, kind, par, tab, ev)
+        s = _ray(d, b, md, ox, oy, ext, lam, kind, par, tab, ev)
         if s <= 0.0:
             # no sliding on this ray: find the direction of least margin; the body sticks
             # iff the margin is not negative
-            G, k = _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tola, maxit, R,
+            G, k = _min_sphere(d, b, md, ox, oy, ext, lam, kind, par, tab, tola, maxit, R,
                                J, ev, work)
             its += k
             if G >= -tola:
                 for j in range(3):
                     out[j] = 0.0
                 return its, STATUS_OK, 0.0
-            s = _ray(d, b, md, ox, oy, lam, kind, par, tab, ev)
+            s = _ray(d, b, md, ox, oy, ext, lam, kind, par, tab, ev)
             if s <= 0.0:
                 s = -G
         for j in range(3):
             out[j] = s * d[j]
-        k, conv, rn = _slide(out, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tola,
+        k, conv, rn = _slide(out, uf, b, md, ox, oy, ext, lam, kind, par, tab, assoc, tola,
                              maxit, R, J, ev, dx, un)
         its += k
         if conv:
@@ -145,6 +145,7 @@ def integrate(q, u, pts, md, lam, kind, par, tab, assoc, fpar, dt, n_steps, star
     n = pts.shape[0]
     ox = np.empty(n)
     oy = np.empty(n)
+    ext = np.zeros((0, 4))       # a rigid footprint: no slip offsets, one law orientation
     R = np.empty(3)
     J = np.empty((3, 3))
     ev = np.empty(16)
@@ -195,8 +196,8 @@ def integrate(q, u, pts, md, lam, kind, par, tab, assoc, fpar, dt, n_steps, star
             for i in range(n):
                 ox[i] = c * pts[i, 0] - s * pts[i, 1]
                 oy[i] = s * pts[i, 0] + c * pts[i, 1]
-            its, st, res = step_velocity(u, up, warm, uf, md, ox, oy, lam, kind, par, tab, assoc,
-                                         tol, maxit, scale, ue, R, J, ev, work)
+            its, st, res = step_velocity(u, up, warm, uf, md, ox, oy, ext, lam, kind, par,
+                                         tab, assoc, tol, maxit, scale, ue, R, J, ev, work)
             if res > info[INFO_MAX_RESIDUAL]:
                 info[INFO_MAX_RESIDUAL] = res
         info[INFO_ITER_TOTAL] += its

@@ -93,10 +93,45 @@ def _eval(kind, par, tab, gx, gy, out):
 
 
 @njit(cache=True)
-def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=-1):
+def _eval_at(kind, par, tab, ext, i, gx, gy, out):
+    """:func:`_eval` at point i's slip (gx, gy) in the kernel's frame: with point rows
+    (``ext.shape[0] > 0``) the law of point i is turned by its angle (cos, sin) =
+    (ext[i, 2], ext[i, 3]): evaluated at the slip turned back, its forces and Jacobians
+    turned forward (c -> R c, J -> R J R^T)."""
+    if ext.shape[0] == 0:
+        _eval(kind, par, tab, gx, gy, out)
+        return
+    ca = ext[i, 2]
+    sa = ext[i, 3]
+    _eval(kind, par, tab, ca * gx + sa * gy, -sa * gx + ca * gy, out)
+    for o in (0, 6):
+        x = out[o]
+        y = out[o + 1]
+        out[o] = ca * x - sa * y
+        out[o + 1] = sa * x + ca * y
+        a = out[o + 2]
+        b = out[o + 3]
+        c = out[o + 4]
+        d = out[o + 5]
+        # R J (rows), then (R J) R^T (columns)
+        p = ca * a - sa * c
+        q = ca * b - sa * d
+        r = sa * a + ca * c
+        t = sa * b + ca * d
+        out[o + 2] = p * ca - q * sa
+        out[o + 3] = p * sa + q * ca
+        out[o + 4] = r * ca - t * sa
+        out[o + 5] = r * sa + t * ca
+
+
+@njit(cache=True)
+def _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, want_hull, R, J, ev, skip=-1):
     """R(u) = M (u - uf) + sum lam_i W_i c_i (want_hull: the hull's gradient instead of c and
     its Hessian in J) and J = M + sum lam_i W_i (dc/dgamma)_i W_i^T; returns sum lam_i h_i.
-    skip >= 0: leave out point ``skip`` and every point at the same spot (its group)."""
+    skip >= 0: leave out point ``skip`` and every point at the same spot (its group).
+    ext (n, 4) or (0, 4): per point, a slip offset (ext[i, 0], ext[i, 1]) added to W_i^T u
+    (a point that moves in the body: a crawling body's gait) and the angle of its law
+    (:func:`_eval_at`); none for a rigid body."""
     for j in range(3):
         R[j] = md[j] * (u[j] - uf[j])
         for k in range(3):
@@ -107,11 +142,15 @@ def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=
     rmin = np.inf
     imin = -1
     rsum = 0.0
+    moving = ext.shape[0] > 0
     for i in range(ox.shape[0]):
         oxi = ox[i]
         oyi = oy[i]
         gx = u[0] - u[2] * oyi
         gy = u[1] + u[2] * oxi
+        if moving:
+            gx += ext[i, 0]
+            gy += ext[i, 1]
         r2 = gx * gx + gy * gy
         rsum += r2
         if r2 < rmin:
@@ -119,7 +158,7 @@ def _assemble(u, uf, md, ox, oy, lam, kind, par, tab, want_hull, R, J, ev, skip=
             imin = i
         if skip >= 0 and oxi == ox[skip] and oyi == oy[skip]:
             continue
-        _eval(kind, par, tab, gx, gy, ev)
+        _eval_at(kind, par, tab, ext, i, gx, gy, ev)
         li = lam[i]
         cx = ev[off]
         cy = ev[off + 1]
@@ -190,8 +229,8 @@ def _solve3(J, r, x):
 
 
 @njit(cache=True)
-def _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev):
-    hs = _assemble(u, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev)
+def _merit(u, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, R, J, ev):
+    hs = _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev)
     if assoc:
         f = 0.0
         for j in range(3):
@@ -204,9 +243,10 @@ def _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev):
 
 
 @njit(cache=True)
-def _ray(d, b, md, ox, oy, lam, kind, par, tab, ev):
+def _ray(d, b, md, ox, oy, ext, lam, kind, par, tab, ev):
     """s with R(s d) . d = 0 on the ray of d (exact: c depends only on the slip direction):
-    s = (b.d - sum lam_i c_i . W_i^T d) / d^T M d."""
+    s = (b.d - sum lam_i c_i . W_i^T d) / d^T M d.  A rigid footprint only (ext empty: with
+    slip offsets c varies along the ray)."""
     num = b[0] * d[0] + b[1] * d[1] + b[2] * d[2]
     den = md[0] * d[0] * d[0] + md[1] * d[1] * d[1] + md[2] * d[2] * d[2]
     for i in range(ox.shape[0]):
@@ -218,7 +258,7 @@ def _ray(d, b, md, ox, oy, lam, kind, par, tab, ev):
 
 
 @njit(cache=True)
-def _group_load(ox, oy, lam, j):
+def _group_load(ox, oy, ext, lam, j):
     """The normal impulse of point j's group: the points at exactly its spot (they slip and
     stick together)."""
     s = 0.0

@@ -10,14 +10,14 @@ import numpy as np
 from numba import njit
 
 from ..kernel_cache import refresh
-from ._body_law_kernels import (_assemble, _eval, _gauge, _group_load, _merit, _ray,
+from ._body_law_kernels import (_assemble, _eval_at, _gauge, _group_load, _merit, _ray,
                                 _slip_towards, _solve3)
 
 refresh(__file__)     # drop cached kernels compiled against older callees
 
 
 @njit(cache=True)
-def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
+def _kink(u, uf, md, ox, oy, ext, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     """The step's solution with point j sticking: u = omega (oy_j, -ox_j, 1) (a rotation
     about point j, its slip exactly 0), omega from R(u) . n = 0 by a safeguarded 1D Newton;
     accepted (u overwritten, True) if the reaction of point j's group (the points at its
@@ -29,15 +29,18 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     un = np.empty(3)
     n0 = oy[j]
     n1 = -ox[j]
+    # a crawling body's point j has its own slip offset: it sticks on u = base + omega n
+    bx = -ext[j, 0] if ext.shape[0] > 0 else 0.0
+    by = -ext[j, 1] if ext.shape[0] > 0 else 0.0
     w = u[2]
     lo = -np.inf
     hi = np.inf
     ok = False
     for it in range(60):
-        un[0] = w * n0
-        un[1] = w * n1
+        un[0] = w * n0 + bx
+        un[1] = w * n1 + by
         un[2] = w
-        _assemble(un, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev)
+        _assemble(un, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev)
         d1 = R[0] * n0 + R[1] * n1 + R[2]
         if abs(d1) <= tol_r * math.sqrt(n0 * n0 / md[0] + n1 * n1 / md[1] + 1.0 / md[2]):
             ok = True
@@ -64,10 +67,15 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     cw[2] = np.nan
     if not ok:
         return False
-    lg = _group_load(ox, oy, lam, j)
+    lg = _group_load(ox, oy, ext, lam, j)
     cx = -R[0] / lg
     cy = -R[1] / lg
-    if _gauge(kind, par, tab, cx, cy) > 1.0 + 1e-12:
+    lx, ly = cx, cy
+    if ext.shape[0] > 0:
+        # the reaction in the frame of point j's law
+        lx = ext[j, 2] * cx + ext[j, 3] * cy
+        ly = -ext[j, 3] * cx + ext[j, 2] * cy
+    if _gauge(kind, par, tab, lx, ly) > 1.0 + 1e-12:
         cw[0] = cx
         cw[1] = cy
         cw[2] = w
@@ -78,7 +86,7 @@ def _kink(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
 
 
 @njit(cache=True)
-def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
+def _polar(u, uf, md, ox, oy, ext, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     """The step's solution with point j sliding slowly: unknowns (rho, phi, omega) with
     gamma_j = rho (cos phi, sin phi) and u = (gamma_j + omega (oy_j, -ox_j), omega).  In
     these coordinates the force c(phi) of point j's group (the points at its spot) is smooth
@@ -95,28 +103,38 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
     Jp = np.empty((3, 3))
     oxj = ox[j]
     oyj = oy[j]
+    # a crawling body's point j: its slip offset (bx, by) and the angle of its law
+    moving = ext.shape[0] > 0
+    bx = ext[j, 0] if moving else 0.0
+    by = ext[j, 1] if moving else 0.0
     if math.isfinite(cw[2]):
         # from the pivot about point j, sliding the way its needed reaction points
         x[0] = 0.0
-        x[1] = _slip_towards(kind, par, tab, cw[0], cw[1])
+        if moving:
+            ca = ext[j, 2]
+            sa = ext[j, 3]
+            x[1] = (_slip_towards(kind, par, tab, ca * cw[0] + sa * cw[1],
+                                  -sa * cw[0] + ca * cw[1]) + math.atan2(sa, ca))
+        else:
+            x[1] = _slip_towards(kind, par, tab, cw[0], cw[1])
         x[2] = cw[2]
     else:
-        gx = u[0] - u[2] * oyj
-        gy = u[1] + u[2] * oxj
+        gx = u[0] - u[2] * oyj + bx
+        gy = u[1] + u[2] * oxj + by
         x[0] = math.sqrt(gx * gx + gy * gy)
         x[1] = math.atan2(gy, gx)
         x[2] = u[2]
-    lj = _group_load(ox, oy, lam, j)
+    lj = _group_load(ox, oy, ext, lam, j)
     rn = np.inf
     for it in range(40):
         # residual at x (and its norm), Jacobian
         cph = math.cos(x[1])
         sph = math.sin(x[1])
-        un[0] = x[0] * cph + x[2] * oyj
-        un[1] = x[0] * sph - x[2] * oxj
+        un[0] = x[0] * cph + x[2] * oyj - bx
+        un[1] = x[0] * sph - x[2] * oxj - by
         un[2] = x[2]
-        _assemble(un, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev, j)
-        _eval(kind, par, tab, cph, sph, ev)
+        _assemble(un, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev, j)
+        _eval_at(kind, par, tab, ext, j, cph, sph, ev)
         cx, cy = ev[0], ev[1]
         # dc/dphi = J(unit) s_perp
         dcx = -ev[2] * sph + ev[3] * cph
@@ -154,11 +172,11 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
                 xn[k] = x[k] + step * dx[k]
             cph = math.cos(xn[1])
             sph = math.sin(xn[1])
-            un[0] = xn[0] * cph + xn[2] * oyj
-            un[1] = xn[0] * sph - xn[2] * oxj
+            un[0] = xn[0] * cph + xn[2] * oyj - bx
+            un[1] = xn[0] * sph - xn[2] * oxj - by
             un[2] = xn[2]
-            _assemble(un, uf, md, ox, oy, lam, kind, par, tab, False, R, J, ev, j)
-            _eval(kind, par, tab, cph, sph, ev)
+            _assemble(un, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev, j)
+            _eval_at(kind, par, tab, ext, j, cph, sph, ev)
             R[0] += lj * ev[0]
             R[1] += lj * ev[1]
             R[2] += lj * (oxj * ev[1] - oyj * ev[0])
@@ -175,7 +193,7 @@ def _polar(u, uf, md, ox, oy, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
 
 
 @njit(cache=True)
-def _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tolG, maxit, R, J, ev, work):
+def _min_sphere(d, b, md, ox, oy, ext, lam, kind, par, tab, tolG, maxit, R, J, ev, work):
     """Minimise G(d) = sum lam_i h(W_i^T d) - b.d over |d|_M = 1 from the direction d
     (overwritten by the minimiser); returns (min G, iterations).  Stops as soon as
     G < -tolG (a sliding direction) or the Riemannian gradient vanishes."""
@@ -200,7 +218,7 @@ def _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tolG, maxit, R, J, ev, wo
     it = 0
     for it in range(1, maxit + 1):
         # G(d) = sum lam h - b.d; gradient in e: M^-1/2 (sum lam W grad h - b)
-        hs = _assemble(d, zero, md, ox, oy, lam, kind, par, tab, True, R, J, ev)
+        hs = _assemble(d, zero, md, ox, oy, ext, lam, kind, par, tab, True, R, J, ev)
         G = hs - (b[0] * d[0] + b[1] * d[1] + b[2] * d[2])
         if G < -tolG:
             return G, it
@@ -261,7 +279,7 @@ def _min_sphere(d, b, md, ox, oy, lam, kind, par, tab, tolG, maxit, R, J, ev, wo
             for j in range(3):
                 en[j] /= n
                 dn[j] = en[j] / sq[j]
-            hs2 = _assemble(dn, zero, md, ox, oy, lam, kind, par, tab, True, R, J, ev)
+            hs2 = _assemble(dn, zero, md, ox, oy, ext, lam, kind, par, tab, True, R, J, ev)
             G2 = hs2 - (b[0] * dn[0] + b[1] * dn[1] + b[2] * dn[2])
             if G2 < G:
                 moved = True
@@ -298,10 +316,10 @@ def _accept(f, f2, g0, R, dx, rn, rn2, step, assoc, noise):
 
 
 @njit(cache=True)
-def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J, ev, dx, un):
+def _slide(u, uf, b, md, ox, oy, ext, lam, kind, par, tab, assoc, tol_r, maxit, R, J, ev, dx, un):
     """Newton with a backtracking line search on R(u) = 0 from u (overwritten).
     Returns (iterations, converged, final relative residual measure)."""
-    f = _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
+    f = _merit(u, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, R, J, ev)
     # rounding of the merit: F sums n + 3 positive terms (associated); the residual's
     # merit is resolved down to the rounding of R itself, far below the tolerance
     noise = (ox.shape[0] + 4) * 2.3e-16
@@ -327,14 +345,14 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
         for _ in range(60):
             for j in range(3):
                 un[j] = u[j] + step * dx[j]
-            f2 = _merit(un, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
+            f2 = _merit(un, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, R, J, ev)
             rn2 = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
             if _accept(f, f2, g0, R, dx, rn, rn2, step, assoc, noise):
                 ok = True
                 break
             step *= 0.5
         if not ok:
-            _merit(u, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
+            _merit(u, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, R, J, ev)
             rn = math.sqrt(R[0] * R[0] / md[0] + R[1] * R[1] / md[1] + R[2] * R[2] / md[2])
             return it, rn <= 1e3 * tol_r, rn
         if step < 1.0 and ev[14] < 1e-2 * ev[15]:
@@ -342,19 +360,20 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
             # solution with that point sticking exactly
             jk = int(ev[13])
             cw = np.empty(3)
-            if _kink(u, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
+            if _kink(u, uf, md, ox, oy, ext, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
                 return it, True, 0.0
             for k in range(3):
                 dx[k] = un[k]
-            if _polar(dx, uf, md, ox, oy, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
+            if _polar(dx, uf, md, ox, oy, ext, lam, kind, par, tab, jk, tol_r, R, J, ev, cw):
                 for k in range(3):
                     u[k] = dx[k]
                 return it, True, 0.0
-            _merit(un, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
-        if step < 1.0:
+            _merit(un, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, R, J, ev)
+        if step < 1.0 and ext.shape[0] == 0:
             # a damped step: is the motion collapsing towards the stick of the body?  The
-            # exact solve on the ray of the new point tells (s <= 0: no sliding there)
-            s = _ray(un, b, md, ox, oy, lam, kind, par, tab, ev)
+            # exact solve on the ray of the new point tells (s <= 0: no sliding there; a
+            # rigid footprint only: a crawling body's points move in it)
+            s = _ray(un, b, md, ox, oy, ext, lam, kind, par, tab, ev)
             if s <= 0.0:
                 for j in range(3):
                     u[j] = un[j]
@@ -363,7 +382,7 @@ def _slide(u, uf, b, md, ox, oy, lam, kind, par, tab, assoc, tol_r, maxit, R, J,
                 # the exact minimum of F on that ray is lower still
                 for j in range(3):
                     un[j] *= s
-                f2 = _merit(un, uf, md, ox, oy, lam, kind, par, tab, assoc, R, J, ev)
+                f2 = _merit(un, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, R, J, ev)
         for j in range(3):
             u[j] = un[j]
         f = f2
