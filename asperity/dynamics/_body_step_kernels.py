@@ -42,7 +42,8 @@ def _kink(u, uf, md, ox, oy, ext, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
         un[2] = w
         _assemble(un, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev)
         d1 = R[0] * n0 + R[1] * n1 + R[2]
-        if abs(d1) <= tol_r * math.sqrt(n0 * n0 / md[0] + n1 * n1 / md[1] + 1.0 / md[2]):
+        # |R.n| <= |R|_(M^-1) |n|_M: the 1D residual within the tolerance of the 3D one
+        if abs(d1) <= tol_r * math.sqrt(md[0] * n0 * n0 + md[1] * n1 * n1 + md[2]):
             ok = True
             break
         if d1 > 0.0:
