@@ -40,7 +40,9 @@ def _kink(u, uf, md, ox, oy, ext, lam, kind, par, tab, j, tol_r, R, J, ev, cw):
         un[0] = w * n0 + bx
         un[1] = w * n1 + by
         un[2] = w
-        _assemble(un, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev)
+        # point j's group left out: its force is the reaction (on a crawling body its
+        # slip on this line is zero only to rounding, and a rounding slip has a full force)
+        _assemble(un, uf, md, ox, oy, ext, lam, kind, par, tab, False, R, J, ev, j)
         d1 = R[0] * n0 + R[1] * n1 + R[2]
         # |R.n| <= |R|_(M^-1) |n|_M: the 1D residual within the tolerance of the 3D one
         if abs(d1) <= tol_r * math.sqrt(md[0] * n0 * n0 + md[1] * n1 * n1 + md[2]):
