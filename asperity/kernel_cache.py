@@ -29,6 +29,7 @@ CALLS = {
     "dynamics/_body_step_kernels.py": ("dynamics/_body_law_kernels.py",),
     "dynamics/_body_kernels.py": ("dynamics/_body_law_kernels.py",
                                   "dynamics/_body_step_kernels.py"),
+    "crawling/_kernels.py": ("dynamics/_body_law_kernels.py", "dynamics/_body_step_kernels.py"),
     "texture/_spring_kernels.py": ("texture/_tip_kernels.py",),
     "microslip/_march_kernels.py": ("microslip/_chain_kernels.py",),
     "microslip/_dynamic_kernels.py": ("microslip/_chain_kernels.py",),

@@ -28,6 +28,7 @@ COMMANDS = {
     "report": "report",
     "bench": "bench",
     "slide": "slide",
+    "crawl": "crawl",
     "risk": "risk",
     "study": "study",
     "serve": "serve",

@@ -1,0 +1,288 @@
+"""A body that changes shape crawls on direction-dependent friction (issue 26).
+
+Model (Hu, Nirody, Scott and Shelley, PNAS 106:10081, 2009; Walker and Leine's snake
+robots): a slender body of length L whose shape in its own frame is prescribed over time
+(the gait, :mod:`asperity.crawling.gait`) rests on N contact points s_i = (i + 1/2) L / N with
+load shares w_i (uniform mass).  The body frame has its origin at the centre of mass and
+its orientation theta at the mean tangent angle, so the body's rigid motion is
+q = (x, y, theta) with velocity u = (vx, vy, omega), and point i moves over the ground at
+
+    gamma_i = (vx, vy) + omega e_z x o_i + R(theta) v_i        (o_i = R(theta) r_i)
+
+with r_i, v_i its position and velocity in the body frame (the gait's).  Each point carries
+the load w_i m g and obeys a planar law (:class:`~asperity.laws.planar.PlanarLaw`) turned by
+its own angle: the body's tangent there (towards the head) plus ``texture_angle_deg`` for a
+texture on the body (skin, scales), ``texture_angle_deg`` alone for one on the ground.
+
+Newton-Euler with Moreau's midpoint scheme, exact stick, no regularisation (SPEC.md 4):
+q_M = q_A + dt/2 u_A, the gait at t_M, then m (v_E - v_A) = sum P_i and the angular
+momentum about the centre, m (I omega + S) with I = sum w_i |r_i|^2 and the gait's own spin
+S = sum w_i r_i x v_i, changes by the friction's moment: I_E omega_E = I_A omega_A + S_A -
+S_E + (moment)/m; q_E = q_M + dt/2 u_E.  A step is the rigid-body solver's step with moving
+points (:mod:`asperity.crawling._kernels`): three unknowns, a point that sticks held exactly.
+
+Quasi-static (``quasi_static=True``, the limit most of the literature reports): no
+inertia, the net friction force and torque vanish at every instant; solved as the same step
+with the momentum weighted by QS_EPS = 1e-12 against the friction impulse, i.e. the balance
+holds to 1e-12 of the friction scale (stick stays exact: the law is not regularised).  The
+speed then depends only on the gait and the law (not on g, m or T: tested).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError, check_choice, check_instance, check_int, check_range
+from ..laws.planar import PlanarLaw
+from ..resources import check_memory, check_work
+
+#: the momentum's weight against the friction impulse in the quasi-static limit
+QS_EPS = 1e-12
+#: steps per period by default (dt = T / STEPS_PER_PERIOD)
+STEPS_PER_PERIOD = 400
+#: most steps x points / 16 a run may take (as ``slide``'s work limit)
+MAX_WORK = 5e8
+MAX_PERIODS = 100_000
+MAX_POINTS = 100_000
+RULES = ("componentwise", "associated", "colinear")
+SIDES = ("body", "ground")
+
+
+@dataclass(frozen=True)
+class CrawlSettings:
+    """tol: relative tolerance of a step's equation; max_iterations: of each Newton solve."""
+
+    tol: float = 1e-12
+    max_iterations: int = 200
+
+    def __post_init__(self):
+        check_range("tol", self.tol, 1e-15, 1e-3)
+        check_int("max_iterations", self.max_iterations, 1, 1_000_000)
+
+
+def coefficient_law(mu_f: float, mu_b: float, mu_t: float, rule: str = "componentwise"
+                    ) -> PlanarLaw:
+    """The law of three coefficients as the snake literature states them (forward = +x,
+    towards the head for a texture on the body; backward; transverse), by ``rule``:
+    ``componentwise`` (Hu et al.: each component of the unit slip scaled by its own
+    coefficient), ``associated`` (maximum dissipation on the two half-ellipses of semi-axes
+    (mu_f | mu_b, mu_t): Antoni et al.'s truncated ellipse) or ``colinear`` (the force
+    opposite to the slip, its size the radius of that set)."""
+    from ..laws.planar import collinear_law, componentwise_law, truncated_ellipse_law
+    from ..laws.sets import TruncatedEllipse
+    rule = check_choice("rule", rule, RULES)
+    if rule == "componentwise":
+        return componentwise_law(mu_f, mu_b, mu_t)
+    law = truncated_ellipse_law(mu_f, mu_b, mu_t, mu_t)
+    if rule == "associated":
+        return law
+    return collinear_law(TruncatedEllipse(*(law.law.C.mu_a_plus, law.law.C.mu_a_minus,
+                                            law.law.C.mu_b_plus, law.law.C.mu_b_minus)))
+
+
+def law_rule(law: PlanarLaw) -> str:
+    """The rule a law slides by, as the crawl's JSON states it."""
+    if law.name == "componentwise":
+        return "componentwise"
+    if law.name == "collinear":
+        return "colinear"
+    return "associated" if law.associated else "walker-leine"
+
+
+@dataclass(frozen=True)
+class CrawlResult:
+    """A crawl: recorded states t (k,), q (k, 3) = (x, y, theta), u (k, 3) = (vx, vy, omega)
+    of the centre of mass and the mean tangent angle (SI, world frame), work (k,) of the gait
+    against friction and dissipated (k,) by friction so far (J); per period (one value each):
+    ``speed_per_period`` (body lengths, the centre's displacement over the period projected on
+    its mean heading, head-ward positive) and ``drift_per_period`` (rad)."""
+
+    t: np.ndarray
+    q: np.ndarray
+    u: np.ndarray
+    work: np.ndarray
+    dissipated: np.ndarray
+    speed_per_period: np.ndarray
+    drift_per_period: np.ndarray
+    transient_periods: int
+    periods: int
+    steps_per_period: int
+    dt: float
+    points: int
+    quasi_static: bool
+    rule: str
+    law_name: str
+    texture_on: str
+    texture_angle_deg: float
+    gait: dict
+    length: float
+    period: float
+    mass: float
+    g: float
+    mu_forward: float
+    status: str
+    message: str
+    mean_iterations: float
+    max_iterations_used: int
+    stick_fraction: float
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+    @property
+    def averaged(self) -> slice:
+        return slice(self.transient_periods, self.periods)
+
+    @property
+    def speed_body_lengths_per_period(self) -> float:
+        return float(np.mean(self.speed_per_period[self.averaged]))
+
+    @property
+    def heading_drift_rad_per_period(self) -> float:
+        return float(np.mean(self.drift_per_period[self.averaged]))
+
+    @property
+    def froude(self) -> float:
+        """L / (g mu T^2), mu the law's forward coefficient."""
+        return self.length / (self.g * self.mu_forward * self.period ** 2)
+
+    def _window(self):
+        P = self.steps_per_period
+        rec = int(round(P * self.dt / (self.t[1] - self.t[0]))) if len(self.t) > 1 else 1
+        return self.transient_periods * rec, self.periods * rec
+
+    @property
+    def cost_of_transport(self) -> float | None:
+        """Work of the gait against friction over m g times the distance the centre moved,
+        over the averaged periods; None when it did not move (no distance to divide by)."""
+        a, b = self._window()
+        d = float(np.hypot(*(self.q[b, :2] - self.q[a, :2])))
+        if d <= 1e-12 * self.length:
+            return None
+        return float((self.work[b] - self.work[a]) / (self.mass * self.g * d))
+
+
+def _check_law(law, mu_f, mu_b, mu_t, rule) -> PlanarLaw:
+    coeffs = (mu_f, mu_b, mu_t)
+    given = [c is not None for c in coeffs]
+    if law is not None:
+        check_instance("law", law, PlanarLaw)
+        if any(given):
+            raise InputError("law and mu_f/mu_b/mu_t exclude each other: give one law")
+        return law
+    if not all(given):
+        missing = [n for n, g in zip(("mu_f", "mu_b", "mu_t"), given) if not g]
+        raise InputError(f"{', '.join(missing)} must be given (a law of three coefficients "
+                         "needs mu_f, mu_b and mu_t), or a law")
+    return coefficient_law(mu_f, mu_b, mu_t, rule)
+
+
+def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
+          rule: str = "componentwise", gait=None, amplitude: float = 7.0, waves: float = 1.0,
+          length: float = 1.0, period: float = 1.0, points: int = 100,
+          periods: int | None = None, quasi_static: bool = False, g: float = 9.81,
+          steps_per_period: int = STEPS_PER_PERIOD, texture_on: str = "body",
+          texture_angle_deg: float = 0.0, weights=None, mass: float = 1.0,
+          settings: CrawlSettings = CrawlSettings()) -> CrawlResult:
+    """Crawl a body with ``gait`` (default: the curvature wave of ``amplitude``, ``waves``,
+    ``length``, ``period``) on ``law`` (or the law of mu_f, mu_b, mu_t by ``rule``) from
+    rest at the origin, heading +x, for ``periods`` periods (default 1 quasi-static, 8
+    dynamic; a dynamic run averages its speed over the second half, the first is its
+    transient).  Returns a :class:`CrawlResult`."""
+    from .gait import CurvatureWave
+    from .gait_crossing import check_self_crossing
+    law = _check_law(law, mu_f, mu_b, mu_t, rule)
+    check_instance("settings", settings, CrawlSettings)
+    if gait is None:
+        gait = CurvatureWave(amplitude=amplitude, waves=waves, period=period, length=length)
+    n = check_int("points", points, 3, MAX_POINTS)
+    qs = bool(quasi_static)
+    periods = (1 if qs else 8) if periods is None else check_int("periods", periods, 1,
+                                                                  MAX_PERIODS)
+    P = check_int("steps_per_period", steps_per_period, 8, 10_000_000)
+    g = check_range("g", g, 1e-6, 1e4, unit="m/s^2")
+    mass = check_range("mass", mass, 1e-9, 1e9, unit="kg")
+    side = check_choice("texture_on", texture_on, SIDES)
+    a = math.radians(check_range("texture_angle_deg", texture_angle_deg, -360.0, 360.0,
+                                 unit="deg"))
+    check_work(float(P) * periods * max(1.0, n / 16.0), MAX_WORK,
+               "this crawl (steps times the contact points / 16)",
+               "use fewer points, periods or steps per period")
+    check_memory(P * n * 5 * 8.0 + P * periods * 9 * 8.0,
+                 f"a crawl of {P} steps a period x {n} points", "use fewer steps per period")
+    check_self_crossing(gait, n_points=n)
+    T = float(gait.period)
+    dt = T / P
+    kin_mid = gait.kinematics((np.arange(P) + 0.5) * dt, n, weights)
+    kin_end = gait.kinematics(np.arange(P + 1) * dt, n, weights)
+    return _run(law, gait, kin_mid, kin_end, n, periods, P, dt, qs, g, mass, side, a,
+                settings)
+
+
+def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):
+    from ..dynamics.body import law_tables
+    from ..progress import chunks
+    from . import _kernels as K
+    kind, par, tab, assoc, mu = law_tables(law)
+    r = np.ascontiguousarray(km.r, dtype=float)
+    v = np.ascontiguousarray(km.v, dtype=float)
+    tau = np.ascontiguousarray(km.tangent, dtype=float)
+    inertia = np.ascontiguousarray(ke.inertia, dtype=float)
+    spin = np.ascontiguousarray(ke.spin, dtype=float)
+    w = np.ascontiguousarray(km.weights, dtype=float)
+    steps = P * periods
+    record_every = max(1, P // 200) if P % max(1, P // 200) == 0 else 1
+    n_rec = steps // record_every + 1
+    rec_t, rec_q, rec_u = np.zeros(n_rec), np.zeros((n_rec, 3)), np.zeros((n_rec, 3))
+    rec_e = np.zeros((n_rec, 2))
+    info = np.zeros(K.INFO_SIZE)
+    q, u, up = np.zeros(3), np.zeros(3), np.zeros(3)
+    per = max(P, (5_000_000 // n) // P * P)
+    for start, stop in chunks(steps, per, "crawl steps"):
+        K.integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt,
+                    QS_EPS if qs else 0.0, side == "body", math.cos(a), math.sin(a), kind,
+                    par, tab, assoc, mu, settings.tol, settings.max_iterations, start,
+                    stop - start, record_every, rec_t, rec_q, rec_u, rec_e, info)
+    k = int(info[K.INFO_RECORDS])
+    st = int(info[K.INFO_STATUS])
+    status = {K.STATUS_OK: "ok", K.STATUS_NOT_CONVERGED: "not-converged",
+              K.STATUS_NON_FINITE: "non-finite"}[st]
+    fail = int(info[K.INFO_FAIL_STEP])
+    message = {"ok": "ok",
+               "not-converged": f"the step's Newton iteration did not converge at step {fail} "
+                                f"(t = {fail * dt:.6g} s; relative residual above "
+                                f"{settings.tol:g})",
+               "non-finite": f"the velocity became non-finite at step {fail}"}[status]
+    t, qr, ur, e = rec_t[:k], rec_q[:k], rec_u[:k], rec_e[:k]
+    per_rec = P // record_every
+    done = (k - 1) // per_rec
+    speed, drift = _per_period(qr, per_rec, done, float(gait.length))
+    steps_done = int(info[K.INFO_STEPS])
+    mu_fwd = float(np.hypot(*law.force(np.array([0.0]))[0]))
+    return CrawlResult(
+        t=t, q=qr, u=ur, work=e[:, 0], dissipated=e[:, 1], speed_per_period=speed,
+        drift_per_period=drift, transient_periods=0 if qs else done // 2, periods=done,
+        steps_per_period=P, dt=dt, points=n, quasi_static=qs, rule=law_rule(law),
+        law_name=law.name, texture_on=side, texture_angle_deg=math.degrees(a),
+        gait={"kind": gait.name, **gait.params()}, length=float(gait.length),
+        period=float(gait.period), mass=mass, g=g, mu_forward=mu_fwd, status=status,
+        message=message, mean_iterations=float(info[K.INFO_ITER_TOTAL]) / max(steps_done, 1),
+        max_iterations_used=int(info[K.INFO_MAX_ITER]),
+        stick_fraction=float(info[K.INFO_STICK]) / max(steps_done * n, 1))
+
+
+def _per_period(q, per_rec, periods, L):
+    """Speed (body lengths, on the period's mean heading) and heading drift of each period."""
+    speed = np.zeros(periods)
+    drift = np.zeros(periods)
+    for p in range(periods):
+        a, b = p * per_rec, (p + 1) * per_rec
+        th = float(np.mean(q[a:b + 1, 2]))
+        d = q[b, :2] - q[a, :2]
+        speed[p] = (d[0] * math.cos(th) + d[1] * math.sin(th)) / L
+        drift[p] = q[b, 2] - q[a, 2]
+    return speed, drift

@@ -1,0 +1,191 @@
+"""The crawl solver (issue 26) against closed forms and invariants: the tube limit, the sign
+and order of the speed with the coefficients, the quasi-static limit of the dynamics, the
+power balance, mirror and frame invariances, and the orders of convergence."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.special import j0
+
+from asperity.crawling.gait import CurvatureWave
+from asperity.crawling.solver import coefficient_law, crawl
+
+F, B = 0.1, 0.15        # forward, backward coefficients (Hu et al.'s ratios 1 : 1.5 : 2)
+
+
+def qs(law, **kw):
+    kw.setdefault("points", 60)
+    kw.setdefault("steps_per_period", 200)
+    return crawl(law, quasi_static=True, **kw)
+
+
+def U(res):
+    assert res.ok, res.message
+    return res.speed_body_lengths_per_period
+
+
+@pytest.mark.parametrize("A,k", [(7.0, 1.0), (5.0, 2.0)])
+def test_tube_limit_is_the_bessel_speed(A, k):
+    """mu_t >> mu_f: the body slides along its own track, U -> J0(A / (2 pi k)) / k body
+    lengths per period (0.7130 for A = 7, k = 1)."""
+    tube = j0(A / (2 * math.pi * k)) / k
+    gait = CurvatureWave(amplitude=A, waves=k)
+    assoc = U(qs(coefficient_law(F, F, 1000 * F, "associated"), gait=gait))
+    comp = [U(qs(coefficient_law(F, F, r * F, "componentwise"), gait=gait))
+            for r in (1e1, 1e2, 1e3)]
+    assert assoc == pytest.approx(tube, rel=2e-3)
+    err = [tube - c for c in comp]                 # the componentwise rule comes slower
+    assert 0 < err[2] < err[1] / 3 < err[0] / 9
+    assert comp[2] == pytest.approx(tube, rel=2e-2)
+
+
+def test_speed_rises_with_the_transverse_ratio_and_reverses_below_one():
+    speeds = [U(qs(coefficient_law(F, F, r * F))) for r in (0.5, 1.5, 2.0, 5.0, 50.0)]
+    assert speeds[0] < 0 < speeds[1]                         # mu_t < mu_f: tail-ward
+    assert all(a < b for a, b in zip(speeds[1:], speeds[2:]))
+    tube = j0(7 / (2 * math.pi))
+    assert speeds[-1] < tube
+
+
+def test_isotropic_friction_barely_propels():
+    """Isotropic Coulomb friction: no propulsion from anisotropy; what is left is far below
+    any anisotropic law's speed (a small drift of the nonlinear law, |U| < 0.01)."""
+    iso = U(qs(coefficient_law(F, F, F, "associated")))
+    assert abs(iso) < 0.01
+    assert abs(iso) < 0.05 * U(qs(coefficient_law(F, F, 2 * F, "associated")))
+
+
+def test_the_three_rules_are_the_same_law_for_isotropic_coefficients():
+    speeds = [U(qs(coefficient_law(F, F, F, rule)))
+              for rule in ("componentwise", "associated", "colinear")]
+    assert speeds[1] == pytest.approx(speeds[0], abs=1e-9)
+    assert speeds[2] == pytest.approx(speeds[0], abs=1e-6)
+
+
+def test_backward_coefficient_matters_only_where_points_slide_backwards():
+    """Crawling head-wards (mu_t > mu_f) no point of this gait slides backwards: mu_b does
+    not change the speed at all; crawling tail-wards (mu_t < mu_f) points do, and a larger
+    mu_b holds the body back."""
+    for rule in ("componentwise", "associated"):
+        fwd = [U(qs(coefficient_law(F, b, 2 * F, rule))) for b in (F, 3 * F)]
+        assert fwd[1] == pytest.approx(fwd[0], rel=1e-9)
+        back = [U(qs(coefficient_law(F, b, 0.5 * F, rule))) for b in (F, 3 * F)]
+        assert back[0] < 0 and back[1] > back[0] + 0.01 * abs(back[0])
+
+
+def test_quasi_static_speed_depends_on_the_gait_and_law_only():
+    law = coefficient_law(F, B, 2 * F)
+    ref = qs(law)
+    for kw in ({"g": 1.0}, {"mass": 7.0}, {"gait": CurvatureWave(period=3.0)}):
+        assert U(qs(law, **kw)) == pytest.approx(U(ref), rel=1e-9)
+    # lengths scale: the same speed in body lengths
+    big = qs(law, gait=CurvatureWave(length=1000.0, period=2.0))
+    assert U(big) == pytest.approx(U(ref), rel=1e-9)
+    assert big.q[-1, 0] == pytest.approx(1000 * ref.q[-1, 0], rel=1e-9)
+
+
+def test_power_of_the_gait_is_the_dissipation_quasi_statically():
+    for rule in ("componentwise", "associated", "colinear"):
+        res = qs(coefficient_law(F, B, 2 * F, rule))
+        assert res.work[-1] > 0
+        assert res.work[-1] == pytest.approx(res.dissipated[-1], rel=1e-8)
+        assert np.all(np.diff(res.dissipated) >= -1e-15)
+
+
+def test_symmetric_gait_keeps_its_heading_and_mirror_gait_mirrors_the_path():
+    law = coefficient_law(F, B, 2 * F)
+    a = qs(law, periods=2)
+    assert abs(a.heading_drift_rad_per_period) < 1e-9
+    from asperity.crawling.gait import FourierGait
+    b = qs(law, periods=2, gait=FourierGait([(1, 1, -7.0, 0.0)]))      # kappa L = -7 cos ...
+    np.testing.assert_allclose(b.q[:, 0], a.q[:, 0], atol=1e-10)
+    np.testing.assert_allclose(b.q[:, 1:], -a.q[:, 1:], atol=1e-10)
+
+
+def test_a_law_symmetric_under_a_half_turn_crawls_the_same_turned_by_180_deg():
+    law = coefficient_law(F, F, 2 * F, "associated")
+    assert U(qs(law, texture_angle_deg=180.0)) == pytest.approx(U(qs(law)), rel=1e-9)
+    assert U(qs(law, texture_angle_deg=-180.0)) == pytest.approx(U(qs(law)), rel=1e-9)
+    ground = [U(qs(law, texture_on="ground", texture_angle_deg=a)) for a in (0.0, 180.0)]
+    assert ground[1] == pytest.approx(ground[0], rel=1e-9)
+
+
+def test_ground_texture_with_the_grain_against_it_and_across():
+    """An asymmetric ground texture (mu+ = 0.1 along +x, mu- = 0.3): the body crawls
+    differently with the grain and against it; across it (transverse coefficient smaller
+    than both along), the texture's anisotropy points the wrong way and the body barely
+    moves or moves back."""
+    from asperity.laws.planar import truncated_ellipse_law
+    law = truncated_ellipse_law(0.1, 0.3, 0.4, 0.4)
+    w = U(qs(law, texture_on="ground", texture_angle_deg=0.0))
+    a = U(qs(law, texture_on="ground", texture_angle_deg=180.0))
+    x = U(qs(law, texture_on="ground", texture_angle_deg=90.0))
+    assert w > 0.25 and a < -0.2                  # the ground's easy way wins either way
+    assert abs(x) < 0.03 * min(w, -a)
+
+
+def test_dynamics_tends_to_the_quasi_static_speed_as_the_froude_number_vanishes():
+    law = coefficient_law(F, B, 2 * F)
+    q = U(qs(law, points=40, steps_per_period=200))
+    d = crawl(law, points=40, steps_per_period=200, periods=6, g=1e4)
+    assert d.froude <= 1e-3
+    assert U(d) == pytest.approx(q, rel=2e-3)
+    slow = crawl(law, points=40, steps_per_period=200, periods=6)      # Fr ~ 1: differs
+    assert abs(U(slow) - q) > 1e-3
+
+
+def test_dynamic_run_from_rest_reaches_a_periodic_motion():
+    res = crawl(coefficient_law(F, B, 2 * F), points=40, steps_per_period=200, periods=8)
+    assert res.transient_periods == 4
+    s = res.speed_per_period
+    assert abs(s[-1] - s[-2]) < 1e-3 * abs(s[-1])
+    assert abs(s[0] - s[-1]) > 1e-2 * abs(s[-1])                 # the transient is real
+    assert res.u[0].tolist() == [0.0, 0.0, 0.0]                  # from rest
+
+
+def test_convergence_in_dt_is_second_order_quasi_statically():
+    law = coefficient_law(F, B, 2 * F)
+    u = [U(qs(law, steps_per_period=p)) for p in (50, 100, 200)]
+    r = (u[0] - u[1]) / (u[1] - u[2])
+    assert 3.0 < r < 5.5, u
+
+
+def test_convergence_in_points():
+    law = coefficient_law(F, B, 2 * F, "associated")
+    u = [U(qs(law, points=n)) for n in (25, 50, 100, 200)]
+    d = np.abs(np.diff(u))
+    assert d[1] < 0.7 * d[0] and d[2] < 0.7 * d[1], u
+    assert d[2] < 1e-3 * abs(u[-1])
+
+
+def test_json_numbers_and_cost_of_transport():
+    from asperity.crawling.output import summary
+    law = coefficient_law(F, B, 2 * F)
+    res = qs(law)
+    obj = summary(res, law)
+    assert obj["rule"] == "componentwise" and obj["quasi_static"] is True
+    assert obj["froude"] == pytest.approx(1.0 / (9.81 * F), rel=1e-12)
+    d = math.hypot(*(res.q[-1, :2] - res.q[0, :2]))
+    assert obj["cost_of_transport"] == pytest.approx(res.work[-1] / (9.81 * d), rel=1e-12)
+    assert obj["speed_per_period"] == [pytest.approx(U(res))]
+
+
+@pytest.mark.parametrize("rule,coeffs,A,k", [
+    ("componentwise", (0.1, 0.15, 0.2), 7.0, 1.0),
+    ("componentwise", (0.2, 0.3, 0.1), 7.0, 1.0),
+    ("associated", (0.1, 0.1, 0.5), 5.0, 1.5),
+    ("associated", (0.2, 0.3, 0.1), 7.0, 1.0),
+    ("colinear", (0.1, 0.15, 0.2), 7.0, 1.0),
+    ("colinear", (0.2, 0.3, 0.1), 5.0, 1.5),
+])
+def test_agrees_with_the_independent_quasi_static_reference(rule, coeffs, A, k):
+    """tests/crawl_reference.py (root finding on net force and torque at each instant,
+    written without reading the solver): within 0.5 % (measured: 1e-5 to 1e-3)."""
+    from crawl_reference import reference_speed
+    ref = reference_speed(A, k, *coeffs, rule, points=201, steps=200)
+    res = crawl(coefficient_law(*coeffs, rule), gait=CurvatureWave(amplitude=A, waves=k),
+                quasi_static=True, points=200, steps_per_period=400)
+    assert U(res) == pytest.approx(ref["U"], rel=5e-3)
+    assert res.heading_drift_rad_per_period == pytest.approx(ref["heading_drift"], abs=1e-3)
