@@ -86,7 +86,6 @@ _LAZY = {
     "slide_body": "asperity.dynamics.body_api",
     "crawl": "asperity.crawling.solver",
     "coefficient_law": "asperity.crawling.solver",
-    "CrawlResult": "asperity.crawling.solver",
     "CrawlSettings": "asperity.crawling.solver",
     "Force": "asperity.dynamics.force",
     "AsperityError": "asperity.errors",

@@ -30,7 +30,7 @@ from asperity.dynamics.body import BodySettings, law_tables, simulate_body
 
 def _force(kind, par, tab, law, psi):
     """(m, 2) sliding force per unit normal load at the slip directions psi."""
-    if kind == K.KIND_ELLIPSE:
+    if kind in (K.KIND_ELLIPSE, K.KIND_COMPONENTWISE):
         return law.force(psi)
     n = tab.shape[0] - 1
     x = np.mod(psi, 2 * math.pi) / (2 * math.pi / n)

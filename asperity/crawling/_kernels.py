@@ -68,9 +68,11 @@ def _rows(q, k, r, v, tau, body, ca0, sa0, ox, oy, ext):
 
 
 @njit(cache=True)
-def _solve(u, uA, uP, warm, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, tola, maxit,
+def _solve(u, uA, uP, order, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, tola, maxit,
            R, J, ev, dx, un):
-    """The step's velocity (u) from the extrapolation of the last two (or uA), retried from
+    """The step's velocity (u) from the extrapolation of the last velocities (uP: the two
+    before uA, uP[0:3] then uP[3:6]; ``order`` 0: uA alone, 1: linear, 2: quadratic, whose
+    error O(dt^3) leaves one Newton step to the tolerance on a smooth motion), retried from
     uA, from the free velocity and from rest; returns (iterations, converged, residual)."""
     b = np.empty(3)
     for j in range(3):
@@ -80,7 +82,12 @@ def _solve(u, uA, uP, warm, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, tol
     for attempt in range(4):
         for j in range(3):
             if attempt == 0:
-                u[j] = 2.0 * uA[j] - uP[j] if warm else uA[j]
+                if order == 2:
+                    u[j] = 3.0 * (uA[j] - uP[j]) + uP[3 + j]
+                elif order == 1:
+                    u[j] = 2.0 * uA[j] - uP[j]
+                else:
+                    u[j] = uA[j]
             elif attempt == 1:
                 u[j] = uA[j]
             elif attempt == 2:
@@ -124,8 +131,8 @@ def _energy(u, uf, md, ox, oy, ext, lam, kind, par, tab, R, J, ev, info):
 def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, ca0, sa0,
               kind, par, tab, assoc, mu, tol, maxit, start, count, record_every, rec_t,
               rec_q, rec_u, rec_e, info):
-    """Steps start .. start+count-1 of the midpoint scheme (q, u, up updated in place; up is
-    the velocity before u, for the extrapolation).  r, v (P, N, 2), tau (P, N): the gait at
+    """Steps start .. start+count-1 of the midpoint scheme (q, u, up updated in place; up (6,)
+    holds the two velocities before u, for the extrapolation).  r, v (P, N, 2), tau (P, N): the gait at
     the steps' mid times; inertia, spin (P + 1,): per unit mass at their ends.  qs_eps > 0:
     quasi-static (the momentum weighted by qs_eps against the friction impulse: the net
     friction force and torque vanish to that relative size); 0: Newton-Euler.  rec_e
@@ -168,11 +175,12 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
             md[j] = qs_eps * mass * (inertia[0] if j == 2 else 1.0)
             uf[j] = 0.0
         scale = mass * g * dt * mu / math.sqrt(md[0])
-        _solve(ue, u, up, False, uf, md, ox, oy, ext, lam, kind, par, tab, assoc,
+        _solve(ue, u, up, 0, uf, md, ox, oy, ext, lam, kind, par, tab, assoc,
                tol * scale, maxit, R, J, ev, dx, un)
         for j in range(3):
             u[j] = ue[j]
             up[j] = ue[j]
+            up[3 + j] = ue[j]
     step = start
     for step in range(start, start + count):
         k = step % P
@@ -199,7 +207,7 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
         scale = mass * g * dt * mu / math.sqrt(md[0])
         tola = tol * scale + 1e-15 * math.sqrt(md[0] * uf[0] * uf[0] + md[1] * uf[1] * uf[1]
                                                + md[2] * uf[2] * uf[2])
-        its, conv, rn = _solve(ue, u, up, step > 0, uf, md, ox, oy, ext, lam,
+        its, conv, rn = _solve(ue, u, up, min(step, 2), uf, md, ox, oy, ext, lam,
                                kind, par, tab, assoc, tola, maxit, R, J, ev, dx, un)
         info[INFO_ITER_TOTAL] += its
         if its > info[INFO_MAX_ITER]:
@@ -213,6 +221,7 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
             info[INFO_FAIL_STEP] = step
         _energy(ue, uf, md, ox, oy, ext, lam, kind, par, tab, R, J, ev, info)
         for j in range(3):
+            up[3 + j] = up[j]
             up[j] = u[j]
             u[j] = ue[j]
             q[j] += 0.5 * dt * u[j]

@@ -34,7 +34,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_instance, check_int, check_range
+from ..errors import (InputError, check_choice, check_flag, check_instance, check_int,
+                      check_range)
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
 
@@ -182,25 +183,34 @@ def _check_law(law, mu_f, mu_b, mu_t, rule) -> PlanarLaw:
 
 
 def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
-          rule: str = "componentwise", gait=None, amplitude: float = 7.0, waves: float = 1.0,
-          length: float = 1.0, period: float = 1.0, points: int = 100,
+          rule: str = "componentwise", gait=None, amplitude: float | None = None,
+          waves: float | None = None, length: float | None = None,
+          period: float | None = None, points: int = 100,
           periods: int | None = None, quasi_static: bool = False, g: float = 9.81,
           steps_per_period: int = STEPS_PER_PERIOD, texture_on: str = "body",
           texture_angle_deg: float = 0.0, weights=None, mass: float = 1.0,
           settings: CrawlSettings = CrawlSettings()) -> CrawlResult:
     """Crawl a body with ``gait`` (default: the curvature wave of ``amplitude``, ``waves``,
-    ``length``, ``period``) on ``law`` (or the law of mu_f, mu_b, mu_t by ``rule``) from
+    ``length``, ``period``: 7, 1, 1 m, 1 s) on ``law`` (or the law of mu_f, mu_b, mu_t by ``rule``) from
     rest at the origin, heading +x, for ``periods`` periods (default 1 quasi-static, 8
     dynamic; a dynamic run averages its speed over the second half, the first is its
     transient).  Returns a :class:`CrawlResult`."""
-    from .gait import CurvatureWave
+    from .gait import CurvatureWave, Gait
     from .gait_crossing import check_self_crossing
     law = _check_law(law, mu_f, mu_b, mu_t, rule)
     check_instance("settings", settings, CrawlSettings)
+    wave = {"amplitude": amplitude, "waves": waves, "period": period, "length": length}
     if gait is None:
-        gait = CurvatureWave(amplitude=amplitude, waves=waves, period=period, length=length)
+        gait = CurvatureWave(**{k: ({"amplitude": 7.0}.get(k, 1.0) if v is None else v)
+                                for k, v in wave.items()})
+    else:
+        check_instance("gait", gait, Gait)
+        given = [k for k, v in wave.items() if v is not None]
+        if given:
+            raise InputError(f"{given[0]} applies to the default curvature wave, not with a "
+                             "gait (the gait gives its own)")
     n = check_int("points", points, 3, MAX_POINTS)
-    qs = bool(quasi_static)
+    qs = check_flag("quasi_static", quasi_static)
     periods = (1 if qs else 8) if periods is None else check_int("periods", periods, 1,
                                                                   MAX_PERIODS)
     P = check_int("steps_per_period", steps_per_period, 8, 10_000_000)
@@ -240,7 +250,7 @@ def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):
     rec_t, rec_q, rec_u = np.zeros(n_rec), np.zeros((n_rec, 3)), np.zeros((n_rec, 3))
     rec_e = np.zeros((n_rec, 2))
     info = np.zeros(K.INFO_SIZE)
-    q, u, up = np.zeros(3), np.zeros(3), np.zeros(3)
+    q, u, up = np.zeros(3), np.zeros(3), np.zeros(6)
     per = max(P, (5_000_000 // n) // P * P)
     for start, stop in chunks(steps, per, "crawl steps"):
         K.integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt,

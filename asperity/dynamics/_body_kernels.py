@@ -26,7 +26,8 @@ from numba import njit
 
 # KIND_*: the law kinds the wrapper (asperity.dynamics.body) passes, kept here for it
 from ..kernel_cache import refresh
-from ._body_law_kernels import KIND_ELLIPSE, KIND_TABLE, TWO_PI, _ray  # noqa: F401
+from ._body_law_kernels import (KIND_COMPONENTWISE, KIND_ELLIPSE, KIND_TABLE,  # noqa: F401
+                                TWO_PI, _ray)
 from ._body_step_kernels import _min_sphere, _slide
 
 refresh(__file__)     # drop cached kernels compiled against older callees

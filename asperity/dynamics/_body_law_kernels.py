@@ -17,6 +17,7 @@ from numba import njit
 TWO_PI = 2.0 * math.pi
 KIND_ELLIPSE = 0     # closed form: par = (a+, a-, b+, b-, cos th, sin th)
 KIND_TABLE = 1       # tab (K+1, 4): c_x, c_y, grad h_x, grad h_y on psi_k = 2 pi k / K
+KIND_COMPONENTWISE = 2   # closed form, Hu et al.: par = (mu_f, mu_b, mu_t, mu_t, 1, 0)
 
 
 @njit(cache=True)
@@ -28,7 +29,7 @@ def _eval(kind, par, tab, gx, gy, out):
         for j in range(13):
             out[j] = 0.0
         return
-    if kind == KIND_ELLIPSE:
+    if kind == KIND_ELLIPSE or kind == KIND_COMPONENTWISE:
         co, si = par[4], par[5]
         la = co * gx + si * gy
         lb = -si * gx + co * gy
@@ -62,6 +63,18 @@ def _eval(kind, par, tab, gx, gy, out):
         out[10] = r01
         out[11] = r11
         out[12] = h
+        if kind == KIND_COMPONENTWISE:
+            # the force (mu_{f|b} u_x, mu_t u_y) of the unit slip u (aligned: co = 1, si = 0);
+            # dc/dgamma = diag(A, B) (I - u u^T) / |gamma|; the hull is C's (above)
+            r = math.sqrt(r2)
+            ux = gx / r
+            uy = gy / r
+            out[0] = A * ux
+            out[1] = B * uy
+            out[2] = A * (1.0 - ux * ux) / r
+            out[3] = -A * ux * uy / r
+            out[4] = -B * ux * uy / r
+            out[5] = B * (1.0 - uy * uy) / r
         return
     K = tab.shape[0] - 1
     dpsi = TWO_PI / K
@@ -190,7 +203,7 @@ def _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, want_hull, R, J, ev, 
 def _gauge(kind, par, tab, cx, cy):
     """k_C(c) of a force per unit load: closed form for the ellipse, else the gauge of the
     hull of C from its support table (max over the table of c.s / h(s))."""
-    if kind == KIND_ELLIPSE:
+    if kind == KIND_ELLIPSE or kind == KIND_COMPONENTWISE:
         co, si = par[4], par[5]
         la = co * cx + si * cy
         lb = -si * cx + co * cy
@@ -283,6 +296,10 @@ def _slip_towards(kind, par, tab, cx, cy):
         na = la / (A * A)
         nb = lb / (B * B)
         return math.atan2(si * na + co * nb, co * na - si * nb)
+    if kind == KIND_COMPONENTWISE:
+        # c = (mu_{f|b} u_x, mu_t u_y): the slip along (c_x / mu_{f|b}, c_y / mu_t)
+        A = par[0] if cx >= 0.0 else par[1]
+        return math.atan2(cy / par[2], cx / A)
     K = tab.shape[0] - 1
     best = -2.0
     kb = 0

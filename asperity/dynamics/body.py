@@ -309,13 +309,18 @@ WORK_PER_PIECE = 5_000_000
 def law_tables(law: PlanarLaw):
     """(kind, par (6,), tab (K+1, 4), associated, mu_max) of a law for the kernel.
 
-    Closed forms for the associated disc and truncated ellipse (kind 0); else tables on
+    Closed forms for the associated disc and truncated ellipse (kind 0) and for the
+    componentwise rule (kind 2: C's hull is the same truncated ellipse); else tables on
     psi_k = 2 pi k / K of the sliding force c(psi) (``law.force``) and of the normal point of
     the hull of C (the gradient of its support function h), kind 1."""
     from . import _body_kernels as K
     from ..laws.sets import Disc, StarSet, TruncatedEllipse
     C = law.law.C
     par = np.zeros(6)
+    if law.name == "componentwise" and isinstance(C, TruncatedEllipse) and C.theta == 0.0:
+        # Hu et al.'s rule in closed form: C the truncated ellipse (mu_f, mu_b, mu_t, mu_t)
+        par[:] = (C.mu_a_plus, C.mu_a_minus, C.mu_b_plus, C.mu_b_minus, 1.0, 0.0)
+        return K.KIND_COMPONENTWISE, par, np.zeros((2, 4)), False, float(par[:4].max())
     if law.associated and isinstance(C, (Disc, TruncatedEllipse)):
         if isinstance(C, Disc):
             par[:] = (C.mu, C.mu, C.mu, C.mu, 1.0, 0.0)
