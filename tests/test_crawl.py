@@ -208,3 +208,18 @@ def test_pyelastica_continuum_snake_side_by_side():
                 g=prm["gravity_m_s2"])
     assert res.froude == pytest.approx(prm["froude"], rel=1e-6)
     assert U(res) == pytest.approx(pe["pyelastica"]["speed_body_lengths_per_period"], rel=0.02)
+
+
+def test_python_api_summary_is_the_commands_json():
+    import asperity
+    res = asperity.crawl(mu_f=F, mu_b=B, mu_t=2 * F, rule="associated", quasi_static=True,
+                         points=40)
+    obj = res.summary()
+    assert obj["rule"] == "associated" and obj["law"] == res.law_description
+    assert obj["speed_body_lengths_per_period"] == res.speed_body_lengths_per_period
+    with pytest.raises(asperity.InputError, match="amplitude applies"):
+        asperity.crawl(mu_f=F, mu_b=B, mu_t=2 * F, gait=CurvatureWave(), amplitude=3.0)
+    with pytest.raises(asperity.InputError, match="mu_t"):
+        asperity.crawl(mu_f=F, mu_b=B)
+    with pytest.raises(asperity.InputError, match="law and mu_f"):
+        asperity.crawl(coefficient_law(F, B, F), mu_f=F)

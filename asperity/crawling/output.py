@@ -11,9 +11,10 @@ RULE_WORDS = {"componentwise": "componentwise (Hu et al.: each component of the 
               "walker-leine": "Walker-Leine (star-shaped C, convex sliding set D)"}
 
 
-def summary(res, law) -> dict:
+def summary(res, law=None) -> dict:
     """The JSON object of a crawl (SI units; speeds in body lengths per period, head-ward
-    positive, on the period's mean heading)."""
+    positive, on the period's mean heading); ``law`` (default: the result's own
+    description) names the law."""
     avg = res.averaged
     cot = res.cost_of_transport
     return {
@@ -29,7 +30,7 @@ def summary(res, law) -> dict:
         "the centre did not move over the averaged periods: no distance to divide by",
         "froude": res.froude,
         "rule": res.rule,
-        "law": law.description,
+        "law": res.law_description if law is None else law.description,
         "law_kind": res.law_name,
         "mu_forward": res.mu_forward,
         "quasi_static": res.quasi_static,

@@ -128,7 +128,13 @@ class CrawlResult:
     mean_iterations: float
     max_iterations_used: int
     stick_fraction: float
+    law_description: str = ""
     extra: dict = field(default_factory=dict)
+
+    def summary(self) -> dict:
+        """The JSON object ``asperity crawl --json`` prints (:func:`.output.summary`)."""
+        from .output import summary
+        return summary(self)
 
     @property
     def ok(self) -> bool:
@@ -282,7 +288,8 @@ def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):
         period=float(gait.period), mass=mass, g=g, mu_forward=mu_fwd, status=status,
         message=message, mean_iterations=float(info[K.INFO_ITER_TOTAL]) / max(steps_done, 1),
         max_iterations_used=int(info[K.INFO_MAX_ITER]),
-        stick_fraction=float(info[K.INFO_STICK]) / max(steps_done * n, 1))
+        stick_fraction=float(info[K.INFO_STICK]) / max(steps_done * n, 1),
+        law_description=law.description)
 
 
 def _per_period(q, per_rec, periods, L):
