@@ -177,18 +177,23 @@ def test_velocity_is_the_time_derivative_to_second_order(gi):
     gait = all_gaits()[gi]
     t = np.array([0.13, 0.61]) * gait.period
     kin = gait.kinematics(t, 31)
-    errors = []
+    errors, spin = [], []
     for h in (2e-3, 1e-3):
         d = h * gait.period
         fd = (gait.kinematics(t + d, 31).r - gait.kinematics(t - d, 31).r) / (2 * d)
         errors.append(np.abs(fd - kin.v).max())
-    order = math.log2(errors[0] / errors[1])
-    assert 1.9 < order < 2.1, (errors, order)
+        # the internal angular momentum sum w r x v, with v by the difference
+        h_fd = (kin.r[..., 0] * fd[..., 1] - kin.r[..., 1] * fd[..., 0]) @ kin.weights
+        spin.append(np.abs(h_fd - kin.spin).max())
+    for e in (errors, spin):
+        order = math.log2(e[0] / e[1])
+        assert 1.9 < order < 2.1, (e, order)
 
 
 def test_joint_table_velocity_against_differences():
+    """The periodic spline: the velocity is its derivative, also across t = T."""
     gait = all_gaits()[4]
-    t = np.array([0.3, 1.1])
+    t = np.array([0.3, 1.1, 0.0, 2.0])
     kin = gait.kinematics(t, 20)
     d = 1e-6
     fd = (gait.kinematics(t + d, 20).r - gait.kinematics(t - d, 20).r) / (2 * d)
@@ -433,12 +438,21 @@ def test_crossing_reports_the_first_time():
 
 @pytest.mark.parametrize("gait", [
     SerpenoidChain(10, 2.0, -0.6),                      # large joint angles: curls up
-    SerpenoidChain(3, 0.0, 0.0, math.pi),               # one joint folded back
+    SerpenoidChain(2, 0.0, 0.0, math.pi),               # the joint folded back
+    SerpenoidChain(3, 0.0, 0.0, math.pi),               # both joints: links 0 and 2 meet
     CurvatureWave(40, 2),
 ])
 def test_crossing_gaits_are_refused(gait):
     with pytest.raises(InputError, match="the gait crosses itself at t = "):
         check_self_crossing(gait)
+
+
+def test_a_loop_across_chunks_is_found():
+    """40 links each turned by 2 pi / 20 from the last: a regular 20-gon, closed at the
+    joint between links 19 and 20, where link 0 starts (two chunks of 16 links)."""
+    with pytest.raises(InputError, match=r"at t = 0 s \(s = 0\.0125 m and 0\.48[78] m "):
+        check_self_crossing(SerpenoidChain(40, 0.0, 0.0, 2 * math.pi / 20))
+    check_self_crossing(SerpenoidChain(19, 0.0, 0.0, 2 * math.pi / 20))   # open by a link
 
 
 @pytest.mark.parametrize("gait", [SerpenoidChain(10, 0.5, -0.6), CurvatureWave(100, 20),
