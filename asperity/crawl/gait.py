@@ -291,8 +291,10 @@ class CurvatureWave(_CurvatureGait):
 
     amplitude : A = kappa L amplitude, in [0, 100] (7 by default: Hu et al.'s snakes);
     waves : k, waves on the body, in (0, 20]; period : T (s); length : L (m).
-    A k = 1 wave first touches itself at A = 14.1 (A = 14.05 passes
-    :func:`~.gait_crossing.check_self_crossing`, A = 14.15 is refused).
+    Self-contact: a k = 1 wave first touches itself at A = 13.2612, at t = 0 (and T/2),
+    where s = 0.134 L and 0.866 L meet on the body's axis of symmetry (found by
+    :func:`~.gait_crossing.check_self_crossing` and, independently, from
+    integral_s^(L/2) cos((A / 2 pi) sin 2 pi u / L) du = 0); above it the wave is refused.
     """
 
     kind = "curvature_wave"
