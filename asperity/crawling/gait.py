@@ -22,7 +22,9 @@ dx/dt(s) = integral_0^s (-sin phi, cos phi) dphi/dt ds', not by differences in t
 centre-of-mass velocity is then removed (the mean-angle rate is zero by construction).
 The centre of mass is the weighted sum over the N points: with uniform weights it is the
 midpoint rule of the continuous centroid, so r_i (and I, h) converge to the continuous
-body's as O(N^-2).
+body's as O(N^-2); faster than any power of N when the tangent angle is periodic in s (a
+whole number of waves and no static bend: the end terms of the Euler-Maclaurin error
+cancel).
 
 Gaits here: :class:`CurvatureWave` (kappa L = A cos 2 pi (k s / L + t / T)) and
 :class:`FourierGait` (kappa L as a Fourier series in s and t, the gait files' "fourier"
@@ -136,7 +138,8 @@ class Gait:
             a -= (a.real @ w + 1j * (a.imag @ w))[:, None]
         inertia = (z.real ** 2 + z.imag ** 2) @ w
         spin = (z.real * zd.imag - z.imag * zd.real) @ w
-        r, v = (a.view(np.float64).reshape(t.size, s.size, 2) for a in (z, zd))
+        r, v = (np.ascontiguousarray(a).view(np.float64).reshape(t.size, s.size, 2)
+                for a in (z, zd))
         return Kinematics(t, s, w, r, v, tangent, inertia, spin)
 
     def _polyline(self, t: np.ndarray, segments: int):
@@ -288,8 +291,10 @@ class CurvatureWave(_CurvatureGait):
 
     amplitude : A = kappa L amplitude, in [0, 100] (7 by default: Hu et al.'s snakes);
     waves : k, waves on the body, in (0, 20]; period : T (s); length : L (m).
-    A k = 1 wave first touches itself at A = 14.1 (A = 14.05 passes
-    :func:`~.gait_crossing.check_self_crossing`, A = 14.15 is refused).
+    Self-contact: a k = 1 wave first touches itself at A = 13.2612, at t = 0 (and T/2),
+    where s = 0.134 L and 0.866 L meet on the body's axis of symmetry (found by
+    :func:`~.gait_crossing.check_self_crossing` and, independently, from
+    integral_s^(L/2) cos((A / 2 pi) sin 2 pi u / L) du = 0); above it the wave is refused.
     """
 
     kind = "curvature_wave"

@@ -2,17 +2,19 @@
 
 The body is sampled at ``samples`` instants of one period as a polyline: for curvature
 gaits max(8 N, 512) equal segments, at most 16384 (rounded up to whole chunks; the
-polyline then departs from the curve by at most kappa h^2 / 8: 5e-8 L at kappa L = 100),
-for a chain of links the links themselves (exact).  Two segments that are not neighbours and come within
-``tolerance`` (times L) of each other count as a crossing, as do two neighbours folded
-back onto each other.
+polyline departs from the curve by at most kappa h^2 / 8: 5e-8 L at kappa L = 100), for
+a chain of links the links themselves (exact).  Two segments that are not neighbours and
+come within ``tolerance`` (times L) of each other count as a crossing, as do two
+neighbours folded back onto each other.
 
-Pairs are pruned in chunks of :data:`CHUNK` segments (more for long polylines, at most
-:data:`MAX_CHUNKS` chunks): a chunk lies in the disc about its
-middle vertex through its farthest vertex, and two chunks whose discs are apart cannot
-touch; a run of one or two neighbouring chunks whose segment directions span less than
-pi (less :data:`_MARGIN`) cannot cross itself (its projection on the mean direction
-grows by at least h sin(margin / 2) a segment: more than the tolerance).  The remaining pairs of segments are tested exactly, in the order of time.
+Pairs are pruned in chunks of :data:`CHUNK` segments (more for long polylines: at most
+:data:`MAX_CHUNKS` chunks).  A chunk lies within the arc length of its longer half from
+its middle vertex, and two chunks farther apart than the sum of those radii cannot touch;
+a run of one or two neighbouring chunks whose segment directions span less than pi (less
+:data:`_MARGIN`) cannot cross itself (its projection on the mean direction grows by at
+least h sin(margin / 2) a segment: more than the tolerance).  The remaining pairs of
+segments, first those whose midpoints are within their half-lengths, are tested exactly,
+in the order of time; the first instant with a contact is reported.
 """
 from __future__ import annotations
 
@@ -100,13 +102,14 @@ def first_contact(verts: np.ndarray, tol: float):
         near[:, nxt] &= span >= math.pi - _MARGIN
     ti, c = np.nonzero(near)                                 # in the order of time
     ca, cb = ia[c], ib[c]
-    batch = max(1, _PAIRS // (size * size))
-    for b0 in range(0, ti.size, batch):
+    b0, batch, most = 0, 16, max(1, _PAIRS // (size * size))
+    while b0 < ti.size:                # small batches first: the first instant hit is early
         sl = slice(b0, b0 + batch)
-        if hits[: ti[sl][0]].max(initial=-1) >= 0:           # an earlier instant has one
+        if hits[: ti[b0]].max(initial=-1) >= 0:              # an earlier instant has one
             break
         _pairs(verts, tol, ti[sl], starts[ca[sl]], ends[ca[sl]], starts[cb[sl]],
                ends[cb[sl]], size, hits, found)
+        b0, batch = b0 + batch, min(2 * batch, most)
     return _first(hits, found)
 
 
@@ -128,7 +131,12 @@ def _pairs(verts, tol, ti, a0, a1, b0, b1, size, hits, found) -> None:
     if c.size == 0:
         return
     pp, qq, tt = p[c, i, 0], q[c, 0, j], ti[c]
-    d = segment_distance(verts[tt, pp], verts[tt, pp + 1], verts[tt, qq], verts[tt, qq + 1])
+    p1, p2, q1, q2 = verts[tt, pp], verts[tt, pp + 1], verts[tt, qq], verts[tt, qq + 1]
+    # two segments touch only if their midpoints are within their half-lengths
+    near = np.flatnonzero(np.abs(p1 + p2 - q1 - q2) <= np.abs(p2 - p1) + np.abs(q2 - q1)
+                          + 2 * tol)
+    pp, qq, tt = pp[near], qq[near], tt[near]
+    d = segment_distance(p1[near], p2[near], q1[near], q2[near])
     for h in np.flatnonzero(d <= tol):
         if hits[tt[h]] < 0 or (pp[h], qq[h]) < found[tt[h]]:
             hits[tt[h]], found[tt[h]] = 1, (int(pp[h]), int(qq[h]))

@@ -71,7 +71,12 @@ def read_gait(path) -> gm.Gait:
 
 def gait_from_dict(data: dict, source: str = "", default_name: str = "gait") -> gm.Gait:
     """A gait from the parsed file (a dict with the table ``gait``)."""
-    check_table("the gait file", data, _TOP)
+    if not isinstance(data, dict):
+        raise InputError("a gait file must hold a table [gait]")
+    unknown = sorted(set(data) - _TOP)
+    if unknown:
+        raise InputError(f"unknown key {unknown[0]!r}; allowed top-level keys: "
+                         f"{', '.join(sorted(_TOP))}")
     if "gait" not in data:
         raise InputError("missing table [gait]")
     g = check_table("gait", data["gait"], None, ("kind", "length", "period"))
