@@ -28,9 +28,9 @@ def main(argv=None) -> None:
     a = p.parse_args(argv)
     import numpy as np
 
-    from asperity.crawl.gait import CurvatureWave, FourierGait
-    from asperity.crawl.gait_chain import JointTable, SerpenoidChain
-    from asperity.crawl.gait_crossing import check_self_crossing
+    from asperity.crawling.gait import CurvatureWave, FourierGait
+    from asperity.crawling.gait_chain import JointTable, SerpenoidChain
+    from asperity.crawling.gait_crossing import check_self_crossing
     rng = np.random.default_rng(0)
     gaits = {"curvature wave A=7 k=1": CurvatureWave(),
              "fourier, 4 terms": FourierGait([(1, 1, 7, 0), (2, 1, 0, 2), (0, 0, 1, 0),

@@ -115,3 +115,23 @@ def test_unknown_choices_exit_1_and_unparsable_lines_exit_2(args, code):
 def test_help():
     p = run("--help")
     assert p.returncode == 0 and "--quasi-static" in p.stdout and "--rule" in p.stdout
+
+
+@pytest.mark.parametrize("name", ["robot-joints.toml", "wave-turning.toml"])
+def test_shipped_gait_files_crawl(name):
+    p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait",
+            ROOT / "surfaces" / "gaits" / name, "--quasi-static", "--points", 40, "--json")
+    assert p.returncode == 0, p.stderr
+    obj = json.loads(p.stdout)
+    assert obj["speed_body_lengths_per_period"] > 0.02 and obj["status"] == "ok"
+    assert obj["gait"]["kind"] in ("joints", "fourier")
+
+
+def test_gait_file_refusals(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[gait]\nkind = "fourier"\nlength = 1.0\nperiod = 1.0\n'
+                   '[[gait.terms]]\nm = 1\nn = 1\ncos = 300.0\nsin = 0.0\n')
+    p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait", bad)
+    assert p.returncode == 1 and "gait.terms[0].cos" in p.stderr, p.stderr
+    p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait", bad, "--amplitude", 3)
+    assert p.returncode == 1 and "--amplitude does not apply with --gait" in p.stderr

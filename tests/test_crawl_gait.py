@@ -1,4 +1,4 @@
-"""Gaits of a crawling body (issue 26, item 2; asperity.crawl.gait*): the body frame's
+"""Gaits of a crawling body (issue 26, item 2; asperity.crawling.gait*): the body frame's
 invariants, closed forms (a straight body, an arc, the wave's tangent angle), accuracy
 against independent quadrature, velocities against differences in time, symmetries, the
 chain -> wave limit, convergence in N, gait files, self-crossing and one-line refusals."""
@@ -14,10 +14,10 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq, minimize_scalar
 
-from asperity.crawl.gait import CurvatureWave, FourierGait
-from asperity.crawl.gait_chain import JointTable, SerpenoidChain
-from asperity.crawl.gait_crossing import check_self_crossing
-from asperity.crawl.gait_file import read_gait
+from asperity.crawling.gait import CurvatureWave, FourierGait
+from asperity.crawling.gait_chain import JointTable, SerpenoidChain
+from asperity.crawling.gait_crossing import check_self_crossing
+from asperity.crawling.gait_file import read_gait
 from asperity.errors import InputError
 
 GAITS = Path(__file__).resolve().parents[1] / "surfaces" / "gaits"

@@ -64,9 +64,8 @@ def text(obj: dict) -> str:
     lines = [f"law: {obj['law']}",
              f"rule: {RULE_WORDS.get(obj['rule'], obj['rule'])}; texture on the "
              f"{obj['texture_on']} at {obj['texture_angle_deg']:g} deg",
-             f"gait: {obj['gait']['kind']} "
-             + ", ".join(f"{k} {v:g}" if isinstance(v, (int, float)) else f"{k} {v}"
-                         for k, v in obj["gait"].items() if k != "kind"),
+             f"gait: {obj['gait']['kind']} " + ", ".join(_words(k, v) for k, v in
+                                                        obj["gait"].items() if k != "kind"),
              f"{mode}, {obj['points']} points, {obj['periods']} periods of "
              f"{obj['steps_per_period']} steps",
              f"speed: {obj['speed_body_lengths_per_period']:+.6g} body lengths per period "
@@ -81,6 +80,12 @@ def text(obj: dict) -> str:
                  f"{obj['max_iterations_used']}; points in exact stick "
                  f"{100 * obj['stick_fraction']:.3g} % of point-steps")
     return "\n".join(lines)
+
+
+def _words(key, value) -> str:
+    if isinstance(value, (list, tuple)):
+        return f"{len(value)} {key}"
+    return f"{key} {value:g}" if isinstance(value, (int, float)) else f"{key} {value}"
 
 
 def csv_text(res) -> str:
