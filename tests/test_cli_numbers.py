@@ -26,7 +26,7 @@ WEDGE = SURF / "wedge-asymmetric.toml"
 #: flags that take text (paths, names, addresses), not numbers
 TEXT_FLAGS = {"--friction-map", "--unit", "--plot", "--output", "--csv", "--abaqus", "--out",
               "--scan-dir", "--body", "--scheduler", "--map", "--export", "--host",
-              "--data-dir", "--save-pressure"}
+              "--data-dir", "--save-pressure", "--gait"}
 #: flags typed as text whose value is a number (checked by the command: whole_flag)
 NUMERIC_METAVARS = {"N", "K", "W", "S", "STEPS"}
 PARSER = build_parser()
@@ -149,6 +149,13 @@ def _base(cmd: str, action, gauge: Path, tmp: Path) -> list:
         return [WEDGE, SURF / "two-node-spec.toml"]
     if cmd == "study":
         return [tmp / "none.toml"]
+    if cmd == "crawl":
+        if f == "--pressure":
+            return [gauge, "--quasi-static", "--points", "8", "--dt", "0.05"]
+        mus = [x for m, v in (("--mu-f", "0.1"), ("--mu-b", "0.15"), ("--mu-t", "0.2"))
+               if m != f for x in (m, v)]
+        mode = ["--periods", "1"] if f == "--gravity" else ["--quasi-static"]
+        return [*mus, *mode, "--points", "8", *([] if f == "--dt" else ["--dt", "0.05"])]
     return []
 
 

@@ -60,7 +60,7 @@ def add_parser(sub) -> None:
     r = p.add_argument_group("run")
     r.add_argument("--points", default="100", metavar="N",
                    help="contact points along the body, 3 to 1e5")
-    r.add_argument("--periods", default=None, metavar="P",
+    r.add_argument("--periods", default=None, metavar="N",
                    help="gait periods to run, 1 to 1e5 (default 1 quasi-static, 8 dynamic)")
     mode = r.add_mutually_exclusive_group()
     mode.add_argument("--quasi-static", action="store_true",
