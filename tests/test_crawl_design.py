@@ -18,14 +18,13 @@ import json
 import math
 
 import pytest
+from cli_run import run
 from scipy.optimize import brentq
 from scipy.special import j0, j1
 
 from asperity.crawling.design import optimise_gait
 from asperity.crawling.solver import coefficient_law
 from asperity.errors import InputError
-
-from cli_run import run
 
 MU = 0.01
 TUBE = coefficient_law(MU, MU, 1000 * MU, "associated")        # mu_t / mu_f = 1000
@@ -81,14 +80,14 @@ def test_infeasible_everywhere_is_one_line():
 
 
 @pytest.mark.parametrize("kw,match", [
-    (dict(params=("speed",)), "unknown parameter"),
-    (dict(params=()), "params"),
-    (dict(bounds={"A": (3.0, 1.0)}), "low 3 must be below high 1"),
-    (dict(bounds={"A": (1.0, 101.0)}), r"bounds.amplitude high must be in \[0, 100\]"),
-    (dict(bounds={"waves": (0.0, 2.0)}), r"bounds.waves low"),
-    (dict(params=("amplitude",), bounds={"k": (1.0, 2.0)}), "waves is not optimised"),
-    (dict(objective="slow"), "objective"),
-    (dict(grid=2), "grid"),
+    ({"params": ("speed",)}, "unknown parameter"),
+    ({"params": ()}, "params"),
+    ({"bounds": {"A": (3.0, 1.0)}}, "low 3 must be below high 1"),
+    ({"bounds": {"A": (1.0, 101.0)}}, r"bounds.amplitude high must be in \[0, 100\]"),
+    ({"bounds": {"waves": (0.0, 2.0)}}, r"bounds.waves low"),
+    ({"params": ("amplitude",), "bounds": {"k": (1.0, 2.0)}}, "waves is not optimised"),
+    ({"objective": "slow"}, "objective"),
+    ({"grid": 2}, "grid"),
 ])
 def test_bad_arguments_refused(kw, match):
     with pytest.raises(InputError, match=match):

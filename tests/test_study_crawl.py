@@ -188,18 +188,18 @@ def test_bad_crawl_keys_refused_in_one_line(tmp_path, capsys, line, msg):
 
 
 OTHER_BAD = [
-    ("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\n[parameters]\n"
-     "\"crawl.amplitude\" = { values = [5.0] }\n", "crawl.mu_b missing"),
-    ("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 0.2\nfit_law = \"star\"\n"
-     "[parameters]\n\"crawl.amplitude\" = { values = [5.0] }\n", "crawl.fit_law fits a texture"),
-    ("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 0.2\n[parameters]\n"
-     "\"crawl.points\" = { values = [10.0, 20.0] }\n", "the crawl parameters are crawl.amplitude"),
-    ("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 0.2\n[parameters]\n"
-     "\"crawl.waves\" = { values = [-1.0, -2.0] }\n", "crawl.waves must be in (0, 20]"),
-    ("[study]\nkind = \"grid\"\ncrawl = 3\n[parameters]\n"
-     "\"crawl.waves\" = { values = [1.0] }\n", "unknown key study.crawl"),
-    ("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 200.0\n[parameters]\n"
-     "\"crawl.waves\" = { values = [1.0] }\n", "crawl.mu_t must be in [1e-06, 100]"),
+    (("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\n[parameters]\n"
+     "\"crawl.amplitude\" = { values = [5.0] }\n"), "crawl.mu_b missing"),
+    (("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 0.2\nfit_law = \"star\"\n"
+     "[parameters]\n\"crawl.amplitude\" = { values = [5.0] }\n"), "crawl.fit_law fits a texture"),
+    (("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 0.2\n[parameters]\n"
+     "\"crawl.points\" = { values = [10.0, 20.0] }\n"), "the crawl parameters are crawl.amplitude"),
+    (("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 0.2\n[parameters]\n"
+     "\"crawl.waves\" = { values = [-1.0, -2.0] }\n"), "crawl.waves must be in (0, 20]"),
+    (("[study]\nkind = \"grid\"\ncrawl = 3\n[parameters]\n"
+     "\"crawl.waves\" = { values = [1.0] }\n"), "unknown key study.crawl"),
+    (("[study]\nkind = \"grid\"\n[crawl]\nmu_f = 0.1\nmu_b = 0.1\nmu_t = 200.0\n[parameters]\n"
+     "\"crawl.waves\" = { values = [1.0] }\n"), "crawl.mu_t must be in [1e-06, 100]"),
 ]
 
 

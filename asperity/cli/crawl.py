@@ -212,7 +212,7 @@ def main(args) -> int:
 
     from ..crawling.output import text
     from . import emit
-    law, res, gait, obj = run(args)
+    _law, res, _gait, obj = run(args)
     lines = text(obj)
     if "optimum" in obj:
         from .crawl_design import text_lines

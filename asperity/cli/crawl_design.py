@@ -75,11 +75,10 @@ def optimise(args, law, g, tex, settings):
             raise InputError(f"--{name} does not apply when --optimise varies {name} (give "
                              f"its range with --bounds {name}=LOW:HIGH)")
     bounds = parse_bounds(args.bounds)
-    kw = dict(points=whole_flag("--optimise-points", args.optimise_points, 3, 100_000),
-              steps_per_period=whole_flag("--optimise-steps", args.optimise_steps, 8, 100_000),
-              grid=whole_flag("--optimise-grid", args.optimise_grid, 3, 41),
-              max_evaluations=whole_flag("--max-evaluations", args.max_evaluations, 1,
-                                         100_000))
+    kw = {"points": whole_flag("--optimise-points", args.optimise_points, 3, 100_000),
+          "steps_per_period": whole_flag("--optimise-steps", args.optimise_steps, 8, 100_000),
+          "grid": whole_flag("--optimise-grid", args.optimise_grid, 3, 41),
+          "max_evaluations": whole_flag("--max-evaluations", args.max_evaluations, 1, 100_000)}
     fixed = {"amplitude": 7.0 if args.amplitude is None else args.amplitude,
              "waves": 1.0 if args.waves is None else args.waves,
              "length": 1.0 if args.length is None else args.length,
@@ -101,8 +100,8 @@ def text_lines(obj: dict) -> str:
     cost = o["search_cost_of_transport"]
     bounds = ", ".join(f"{k} in [{lo:g}, {hi:g}]" for k, (lo, hi) in o["bounds"].items())
     return "\n".join([
-        f"optimum ({o['objective']}; {bounds}): amplitude {o['amplitude']:.5g}, waves "
-        f"{o['waves']:.5g}",
+        (f"optimum ({o['objective']}; {bounds}): amplitude {o['amplitude']:.5g}, waves "
+        f"{o['waves']:.5g}"),
         f"  at the search's {o['search_points']} points, {o['search_steps_per_period']} steps "
         f"a period: speed {o['search_speed_body_lengths_per_period']:+.6g}, cost of "
         f"transport " + (f"{cost:.5g}" if cost is not None else "none"),

@@ -155,10 +155,11 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
     CurvatureWave(amplitude=amplitude, waves=waves, period=period, length=length)  # checks
     fixed = {p: float(amplitude if p == "amplitude" else waves) for p in PARAMS
              if p not in names}
-    kw = dict(length=length, period=period, points=points, steps_per_period=steps_per_period,
-              periods=periods, quasi_static=quasi_static, g=g, texture_on=texture_on,
-              texture_angle_deg=texture_angle_deg,
-              settings=settings if settings is not None else CrawlSettings())
+    kw = {"length": length, "period": period, "points": points,
+          "steps_per_period": steps_per_period, "periods": periods,
+          "quasi_static": quasi_static, "g": g, "texture_on": texture_on,
+          "texture_angle_deg": texture_angle_deg,
+          "settings": settings if settings is not None else CrawlSettings()}
     lo = np.array([box[p][0] for p in names])
     span = np.array([box[p][1] - box[p][0] for p in names])
     seen: dict = {}
@@ -198,9 +199,9 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
     fg = np.array([evaluate(z)[3] for z in zs])
     n_grid_eval = len(seen)
     if not np.any(fg < PENALTY):
+        why = "crosses itself, moves tail-ward" if objective == "cost" else "crosses itself"
         raise InputError(f"no gait of the grid is feasible for the {objective} objective "
-                         f"(every one crosses itself{', moves tail-ward' if objective == 'cost' else ''} "
-                         f"or did not converge): change bounds")
+                         f"(every one {why} or did not converge): change bounds")
     z0 = zs[int(np.argmin(fg))]
     h = 0.5 / (n_grid - 1)
     simplex = [z0] + [np.clip(z0 + h * e, 0, 1) if z0[i] + h <= 1 else z0 - h * e
@@ -208,7 +209,7 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
     path, best_path = [], [gait_of(z0)]
 
     def fun(z):
-        v, U, cot, f = evaluate(z)
+        v, _U, _cot, f = evaluate(z)
         path.append({**v, "objective": f if f < PENALTY else None})
         return f
 
@@ -217,7 +218,7 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
                    options={"initial_simplex": np.array(simplex), "xatol": xatol,
                             "fatol": fatol, "maxfev": max_ev})
     z_best = opt.x if opt.fun <= fg.min() else z0
-    v, U, cot, f = evaluate(z_best)
+    v, U, cot, _f = evaluate(z_best)
     best_path.append(v)
     obj_grid = np.where(fg < PENALTY, -fg if objective == "speed" else fg, np.nan)
     return DesignResult(

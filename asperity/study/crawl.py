@@ -46,6 +46,8 @@ KEYS = tuple(NUMBERS) + tuple(WHOLE) + tuple(CHOICES) + ("quasi_static",)
 #: the keys that may vary (parameters "crawl.KEY")
 VARIED = ("amplitude", "waves", "texture_angle_deg", "mu_f", "mu_b", "mu_t")
 COEFFICIENTS = ("mu_f", "mu_b", "mu_t")
+#: crawl.fit_law -> the fit's kind (as ``asperity crawl --fit-law``)
+FIT_LAWS = {"star": "star", "ellipse": "truncated-ellipse"}
 #: fitted laws a worker keeps
 LAW_CACHE_SIZE = 256
 _LAWS: dict = {}
@@ -146,9 +148,8 @@ def law_of_texture(texture, fit_law: str = "star"):
     from ..friction.derive import derive
     from ..laws import planar as L
     from ..laws.fitting import fit_derivation
-    from .cases import LAWS
     d = derive(texture, "all-faces", "closed-form", 720)
-    return L.from_gauge(fit_derivation(d, LAWS[fit_law]))
+    return L.from_gauge(fit_derivation(d, FIT_LAWS[fit_law]))
 
 
 def _law(s: dict, texture, key):
