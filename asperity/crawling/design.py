@@ -142,6 +142,7 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
     its tolerances.  Returns a :class:`DesignResult`."""
     from scipy.optimize import minimize
 
+    from ..progress import report, silenced
     from .gait import CurvatureWave
     from .solver import CrawlSettings, _check_law, crawl
     law = _check_law(law, mu_f, mu_b, mu_t, rule)
@@ -176,7 +177,8 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
         key = (round(v["amplitude"], 12), round(v["waves"], 12))
         if key not in seen:
             try:
-                res = crawl(law, amplitude=v["amplitude"], waves=v["waves"], **kw)
+                with silenced():          # one bar for the search, not one per crawl
+                    res = crawl(law, amplitude=v["amplitude"], waves=v["waves"], **kw)
             except InputError as exc:
                 if "crosses itself" not in str(exc):
                     raise
@@ -196,7 +198,10 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
     axes = [np.linspace(0.0, 1.0, n_grid) for _ in names]
     mesh = np.meshgrid(*axes, indexing="ij")
     zs = np.stack([m.ravel() for m in mesh], axis=1)
-    fg = np.array([evaluate(z)[3] for z in zs])
+    fg = np.empty(len(zs))
+    for i, z in enumerate(zs):
+        fg[i] = evaluate(z)[3]
+        report(0.5 * (i + 1) / len(zs), "gait search (grid)")
     n_grid_eval = len(seen)
     if not np.any(fg < PENALTY):
         why = "crosses itself, moves tail-ward" if objective == "cost" else "crosses itself"
@@ -210,6 +215,7 @@ def optimise_gait(law=None, *, mu_f=None, mu_b=None, mu_t=None, rule="componentw
 
     def fun(z):
         v, _U, _cot, f = evaluate(z)
+        report(0.5 + 0.5 * min(1.0, len(path) / max_ev), "gait search (Nelder-Mead)")
         path.append({**v, "objective": f if f < PENALTY else None})
         return f
 
