@@ -75,12 +75,16 @@ def add_parser(sub) -> None:
                    help="relative tolerance of each step's Newton solve, in [1e-15, 1e-3]")
     r.add_argument("--max-iterations", default="200", metavar="N",
                    help="iterations of each Newton solve at most, 1 to 1e6")
+    from .crawl_design import add_flags
+    add_flags(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--csv", metavar="FILE.csv",
                    help="write t_s,x_m,y_m,theta_rad,vx_m_s,vy_m_s,omega_rad_s (centre of "
                         "mass, mean tangent angle)")
     p.add_argument("--plot", metavar="FILE.png",
-                   help="draw the body over its last period along the path, and the speed")
+                   help="draw the body over its last period along the path, and the speed "
+                        "(with --optimise: the objective over the search's grid, the "
+                        "optimiser's path and the optimum)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False)],
                    inputs=["law", "gait"])
 
@@ -151,6 +155,8 @@ def run(args):
     g = 9.81 if args.gravity is None else check_range("--gravity", args.gravity, 1e-6, 1e4,
                                                       unit="m/s^2")
     tex = check_range("--texture-angle", args.texture_angle, -360.0, 360.0, unit="deg")
+    from .crawl_design import check_args
+    check_args(args)
     if args.gait is not None:
         given = [f for f, d in (("--amplitude", "amplitude"), ("--waves", "waves"),
                                 ("--length", "length"), ("--period", "period"))
@@ -174,18 +180,28 @@ def run(args):
         dt = check_range("--dt", args.dt, 1e-9, float(gait.period) / 8, unit="s")
         P = max(8, round(float(gait.period) / dt))
     law = law_from_args(args)
+    settings = CrawlSettings(tol=tol, max_iterations=maxit)
+    design = None
+    if args.optimise is not None:
+        from .crawl_design import optimise
+        gait, design = optimise(args, law, g, tex, settings)
     res = crawl(law, gait=gait, points=points, periods=periods,
                 quasi_static=args.quasi_static, g=g, steps_per_period=P,
                 texture_on=args.texture_on, texture_angle_deg=tex,
-                settings=CrawlSettings(tol=tol, max_iterations=maxit))
+                settings=settings)
     obj = summary(res, law)
+    if design is not None:
+        obj["optimum"] = design.to_json()
     if args.law:
         obj["source"] = str(args.law)
     if args.csv:
         from ..crawling.output import csv_text
         from ..io import write_text_atomic
         write_text_atomic(args.csv, csv_text(res))
-    if args.plot:
+    if args.plot and design is not None:
+        from ..crawling.design_plot import plot_design
+        plot_design(args.plot, design, obj)
+    elif args.plot:
         from ..crawling.output import plot
         plot(args.plot, res, gait, obj)
     return law, res, gait, obj
@@ -196,8 +212,12 @@ def main(args) -> int:
 
     from ..crawling.output import text
     from . import emit
-    law, res, gait, obj = run(args)
-    emit(args, obj, text(obj), (("path table", args.csv),) if args.csv else ())
+    _law, res, _gait, obj = run(args)
+    lines = text(obj)
+    if "optimum" in obj:
+        from .crawl_design import text_lines
+        lines = text_lines(obj) + "\n" + lines
+    emit(args, obj, lines, (("path table", args.csv),) if args.csv else ())
     if res.status != "ok":
         print(f"asperity crawl: error: {res.message}", file=sys.stderr)
         return EXIT_NOT_CONVERGED

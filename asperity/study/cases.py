@@ -33,6 +33,8 @@ OUTPUTS = {
              ("dT_c_K", "REAL"), ("margin", "REAL"), ("drift_per_cycle_m", "REAL"),
              ("drift_after_cycles_m", "REAL"), ("cycles_to_tolerance", "REAL"),
              ("stabilised_at_cycle", "INTEGER"), ("extrapolated", "INTEGER")],
+    "crawl": [("speed_body_lengths_per_period", "REAL"), ("cost_of_transport", "REAL"),
+              ("heading_drift_rad_per_period", "REAL")],
 }
 STATUSES = ("ok", "failed", "error")
 #: study.law -> the fit's kind (as ``asperity fit --law``)
@@ -45,7 +47,7 @@ def output_columns(stages, elastic: bool = False) -> list[tuple[str, str]]:
     from .contact import OUTPUTS as CONTACT
     run = set(stages) | ({"derive"} if "fit" in stages else set())
     return [c for s in ("derive", "fit", "risk") if s in run for c in OUTPUTS[s]] + \
-        (CONTACT if elastic else [])
+        (CONTACT if elastic else []) + (OUTPUTS["crawl"] if "crawl" in run else [])
 
 
 def build_inputs(spec: dict, values: dict, file: str | None, cache: dict | None = None,
@@ -197,6 +199,9 @@ def evaluate(spec: dict, values: dict, file: str | None = None, cache: dict | No
     if spec.get("elastic") is not None:
         from .contact import outputs
         out.update(outputs(texture))
+    if "crawl" in stages:
+        from .crawl import outputs as crawl_outputs
+        out.update(crawl_outputs(spec, values, texture, file))
     return out
 
 
@@ -241,7 +246,8 @@ def warm_up(spec: dict, values: dict | None) -> bool:
     (files studies: imports only), so that the first batches are not charged for it."""
     import importlib
     for m in ("asperity.microslip.risk", "asperity.friction.derive", "asperity.laws.fitting",
-              "asperity.texture.wedges", "asperity.surface.facets"):
+              "asperity.texture.wedges", "asperity.surface.facets",
+              "asperity.crawling.solver"):
         importlib.import_module(m)
     if values is not None:
         run_case(spec, values)

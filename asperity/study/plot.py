@@ -39,6 +39,10 @@ def figures(store, summary: dict, folder, prefix: str = "") -> list[str]:
         from .contact import plot_load_dependence
         plot_load_dependence(summary["load_dependence"], folder / f"{prefix}load.png")
         out.append(f"{prefix}load.png")
+    if summary.get("crawl"):
+        from .crawl_summary import plot_crawl
+        if plot_crawl(store, folder / f"{prefix}crawl.png"):
+            out.append(f"{prefix}crawl.png")
     return out
 
 

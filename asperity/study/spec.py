@@ -44,9 +44,9 @@ from ..errors import InputError, check_choice, check_int, check_range, check_tex
 from .inputs import StudyFiles, assembly_key, read_input_toml, study_files
 from .sampling import KINDS, Parameter, case_count, check_sobol_base, parse_parameter
 
-STAGES = ("derive", "fit", "risk")
-TABLES = ("texture", "assembly", "friction", "loading", "contact")
-_TOP = {"name", "description", "study", "texture", "parameters", "contact"}
+STAGES = ("derive", "fit", "risk", "crawl")
+TABLES = ("texture", "assembly", "friction", "loading", "contact", "crawl")
+_TOP = {"name", "description", "study", "texture", "parameters", "contact", "crawl"}
 _STUDY = {"kind", "samples", "seed", "stages", "texture", "assembly", "files", "unit",
           "pixel_size", "height_scale", "detrend", "mu", "max_slope", "despike",
           "despike_window", "contact", "directions", "law",
@@ -222,9 +222,12 @@ def _parameters(table, kind: str) -> list[Parameter]:
 def _spec(st: dict, data: dict, kind: str, params, named: StudyFiles) -> dict:
     """The work of one case, as plain data (the workers rebuild texture and assembly)."""
     from ..microslip.risk import CONTACTS
-    stages = st.get("stages", ["risk"] if "assembly" in st else ["derive"])
+    stages = st.get("stages", ["risk"] if "assembly" in st else
+                    ["crawl"] if "crawl" in data else ["derive"])
     if isinstance(stages, str):
         stages = [stages]
+    if isinstance(stages, list) and "crawl" in data and "crawl" not in stages:
+        stages = [*stages, "crawl"]             # a [crawl] table: every case crawls
     if not isinstance(stages, list) or not stages:
         raise InputError(f"study.stages must be a list of {', '.join(STAGES)}")
     for i, s in enumerate(stages):
@@ -253,6 +256,10 @@ def _spec(st: dict, data: dict, kind: str, params, named: StudyFiles) -> dict:
         if k in st:
             spec[k] = check_range(f"study.{k}", st[k], 1.0 if k == "cycles" else 1e-12,
                                   1e15 if k == "cycles" else 1.0)
+    from .crawl import crawl_spec
+    crawl = crawl_spec(data, params, stages, spec["texture"] is not None or kind == "files")
+    if crawl is not None:                  # (absent otherwise: older fingerprints hold)
+        spec["crawl"] = crawl
     spec["output"] = _output(st, stages, bool(data.get("contact")) or any(
         p.name.startswith("contact.") for p in params))
     spec["surface"] = _surface_options(st, kind)
@@ -306,7 +313,8 @@ def _texture(st, data, named: StudyFiles, kind):
 def _output(st: dict, stages: list, elastic: bool = False) -> str:
     from .cases import output_columns
     cols = [c for c, kind in output_columns(stages, elastic) if kind == "REAL"]
-    default = "drift_per_cycle_m" if "risk" in stages else "anisotropy"
+    default = "drift_per_cycle_m" if "risk" in stages else \
+        "speed_body_lengths_per_period" if stages == ["crawl"] else "anisotropy"
     return check_choice("study.output", st.get("output", default), cols)
 
 
@@ -355,6 +363,9 @@ def _check_one_case(study: Study) -> None:
     assembly does not have, or a value outside its range, is refused now."""
     from .cases import build_inputs
     values = {p.name: p.centre for p in study.parameters}
+    if study.spec.get("crawl") is not None:
+        from .crawl import check_case
+        check_case(study.spec["crawl"], values)
     if study.kind == "files":
         if study.spec.get("elastic") is not None:
             from .contact import elastic_for

@@ -101,6 +101,10 @@ def summarise(store) -> dict:
     rows = load_dependence(store)
     if rows is not None:
         out["load_dependence"] = rows
+    from .crawl_summary import crawl_summary
+    crawl = crawl_summary(store)
+    if crawl is not None:
+        out["crawl"] = crawl
     return out
 
 

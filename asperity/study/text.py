@@ -77,6 +77,9 @@ def lines(s: dict) -> list[str]:
     if s.get("load_dependence"):
         from .contact import load_lines
         out.extend(load_lines(s["load_dependence"]))
+    if s.get("crawl"):
+        from .crawl_summary import crawl_lines
+        out.extend(crawl_lines(s["crawl"], s["crawl"]["inputs"]))
     if s.get("ranking"):
         out.append("ranked (most at risk first):")
         for r in s["ranking"][:20]:
