@@ -135,3 +135,18 @@ def test_gait_file_refusals(tmp_path):
     assert p.returncode == 1 and "gait.terms[0].cos" in p.stderr, p.stderr
     p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait", bad, "--amplitude", 3)
     assert p.returncode == 1 and "--amplitude does not apply with --gait" in p.stderr
+
+
+def test_a_step_without_solution_stops_the_run_with_exit_3(tmp_path):
+    """A step the solver cannot balance (a nearly straight body of three waves, A = 0.5: a
+    known limit, in the README): exit 3, the step and time named, finite JSON (speed null:
+    no period was completed), the plot still drawn."""
+    png = tmp_path / "c.png"
+    p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--quasi-static", "--points", 60,
+            "--dt", 0.01, "--amplitude", 0.5, "--waves", 3, "--json", "--plot", png)
+    assert p.returncode == 3, p.stderr
+    obj = json.loads(p.stdout)
+    assert obj["status"] == "not-converged" and "the run stops there" in obj["message"]
+    assert obj["speed_body_lengths_per_period"] is None and obj["speed_per_period"] == []
+    assert "did not converge at step" in p.stderr
+    assert png.exists()

@@ -20,7 +20,7 @@ import numpy as np
 from numba import njit
 
 from ..dynamics._body_law_kernels import _assemble, _eval_at
-from ..dynamics._body_step_kernels import _slide
+from ..dynamics._body_step_kernels import _kink, _polar, _slide
 from ..kernel_cache import refresh
 
 refresh(__file__)     # drop cached kernels compiled against older callees
@@ -99,6 +99,21 @@ def _solve(u, uA, uP, order, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, to
         its += k
         if conv:
             return its, True, rn
+    # the step holds a point at rest that Newton did not come near (seen on nearly straight
+    # bodies: a pivot at mid-body): try each point as the pivot, least slip at uA first
+    n = ox.shape[0]
+    slip = np.empty(n)
+    for i in range(n):
+        slip[i] = math.hypot(uA[0] - uA[2] * oy[i] + ext[i, 0], uA[1] + uA[2] * ox[i] + ext[i, 1])
+    cw = np.empty(3)
+    for i in np.argsort(slip):
+        for j in range(3):
+            u[j] = uA[j]
+        its += 1
+        if _kink(u, uf, md, ox, oy, ext, lam, kind, par, tab, i, tola, R, J, ev, cw):
+            return its, True, 0.0
+        if _polar(u, uf, md, ox, oy, ext, lam, kind, par, tab, i, tola, R, J, ev, cw):
+            return its, True, 0.0
     return its, False, rn
 
 
@@ -175,8 +190,12 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
             md[j] = qs_eps * mass * (inertia[0] if j == 2 else 1.0)
             uf[j] = 0.0
         scale = mass * g * dt * mu / math.sqrt(md[0])
-        _solve(ue, u, up, 0, uf, md, ox, oy, ext, lam, kind, par, tab, assoc,
-               tol * scale, maxit, R, J, ev, dx, un)
+        its, conv, rn = _solve(ue, u, up, 0, uf, md, ox, oy, ext, lam, kind, par, tab,
+                               assoc, tol * scale, maxit, R, J, ev, dx, un)
+        if not conv or not (math.isfinite(ue[0]) and math.isfinite(ue[1])
+                            and math.isfinite(ue[2])):
+            for j in range(3):      # no balance found there: start from rest (first order)
+                ue[j] = 0.0
         for j in range(3):
             u[j] = ue[j]
             up[j] = ue[j]
@@ -216,9 +235,11 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
             status = STATUS_NON_FINITE
             info[INFO_FAIL_STEP] = step
             break
-        if not conv and status == STATUS_OK:
+        if not conv:
+            # a step without a solution: the motion after it would not be the model's
             status = STATUS_NOT_CONVERGED
             info[INFO_FAIL_STEP] = step
+            break
         _energy(ue, uf, md, ox, oy, ext, lam, kind, par, tab, R, J, ev, info)
         for j in range(3):
             up[3 + j] = up[j]
@@ -233,6 +254,6 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
             rec_e[nrec, 0] = info[INFO_WORK]
             rec_e[nrec, 1] = info[INFO_DISSIPATED]
             nrec += 1
-    info[INFO_STEPS] = step + 1
+    info[INFO_STEPS] = step + 1 if status == STATUS_OK else step
     info[INFO_STATUS] = status
     info[INFO_RECORDS] = nrec

@@ -19,7 +19,8 @@ def summary(res, law=None) -> dict:
     cot = res.cost_of_transport
     return {
         "speed_body_lengths_per_period": res.speed_body_lengths_per_period,
-        "speed_m_s": res.speed_body_lengths_per_period * res.length / res.period,
+        "speed_m_s": None if res.speed_body_lengths_per_period is None else
+        res.speed_body_lengths_per_period * res.length / res.period,
         "speed_per_period": [float(x) for x in res.speed_per_period],
         "heading_drift_rad_per_period": res.heading_drift_rad_per_period,
         "drift_per_period": [float(x) for x in res.drift_per_period],
@@ -68,10 +69,12 @@ def text(obj: dict) -> str:
                                                         obj["gait"].items() if k != "kind"),
              f"{mode}, {obj['points']} points, {obj['periods']} periods of "
              f"{obj['steps_per_period']} steps",
+             "speed: none (no period completed)" if obj["speed_m_s"] is None else
              f"speed: {obj['speed_body_lengths_per_period']:+.6g} body lengths per period "
              f"({obj['speed_m_s']:+.6g} m/s; periods {a}-{b}"
              + (f", after a transient of {obj['transient_periods']}" if
                 obj["transient_periods"] else "") + ")",
+             "heading drift: none" if obj["heading_drift_rad_per_period"] is None else
              f"heading drift: {obj['heading_drift_rad_per_period']:+.4g} rad per period"]
     cot = obj["cost_of_transport"]
     lines.append("cost of transport: " + (f"{cot:.4g}" if cot is not None else
@@ -126,14 +129,17 @@ def plot(path, res, gait, obj: dict) -> None:
     ax.set_title("body over the last period (dot: head)")
     ax.legend(loc="best", fontsize=8)
     bx.plot(res.t, heading_speed(res) * res.period / res.length, lw=1, label="centre's velocity on the heading")
-    edges = np.arange(res.periods + 1) * res.period
-    bx.step(edges, np.r_[res.speed_per_period, res.speed_per_period[-1:]], where="post",
-            color="C3", label="speed of each period")
-    bx.axhline(obj["speed_body_lengths_per_period"], color="C3", ls=":", lw=1)
+    if res.periods:
+        edges = np.arange(res.periods + 1) * res.period
+        bx.step(edges, np.r_[res.speed_per_period, res.speed_per_period[-1:]], where="post",
+                color="C3", label="speed of each period")
+        bx.axhline(obj["speed_body_lengths_per_period"], color="C3", ls=":", lw=1)
     bx.set_xlabel("t (s)")
     bx.set_ylabel("body lengths per period")
     mode = "quasi-static" if res.quasi_static else f"dynamic, Fr = {res.froude:.3g}"
-    bx.set_title(f"rule {res.rule}, {mode}: U = {obj['speed_body_lengths_per_period']:+.4g}")
+    speed = obj["speed_body_lengths_per_period"]
+    bx.set_title(f"rule {res.rule}, {mode}: " + ("no period completed" if speed is None
+                                                 else f"U = {speed:+.4g}"))
     bx.legend(loc="best", fontsize=8)
     fig.suptitle(f"{obj['law']}", fontsize=9)
     fig.tight_layout()

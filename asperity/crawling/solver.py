@@ -145,12 +145,16 @@ class CrawlResult:
         return slice(self.transient_periods, self.periods)
 
     @property
-    def speed_body_lengths_per_period(self) -> float:
-        return float(np.mean(self.speed_per_period[self.averaged]))
+    def speed_body_lengths_per_period(self) -> float | None:
+        """Mean over the averaged periods; None if no period was completed (a step that
+        did not converge stops the run)."""
+        s = self.speed_per_period[self.averaged]
+        return float(np.mean(s)) if s.size else None
 
     @property
-    def heading_drift_rad_per_period(self) -> float:
-        return float(np.mean(self.drift_per_period[self.averaged]))
+    def heading_drift_rad_per_period(self) -> float | None:
+        s = self.drift_per_period[self.averaged]
+        return float(np.mean(s)) if s.size else None
 
     @property
     def froude(self) -> float:
@@ -167,6 +171,8 @@ class CrawlResult:
         """Work of the gait against friction over m g times the distance the centre moved,
         over the averaged periods; None when it did not move (no distance to divide by)."""
         a, b = self._window()
+        if b <= a or b >= len(self.q):
+            return None
         d = float(np.hypot(*(self.q[b, :2] - self.q[a, :2])))
         if d <= 1e-12 * self.length:
             return None
@@ -273,7 +279,7 @@ def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):
     message = {"ok": "ok",
                "not-converged": f"the step's Newton iteration did not converge at step {fail} "
                                 f"(t = {fail * dt:.6g} s; relative residual above "
-                                f"{settings.tol:g})",
+                                f"{settings.tol:g}); the run stops there",
                "non-finite": f"the velocity became non-finite at step {fail}"}[status]
     t, qr, ur, e = rec_t[:k], rec_q[:k], rec_u[:k], rec_e[:k]
     per_rec = P // record_every
