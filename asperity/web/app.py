@@ -34,7 +34,7 @@ STATIC = {"app.js": "text/javascript", "style.css": "text/css"}
 log = logging.getLogger("asperity.web")
 #: job kind -> the page whose form made it
 PAGE_OF = {"derive": "surface", "fit": "law", "gauge": "law", "slide": "motion",
-           "risk": "motion", "study": "studies"}
+           "risk": "motion", "crawl": "motion", "study": "studies"}
 
 
 def plotly_js() -> Path:

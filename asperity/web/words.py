@@ -28,6 +28,8 @@ FILE_FIELDS = {"file": ("file", "upload"), "friction_map": ("friction_map", "map
                "assembly_file": ("assembly", "assembly_upload"),
                "texture_file": ("texture", "texture_upload"),
                "body_file": ("body", "body_upload"),
+               "c_gauge": ("crawl_gauge", "c_gauge_upload"),
+               "c_texture_file": ("crawl_texture", "c_texture_upload"),
                "study": ("study", "study_upload"),
                "companions": ("companions", "companion_uploads")}
 #: file fields that take several files
@@ -127,6 +129,10 @@ def words_of(kind: str, params: dict) -> dict:
         return out
     if kind == "study":
         return {"workers": ("workers", "local worker processes")}
+    if kind == "crawl":
+        return {"unit": ("c_unit", "length unit"), "mu": ("c_mu", "local friction mu"),
+                "points": ("c_points", "contact points"), "periods": ("c_periods", "periods"),
+                "steps_per_period": ("c_steps", "steps per period")}
     return {}
 
 
