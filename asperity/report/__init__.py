@@ -19,7 +19,7 @@ from ..io import write_text_atomic
 
 #: the sections in report order: module of this package with ``section(folder) -> lines``
 SECTIONS = ("spec", "springs", "polar", "loading", "surfaces", "measured", "gauges", "moreau",
-            "bodies", "microslip", "studies", "contact")
+            "bodies", "crawling", "microslip", "studies", "contact")
 
 
 def _numbered(k: int, section: list[str]) -> list[str]:
