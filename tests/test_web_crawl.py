@@ -91,11 +91,12 @@ def test_a_crawl_job_gives_the_librarys_numbers_and_figures(server):
     page = httpx.get(f"{server.base}/jobs/{jid}").text
     assert cell(page, "speed") == f"{U:+.6g} body lengths per period"
     assert cell(page, "rule") == "componentwise"
+    assert cell(page, "averaged") == "periods 3-4 of 4"
     assert cell(page, "drift") == f"{res.heading_drift_rad_per_period:+.4g} rad per period"
     assert cell(page, "cost") == f"{res.cost_of_transport:.4g}"
     assert cell(page, "froude") == f"{1.0 / (9.81 * 0.1):.4g}"      # L / (g mu_f T^2)
     # the snapshots: the body's world points at the last recorded instant (m: a 1 m body)
-    snaps = figure(page, "snapshots")
+    snaps = figure(page, "crawl-snapshots")
     bodies = [t for t in snaps["data"] if t["name"].startswith("body at")]
     assert len(bodies) == 9
     last = world_shapes(res, gait, np.array([len(res.t) - 1]))[0]
@@ -105,14 +106,18 @@ def test_a_crawl_job_gives_the_librarys_numbers_and_figures(server):
     assert first_t == pytest.approx(3.0, abs=1e-3)            # the last period: t 3 to 4 s
     centre = snaps["data"][-1]
     assert [centre["x"][-1], centre["y"][-1]] == pytest.approx(list(res.q[-1, :2]), abs=1e-6)
-    speed = figure(page, "speed")
+    speed = figure(page, "crawl-speed")
     step = speed["data"][1]
     assert step["y"][:-1] == pytest.approx(list(res.speed_per_period), abs=1e-6)
     assert speed["data"][2]["y"] == pytest.approx([U, U], abs=1e-6)
     assert speed["data"][2]["x"] == pytest.approx([2.0, 4.0])  # averaged over periods 3-4
     assert "componentwise" in speed["layout"]["title"]["text"]
-    listed = html.unescape(httpx.get(server.base + "/motion").text)
-    assert "A 7, k 1, componentwise rule, dynamic, 40 points, 4 periods" in listed
+    motion = httpx.get(server.base + "/motion").text
+    assert "A 7, k 1, componentwise rule, dynamic, 40 points, 4 periods" in \
+        html.unescape(motion)
+    for text in (page, motion):                       # no element id twice on a page
+        ids = re.findall(r'\sid="([^"]+)"', text)
+        assert len(ids) == len(set(ids)), sorted(i for i in ids if ids.count(i) > 1)
 
 
 @pytest.mark.parametrize("rule", ["associated", "colinear"])
@@ -192,3 +197,30 @@ def test_a_bad_field_is_one_line_at_it_and_runs_no_job(server, change, field, wo
         assert other.id == "crawl" or not other.errors, other.id
     after = set(jobs.iterdir()) if jobs.exists() else set()
     assert after == before, "a refused form ran a job"
+
+
+def test_a_law_family_crawls_at_the_pressure_given(server, tmp_path):
+    """An uploaded version-2 gauge file: the pressure is asked for at its field, then the
+    crawl runs on the family's law at that pressure (the library's law_at)."""
+    from test_law_family import synthetic, wedge_law
+
+    from asperity import law_from_gauge, read_gauge, write_gauge
+    from asperity.laws.family import law_at
+    write_gauge(tmp_path / "family.json", synthetic([wedge_law(20, 6, "star"),
+                                                    wedge_law(30, 6, "star")], (1e6, 2e6)))
+    data = {**BASE, "c_law": "upload", "c_mode": "quasi-static", "c_periods": "1"}
+    r = post(server, data, {"c_gauge": ("family.json", (tmp_path / "family.json").read_bytes())})
+    assert r.status_code == 400
+    f = next(x for x in Page(r.text).forms if x.id == "crawl")
+    assert [x.name for x in f.fields if x.label == f.errors[0][0]][:1] == ["c_law_pressure"]
+    kept = re.search(r'name="c_gauge_upload" value="([^"]+)"', r.text).group(1)
+    jid = done(server, post(server, {**data, "c_gauge_upload": kept,
+                                     "c_law_pressure": "1.5e6"}))
+    got = httpx.get(f"{server.base}/api/jobs/{jid}/result").json()
+    law = law_from_gauge(law_at(read_gauge(tmp_path / "family.json"), 1.5e6)[0])
+    res = crawl(law, points=40, quasi_static=True)
+    assert got["crawl"]["speed_body_lengths_per_period"] == pytest.approx(
+        res.speed_body_lengths_per_period, rel=1e-12)
+    assert got["family"]["pressure_Pa"] == 1.5e6 and got["family"]["interpolated"]
+    page = httpx.get(f"{server.base}/jobs/{jid}").text
+    assert 'id="slide-pressure"' in page                 # the page states the pressure

@@ -12,16 +12,8 @@ from fastapi import Request
 from ..errors import AsperityError, InputError, check_range
 from .common import done_job, post_form, wedge_title
 from .forms import Form, FormError
+from .words import CRAWL_RULES as RULES
 
-#: the crawl form's law select (besides the Law results): value -> what the page calls it
-LAWS = (("coefficients", "three coefficients mu_f, mu_b, mu_t with a rule (below)"),
-        ("wedge", "a wedge texture, fitted on the fly (below)"),
-        ("file", "a texture or surface file, fitted on the fly (upload below)"),
-        ("upload", "a gauge file (upload below)"))
-RULES = (("componentwise", ("componentwise (Hu et al.: each slip component scaled by its "
-                            "own coefficient)")),
-         ("associated", "associated (maximum dissipation on the truncated ellipse)"),
-         ("colinear", "colinear (force opposite to the slip)"))
 #: labels of the fields (the refusals name them)
 LABELS = {"c_law": "friction law", "c_mu_f": "mu_f (forward)", "c_mu_b": "mu_b (backward)",
           "c_mu_t": "mu_t (transverse)", "c_rule": "rule", "c_alpha_deg": "alpha (deg)",

@@ -103,9 +103,9 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
     elif q.get("law") and any(j["id"] == q["law"] for j in laws_done):
         default_friction = f"law:{q['law']}"
     families = family_jobs(web, laws_done) + family_upload(web, ctx.get("kept"))
-    from .pages_crawl import LAWS, RULES
+    from .words import CRAWL_LAWS, CRAWL_RULES
     crawl = {"laws": [(f"job:{j['id']}", f"{j['id']}: {label(j)}") for j in laws_done]
-             + list(LAWS), "rules": RULES, "families": family_jobs(web, laws_done)
+             + list(CRAWL_LAWS), "rules": CRAWL_RULES, "families": family_jobs(web, laws_done)
              + family_upload(web, ctx.get("kept"), "crawl_gauge")}
     return web.page(request, "motion.html", status, page="motion", laws=laws, crawl=crawl,
                     default_law=default_law, family_laws=families, frictions=frictions,
@@ -258,8 +258,6 @@ async def _risk_params(web, form: Form, kept: dict) -> tuple[dict, str]:
 
 def register(app, web) -> None:
     web.renderers.update(slide=render_motion, risk=render_motion, study=render_studies)
-    from . import pages_crawl
-    pages_crawl.register(app, web)
 
     @app.get("/motion", response_class=HTMLResponse)
     async def motion(request: Request):
