@@ -6,8 +6,9 @@ form against the spring simulation, polar diagrams of both contact regimes, the 
 curve, wedge meshes and height maps against the closed form, the measured surfaces of
 ``../shared/data/surfaces`` (when that folder is present), friction laws and gauge files,
 Moreau time-stepping, planar rigid bodies (footprints that slide and spin), crawling
-(bodies that change shape), cumulative microslip, studies, the elastic contact.  The sections call library APIs only; only
-``asperity report`` (:mod:`asperity.cli.report`) imports this package.
+(bodies that change shape), cumulative microslip, studies, the elastic contact.  The
+sections call library APIs only; only ``asperity report`` (:mod:`asperity.cli.report`)
+imports this package.
 """
 from __future__ import annotations
 
