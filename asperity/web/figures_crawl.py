@@ -33,10 +33,11 @@ def snapshots_figure(res, gait, obj: dict) -> dict:
     traces = []
     for j, (i, sh) in enumerate(zip(snaps, shapes)):
         f = j / max(len(snaps) - 1, 1)
-        colour = f"rgb({38},{int(77 + 128 * f)},{int(204 - 128 * f)})"
+        colour = f"rgb(38,{int(77 + 128 * f)},{int(204 - 128 * f)})"
         traces.append({"type": "scatter", "mode": "lines", "x": _r(s * sh[:, 0], 7),
                        "y": _r(s * sh[:, 1], 7), "line": {"width": 2, "color": colour},
-                       "name": f"body at t = {res.t[i]:.4g} s", "showlegend": j in (0, len(snaps) - 1),
+                       "name": f"body at t = {res.t[i]:.4g} s",
+                       "showlegend": j in (0, len(snaps) - 1),
                        "hovertemplate": f"t = {res.t[i]:.4g} s<extra></extra>"})
     heads = shapes[:, -1, :]
     traces.append({"type": "scatter", "mode": "markers", "x": _r(s * heads[:, 0], 7),
