@@ -210,3 +210,18 @@ def test_every_page_answers_without_javascript_errors(server, page):
         assert page.locator("header nav a").count() == 5
     page.goto(server.base + "/")
     shot(page, "web-home.png")
+
+
+def test_a_crawl_from_the_motion_page(server, page):
+    """The crawl form's defaults (three coefficients, componentwise, dynamic): the speed
+    with its rule, and the body's snapshots and the speed drawn by Plotly."""
+    page.goto(server.base + "/motion")
+    page.select_option("#f-c_law", "coefficients")
+    page.select_option("#f-c_rule", "associated")
+    page.click("#run-crawl")
+    result_page(page)
+    assert re.fullmatch(r"\+0\.3\d{4,5} body lengths per period", page.inner_text("#speed"))
+    assert page.inner_text("#rule").strip() == "associated"
+    page.wait_for_selector("#crawl-snapshots[data-drawn='1'] .main-svg")
+    page.wait_for_selector("#crawl-speed[data-drawn='1'] .main-svg")
+    shot(page, "web-crawl.png")

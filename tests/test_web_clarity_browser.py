@@ -48,7 +48,7 @@ TABLES = """() => {
 def results(server, tmp_path_factory):
     """One result of each page that has tables: the wedge, the bumps map pressed with a
     hardness, a wedge family and its law family, one member's law, a risk verdict on the
-    pressed map, the shipped bushing's verdict, a ring slid."""
+    pressed map, the shipped bushing's verdict, a ring slid, a crawl."""
     path = tmp_path_factory.mktemp("clarity-browser") / "bumps.txt"
     np.savetxt(path, bumps(), fmt="%.6f")
     out = {"wedge": submit(server, "/surface", WEDGE)}
@@ -72,6 +72,8 @@ def results(server, tmp_path_factory):
         "law": "ellipse", "mu1": "0.2", "mu2": "0.1", "u0": "0.3", "angle_deg": "30",
         "dt": "1e-3", "body": "ring", "radius": "0.05", "contact_points": "64",
         "omega0": "10"})
+    out["crawl"] = submit(server, "/motion/crawl", {
+        "c_mu_f": "0.1", "c_mu_b": "0.15", "c_mu_t": "0.2", "c_points": "40", "c_periods": "4"})
     return out
 
 

@@ -42,13 +42,16 @@ FILE_HOSTILE = {"empty": None, "text": b"abc\x00\xff not a surface\n", "zero": b
 #: values never to be accepted in a text field (a number field or not)
 NEVER = ("NaN", "nan", "inf", "-inf", "1e999", "-1e999")
 #: whole-number fields: 2.5 and the huge values are refused too
-WHOLE = ("directions", "despike_window", "strip_n", "workers", "contact_points")
+WHOLE = ("directions", "despike_window", "strip_n", "workers", "contact_points", "c_points",
+         "c_periods", "c_steps")
 #: defaults that keep the walker's jobs short (a field not named here keeps the page's)
 QUICK = {"directions": "8", "strip_n": "11", "unit": "um", "pixel_size": "1", "r_unit": "um",
          "contact_points": "8", "dt": "1e-3", "t_end": "0.2",
          # a softer support: the wedge's plane-strain solve needs far fewer nodes per wedge
          # (the accepted Surface jobs took 2/3 of this walk at the default E*)
-         "E_star": "1e9"}
+         "E_star": "1e9",
+         # a short crawl (the Motion page's crawl form)
+         "c_points": "16", "c_periods": "2"}
 #: refusals that are physical outcomes of several fields together: shown above the form
 UNPLACED = ("the margin ", "the texture self-locks", "wedge.stl gives no friction")
 #: words of a message that are neither the page's nor the user's: a key of the command line
@@ -84,6 +87,9 @@ def examples(tmp) -> dict:
         alpha_deg=30.0, beta_deg=10.0, mu_alpha=0.1, mu_beta=0.2), n_directions=16)))
     return {"file": [("ridges.txt", text.encode())],
             "gauge": [("gauge.json", (tmp / "gauge.json").read_bytes())],
+            "c_gauge": [("gauge.json", (tmp / "gauge.json").read_bytes())],
+            "c_texture_file": [("wedge-asymmetric.toml",
+                                (SURFACES / "wedge-asymmetric.toml").read_bytes())],
             "texture_file": [("wedge.stl", (SURFACES / "wedge-30-10.stl").read_bytes())],
             "study": [("tiny.toml", STUDY.encode())],
             "body_file": [("coin.toml", BODY.encode())],

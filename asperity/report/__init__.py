@@ -5,9 +5,10 @@ into ``folder``), numbered in the order of :data:`SECTIONS`: SPEC.md check value
 form against the spring simulation, polar diagrams of both contact regimes, the loading
 curve, wedge meshes and height maps against the closed form, the measured surfaces of
 ``../shared/data/surfaces`` (when that folder is present), friction laws and gauge files,
-Moreau time-stepping, planar rigid bodies (footprints that slide and spin), cumulative
-microslip, studies, the elastic contact.  The sections call library APIs only; only
-``asperity report`` (:mod:`asperity.cli.report`) imports this package.
+Moreau time-stepping, planar rigid bodies (footprints that slide and spin), crawling
+(bodies that change shape), cumulative microslip, studies, the elastic contact.  The
+sections call library APIs only; only ``asperity report`` (:mod:`asperity.cli.report`)
+imports this package.
 """
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ from ..io import write_text_atomic
 
 #: the sections in report order: module of this package with ``section(folder) -> lines``
 SECTIONS = ("spec", "springs", "polar", "loading", "surfaces", "measured", "gauges", "moreau",
-            "bodies", "microslip", "studies", "contact")
+            "bodies", "crawling", "microslip", "studies", "contact")
 
 
 def _numbered(k: int, section: list[str]) -> list[str]:

@@ -34,7 +34,7 @@ STATIC = {"app.js": "text/javascript", "style.css": "text/css"}
 log = logging.getLogger("asperity.web")
 #: job kind -> the page whose form made it
 PAGE_OF = {"derive": "surface", "fit": "law", "gauge": "law", "slide": "motion",
-           "risk": "motion", "study": "studies"}
+           "risk": "motion", "crawl": "motion", "study": "studies"}
 
 
 def plotly_js() -> Path:
@@ -89,7 +89,7 @@ class Web:
 
 def create_app(settings):
     """The ASGI application of ``settings`` (a :class:`~asperity.web.settings.Settings`)."""
-    from . import pages, pages_motion
+    from . import pages, pages_crawl, pages_motion
     web = Web(settings)
 
     @contextlib.asynccontextmanager
@@ -108,6 +108,7 @@ def create_app(settings):
     _jobs(app, web)
     pages.register(app, web)
     pages_motion.register(app, web)
+    pages_crawl.register(app, web)
     return Guard(Quiet(app), settings, web.render_bare)
 
 

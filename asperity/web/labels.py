@@ -243,7 +243,32 @@ def _study(p: dict) -> list[str]:
     return out
 
 
-SETTINGS = {"derive": _derive, "fit": _fit, "slide": _slide, "risk": _risk, "study": _study}
+def _crawl(p: dict) -> list[str]:
+    """A crawl's settings that change its speed (the Motion page's crawl fields)."""
+    g = p.get("gait") if isinstance(p.get("gait"), dict) else {}
+    law = p.get("law") if isinstance(p.get("law"), dict) else {}
+    out = [f"A {_num(g.get('amplitude', 7))}, k {_num(g.get('waves', 1))}"]
+    if law.get("rule"):
+        out.append(f"{law['rule']} rule")
+    if isinstance(law.get("pressure"), (int, float)):
+        out.append(f"law family at p = {pressure_words(law['pressure'])}")
+    for key, unit in (("length", "m"), ("period", "s")):
+        if g.get(key) not in (None, 1, 1.0):
+            out.append(f"{'L' if key == 'length' else 'T'} {_num(g[key])} {unit}")
+    out.append("quasi-static" if p.get("quasi_static") else "dynamic")
+    out.append(f"{p.get('points', 100)} points, {p.get('periods')} periods")
+    if p.get("texture_on") == "ground" or p.get("texture_angle_deg"):
+        out.append(f"texture on the {p.get('texture_on', 'body')} at "
+                   f"{_num(p.get('texture_angle_deg', 0))} deg")
+    if not p.get("quasi_static") and p.get("g") not in (None, 9.81):
+        out.append(f"g {_num(p['g'])} m/s^2")
+    if p.get("steps_per_period") not in (None, 400):
+        out.append(f"{p['steps_per_period']} steps a period")
+    return out
+
+
+SETTINGS = {"derive": _derive, "fit": _fit, "slide": _slide, "risk": _risk, "study": _study,
+            "crawl": _crawl}
 
 
 def settings(rec: dict) -> str:

@@ -37,10 +37,10 @@ def family_jobs(web, laws_done: list[dict]) -> list[str]:
     return out
 
 
-def family_upload(web, kept) -> list[str]:
+def family_upload(web, kept, key: str = "gauge") -> list[str]:
     """``["upload"]`` when the form's kept gauge file is a law family (its pressure field
     then shows for it; for a file chosen in the browser, app.js reads it), else ``[]``."""
-    meta = (kept or {}).get("gauge") if isinstance(kept, dict) else None
+    meta = (kept or {}).get(key) if isinstance(kept, dict) else None
     if not isinstance(meta, dict):
         return []
     from .. import read_gauge
@@ -53,14 +53,15 @@ def family_upload(web, kept) -> list[str]:
         return []
 
 
-def family_pressure(form: Form, path, field: str, shown: str) -> dict:
-    """``{"pressure": P}`` (the field ``law_pressure``) when the gauge file at ``path`` (shown
+def family_pressure(form: Form, path, field: str, shown: str, name: str = "law_pressure"
+                    ) -> dict:
+    """``{"pressure": P}`` (the field ``name``) when the gauge file at ``path`` (shown
     as ``shown``) holds a law family, required there and within the family's pressures;
     else ``{}`` (the field blank: it applies to a family only)."""
     from .. import read_gauge
     from ..errors import InputError
     from ..laws.family import GaugeFamily
-    p = form.optional("law_pressure", label=PRESSURE)
+    p = form.optional(name, label=PRESSURE)
     try:
         gauge = read_gauge(path)
     except InputError as exc:
@@ -68,24 +69,24 @@ def family_pressure(form: Form, path, field: str, shown: str) -> dict:
     if not isinstance(gauge, GaugeFamily):
         if p is not None:
             raise FormError(f"{PRESSURE}: {shown} is one law, not a law family over pressures; "
-                            "leave the pressure blank", "law_pressure")
+                            "leave the pressure blank", name)
         return {}
     lo, hi = gauge.pressures[0], gauge.pressures[-1]
     if p is None or not lo <= p <= hi:
         raise FormError(f"{PRESSURE}: the law is a family over the pressures {lo:g} to "
                         f"{hi:g} Pa; give the nominal contact pressure within them"
-                        + ("" if p is None else f" (got {p:g} Pa)"), "law_pressure")
+                        + ("" if p is None else f" (got {p:g} Pa)"), name)
     try:
         gauge.at(p, PRESSURE)
     except InputError as exc:
-        raise FormError(str(exc), "law_pressure") from None
+        raise FormError(str(exc), name) from None
     return {"pressure": p}
 
 
 def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLResponse:
     laws_done, surfaces, jobs = web.store.select(
         (("fit", "gauge"), ("done",), DONE_LIMIT), (("derive",), ("done",), DONE_LIMIT),
-        (("slide", "risk"), None, 20))
+        (("slide", "risk", "crawl"), None, 20))
     q = request.query_params
     laws = [(f"job:{j['id']}", f"{j['id']}: {label(j)}") for j in laws_done] + list(BUILTIN)
     default_law = f"job:{q['law']}" if q.get("law") and any(
@@ -102,7 +103,11 @@ def render_motion(web, request: Request, status: int = 200, **ctx) -> HTMLRespon
     elif q.get("law") and any(j["id"] == q["law"] for j in laws_done):
         default_friction = f"law:{q['law']}"
     families = family_jobs(web, laws_done) + family_upload(web, ctx.get("kept"))
-    return web.page(request, "motion.html", status, page="motion", laws=laws,
+    from .words import CRAWL_LAWS, CRAWL_RULES
+    crawl = {"laws": [(f"job:{j['id']}", f"{j['id']}: {label(j)}") for j in laws_done]
+             + list(CRAWL_LAWS), "rules": CRAWL_RULES, "families": family_jobs(web, laws_done)
+             + family_upload(web, ctx.get("kept"), "crawl_gauge")}
+    return web.page(request, "motion.html", status, page="motion", laws=laws, crawl=crawl,
                     default_law=default_law, family_laws=families, frictions=frictions,
                     default_friction=default_friction, jobs=jobs, bodies=BODIES, **ctx)
 

@@ -21,6 +21,16 @@ STRIP = {"h": "h (m)", "E": "E (Pa)", "p": "p (Pa)", "l": "l (m)", "k_t": "k_t (
          "alpha_T": "alpha_T (1/K)"}
 TWO_NODE = {"k": "k (N/m)", "l0": "l0 (m)", "alpha_T": "alpha_T (1/K)", "k_t": "k_t (N/m)",
             "N": "N (N)"}
+#: the crawl form's law select (besides the Law results): value -> what the page calls it
+CRAWL_LAWS = (("coefficients", "three coefficients mu_f, mu_b, mu_t with a rule (below)"),
+              ("wedge", "a wedge texture, fitted on the fly (below)"),
+              ("file", "a texture or surface file, fitted on the fly (upload below)"),
+              ("upload", "a gauge file (upload below)"))
+#: the rules that make a law of three coefficients: value -> what the page calls it
+CRAWL_RULES = (("componentwise", ("componentwise (Hu et al.: each slip component scaled by "
+                                  "its own coefficient)")),
+               ("associated", "associated (maximum dissipation on the truncated ellipse)"),
+               ("colinear", "colinear (force opposite to the slip)"))
 #: file fields of the forms -> (key in a form's ``kept`` uploads, the hidden field that
 #: sends a kept upload back)
 FILE_FIELDS = {"file": ("file", "upload"), "friction_map": ("friction_map", "map_upload"),
@@ -28,6 +38,8 @@ FILE_FIELDS = {"file": ("file", "upload"), "friction_map": ("friction_map", "map
                "assembly_file": ("assembly", "assembly_upload"),
                "texture_file": ("texture", "texture_upload"),
                "body_file": ("body", "body_upload"),
+               "c_gauge": ("crawl_gauge", "c_gauge_upload"),
+               "c_texture_file": ("crawl_texture", "c_texture_upload"),
                "study": ("study", "study_upload"),
                "companions": ("companions", "companion_uploads")}
 #: file fields that take several files
@@ -127,6 +139,10 @@ def words_of(kind: str, params: dict) -> dict:
         return out
     if kind == "study":
         return {"workers": ("workers", "local worker processes")}
+    if kind == "crawl":
+        return {"unit": ("c_unit", "length unit"), "mu": ("c_mu", "local friction mu"),
+                "points": ("c_points", "contact points"), "periods": ("c_periods", "periods"),
+                "steps_per_period": ("c_steps", "steps per period")}
     return {}
 
 

@@ -29,9 +29,9 @@ def needs_units(message: str) -> bool:
 
 
 def tasks() -> dict:
-    from . import tasks_contact, tasks_motion, tasks_study, tasks_surface
+    from . import tasks_contact, tasks_crawl, tasks_motion, tasks_study, tasks_surface
     return {**tasks_surface.TASKS, **tasks_contact.TASKS, **tasks_motion.TASKS,
-            **tasks_study.TASKS}
+            **tasks_crawl.TASKS, **tasks_study.TASKS}
 
 
 def run_job(kind: str, job_dir: str, params: dict, uploads: str) -> dict:
