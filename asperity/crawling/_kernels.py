@@ -72,14 +72,31 @@ def _solve(u, uA, uP, order, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, to
            R, J, ev, dx, un):
     """The step's velocity (u) from the extrapolation of the last velocities (uP: the two
     before uA, uP[0:3] then uP[3:6]; ``order`` 0: uA alone, 1: linear, 2: quadratic, whose
-    error O(dt^3) leaves one Newton step to the tolerance on a smooth motion), retried from
-    uA, from the free velocity and from rest; returns (iterations, converged, residual)."""
+    error O(dt^3) leaves one Newton step to the tolerance on a smooth motion).  If Newton
+    fails from there, the step may hold a point at rest that Newton did not come near
+    (nearly straight bodies pivot at mid-body; the colinear rule near a pivot): each of the
+    PIVOTS points of least slip at uA is tried as the pivot (:func:`_pivot`), then Newton
+    from uA, the free velocity and rest, then every other point as the pivot.  Returns
+    (iterations, converged, residual)."""
     b = np.empty(3)
     for j in range(3):
         b[j] = md[j] * uf[j]
+    n = ox.shape[0]
+    slip = np.empty(n)
+    for i in range(n):
+        slip[i] = math.hypot(uA[0] - uA[2] * oy[i] + ext[i, 0],
+                             uA[1] + uA[2] * ox[i] + ext[i, 1])
+    order_i = np.argsort(slip)
     its = 0
     rn = 0.0
-    for attempt in range(4):
+    for attempt in range(5):
+        if attempt == 1:
+            k, ok = _pivot(u, uA, uf, md, ox, oy, ext, lam, kind, par, tab, tola, R, J, ev,
+                           order_i[:PIVOTS])
+            its += k
+            if ok:
+                return its, True, 0.0
+            continue
         for j in range(3):
             if attempt == 0:
                 if order == 2:
@@ -88,33 +105,54 @@ def _solve(u, uA, uP, order, uf, md, ox, oy, ext, lam, kind, par, tab, assoc, to
                     u[j] = 2.0 * uA[j] - uP[j]
                 else:
                     u[j] = uA[j]
-            elif attempt == 1:
-                u[j] = uA[j]
             elif attempt == 2:
+                u[j] = uA[j]
+            elif attempt == 3:
                 u[j] = uf[j]
             else:
                 u[j] = 0.0
+        # Newton converges in a few iterations or is stuck near a kink: a short leash
+        # before the pivots and the next start (the last start gets all of maxit)
         k, conv, rn = _slide(u, uf, b, md, ox, oy, ext, lam, kind, par, tab, assoc, tola,
-                             maxit, R, J, ev, dx, un)
+                             maxit if attempt == 4 else min(maxit, NEWTON_LEASH), R, J, ev,
+                             dx, un)
         its += k
         if conv:
             return its, True, rn
-    # the step holds a point at rest that Newton did not come near (seen on nearly straight
-    # bodies: a pivot at mid-body): try each point as the pivot, least slip at uA first
-    n = ox.shape[0]
-    slip = np.empty(n)
-    for i in range(n):
-        slip[i] = math.hypot(uA[0] - uA[2] * oy[i] + ext[i, 0], uA[1] + uA[2] * ox[i] + ext[i, 1])
+    for j in range(3):
+        un[j] = u[j]                  # the last Newton iterate, if no pivot is the answer
+    k, ok = _pivot(u, uA, uf, md, ox, oy, ext, lam, kind, par, tab, tola, R, J, ev,
+                   order_i[PIVOTS:])
+    its += k
+    if ok:
+        return its, True, 0.0
+    for j in range(3):
+        u[j] = un[j]
+    return its, False, rn
+
+
+#: points of least slip tried as the pivot before Newton's restarts
+PIVOTS = 8
+#: Newton iterations of a start before the next is tried
+NEWTON_LEASH = 30
+
+
+@njit(cache=True)
+def _pivot(u, uA, uf, md, ox, oy, ext, lam, kind, par, tab, tola, R, J, ev, points):
+    """Try each of ``points`` as the step's pivot from uA: sticking exactly (its reaction in
+    C) or sliding slowly (polar coordinates of its slip).  Returns (tries, found), u the
+    solution when found."""
     cw = np.empty(3)
-    for i in np.argsort(slip):
+    tries = 0
+    for i in points:
+        tries += 1
         for j in range(3):
             u[j] = uA[j]
-        its += 1
         if _kink(u, uf, md, ox, oy, ext, lam, kind, par, tab, i, tola, R, J, ev, cw):
-            return its, True, 0.0
+            return tries, True
         if _polar(u, uf, md, ox, oy, ext, lam, kind, par, tab, i, tola, R, J, ev, cw):
-            return its, True, 0.0
-    return its, False, rn
+            return tries, True
+    return tries, False
 
 
 @njit(cache=True)
