@@ -223,3 +223,21 @@ def test_python_api_summary_is_the_commands_json():
         asperity.crawl(mu_f=F, mu_b=B)
     with pytest.raises(asperity.InputError, match="law and mu_f"):
         asperity.crawl(coefficient_law(F, B, F), mu_f=F)
+
+
+def test_gait_tables_are_kept_only_for_gaits_their_parameters_define():
+    """A second crawl on an equal gait reuses its tables and gives the same numbers bit for
+    bit; a different gait (or weights) is tabulated anew."""
+    from asperity.crawling import solver
+    law = coefficient_law(F, B, 2 * F)
+    a = qs(law, gait=CurvatureWave(amplitude=6.0))
+    n = len(solver._TABLES)
+    b = qs(law, gait=CurvatureWave(amplitude=6.0))
+    assert len(solver._TABLES) == n and b.q.tobytes() == a.q.tobytes()
+    c = qs(law, gait=CurvatureWave(amplitude=6.5))
+    assert U(c) != U(a)
+    w = np.linspace(1.0, 2.0, 60)
+    d = qs(law, gait=CurvatureWave(amplitude=6.0), weights=w)
+    assert U(d) != pytest.approx(U(a), rel=1e-6)
+    with pytest.raises(Exception, match="crosses itself"):
+        qs(law, gait=CurvatureWave(amplitude=20.0))

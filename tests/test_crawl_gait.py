@@ -528,3 +528,19 @@ def test_params_are_json_safe():
         back = json.loads(json.dumps(g.params()))
         assert back["kind"] == g.kind and back["period"] == g.period
         assert repr(g).startswith(type(g).__name__ + "(")
+
+
+def test_a_body_turning_through_less_than_half_a_turn_is_cleared_without_positions():
+    """The fast path of the crossing check (the tangent angle's span below pi) clears the
+    wave exactly where its closed-form span 2 A / (2 pi k) is below pi - margin, and agrees
+    with the full pairwise test there."""
+    import numpy as np
+
+    from asperity.crawling.gait import CurvatureWave
+    from asperity.crawling.gait_crossing import _turns_less_than_half, first_contact
+    t = np.arange(64) / 64
+    for A, clear in ((2.0, True), (7.0, True), (9.5, True), (10.5, False), (12.0, False)):
+        g = CurvatureWave(amplitude=A)
+        assert _turns_less_than_half(g, t, 512) is clear, A
+        verts, _ = g._polyline(t, 512)
+        assert first_contact(verts, 1e-9) is None          # none of these crosses

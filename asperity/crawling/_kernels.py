@@ -198,7 +198,7 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
     lam = np.empty(n)
     R = np.empty(3)
     J = np.empty((3, 3))
-    ev = np.empty(16)
+    ev = np.empty(18)
     dx = np.empty(3)
     un = np.empty(3)
     uf = np.empty(3)
@@ -278,7 +278,13 @@ def integrate(q, u, up, r, v, tau, inertia, spin, w, mass, g, dt, qs_eps, body, 
             status = STATUS_NOT_CONVERGED
             info[INFO_FAIL_STEP] = step
             break
-        _energy(ue, uf, md, ox, oy, ext, lam, kind, par, tab, R, J, ev, info)
+        if rn > 0.0:
+            # Newton's own convergence: its last sums were at ue
+            info[INFO_WORK] += ev[16]
+            info[INFO_DISSIPATED] += ev[17]
+        else:
+            # a pivot's solve (its reaction works on the gait) or an exact residual
+            _energy(ue, uf, md, ox, oy, ext, lam, kind, par, tab, R, J, ev, info)
         for j in range(3):
             up[3 + j] = up[j]
             up[j] = u[j]

@@ -7,7 +7,9 @@ a chain of links the links themselves (exact).  Two segments that are not neighb
 come within ``tolerance`` (times L) of each other count as a crossing, as do two
 neighbours folded back onto each other.
 
-Pairs are pruned in chunks of :data:`CHUNK` segments (more for long polylines: at most
+A body whose tangent angle spans less than a half-turn at every instant cannot touch
+itself (:func:`_turns_less_than_half`: the curvature gaits' closed-form angle, no
+positions needed); otherwise pairs are pruned in chunks of :data:`CHUNK` segments (more for long polylines: at most
 :data:`MAX_CHUNKS` chunks).  A chunk lies within the arc length of its longer half from
 its middle vertex, and two chunks farther apart than the sum of those radii cannot touch;
 a run of one or two neighbouring chunks whose segment directions span less than pi (less
@@ -46,6 +48,8 @@ def check_self_crossing(gait, n_points: int = 201, samples: int = 256,
     tol = check_range("tolerance", tolerance, 0.0, 1e-3) * gait.length
     segments = -(-min(max(8 * n, 512), MAX_SEGMENTS) // CHUNK) * CHUNK
     t = np.arange(nt) * (gait.period / nt)
+    if _turns_less_than_half(gait, t, segments):
+        return
     k = -(-segments // max(CHUNK, -(-segments // MAX_CHUNKS)))
     step = max(1, min(2_000_000 // segments, 4_000_000 // (k * k)))   # memory
     for a in range(0, nt, step):
@@ -58,6 +62,21 @@ def check_self_crossing(gait, n_points: int = 201, samples: int = 256,
                 f"the gait crosses itself at t = {t[a + i]:.4g} s (s = {sp:.3g} m and "
                 f"{sq:.3g} m of the body): lower the amplitude (or the joint angles), or "
                 f"the number of waves")
+
+
+def _turns_less_than_half(gait, t, segments: int) -> bool:
+    """Whether the body never turns through pi (less :data:`_MARGIN`) at the instants t: its
+    tangent angle then stays within a cone narrower than a half-turn, the body's projection
+    on the cone's bisector grows by at least sin(margin / 2) per unit length, and no two of
+    its points can meet (curvature gaits, whose tangent angle is in closed form, without
+    their positions).  The span on the grid of ``segments`` intervals is padded by the
+    largest step of the angle between grid points."""
+    if not hasattr(gait, "tangent_angle"):
+        return False
+    phi, _ = gait.tangent_angle(t, np.linspace(0.0, gait.length, segments + 1))
+    pad = float(np.abs(np.diff(phi, axis=1)).max(initial=0.0))
+    span = float((phi.max(axis=1) - phi.min(axis=1)).max())
+    return span + pad < math.pi - _MARGIN
 
 
 def first_contact(verts: np.ndarray, tol: float):

@@ -208,7 +208,6 @@ def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
     dynamic; a dynamic run averages its speed over the second half, the first is its
     transient).  Returns a :class:`CrawlResult`."""
     from .gait import CurvatureWave, Gait
-    from .gait_crossing import check_self_crossing
     law = _check_law(law, mu_f, mu_b, mu_t, rule)
     check_instance("settings", settings, CrawlSettings)
     wave = {"amplitude": amplitude, "waves": waves, "period": period, "length": length}
@@ -236,15 +235,39 @@ def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
                "use fewer points, periods or steps per period")
     check_memory(P * n * 5 * 8.0 + P * periods * 9 * 8.0,
                  f"a crawl of {P} steps a period x {n} points", "use fewer steps per period")
+    dt = float(gait.period) / P
+    kin_mid, kin_end = _gait_tables(gait, n, P, weights)
+    return _run(law, gait, kin_mid, kin_end, n, periods, P, dt, qs, g, mass, side, a,
+                settings)
+
+
+#: gaits whose tables are kept (a study ranks many laws on one gait): key -> tables
+_TABLES: dict = {}
+TABLES_KEPT = 8
+
+
+def _gait_tables(gait, n: int, P: int, weights):
+    """The gait checked for self-crossing and tabulated at the steps' mid times and ends;
+    kept for the last TABLES_KEPT gaits fully given by their parameters (uniform weights;
+    not a joint table, whose parameters do not hold its angles)."""
+    import json
+    key = None
+    if weights is None and gait.kind in ("curvature_wave", "fourier", "serpenoid"):
+        key = (gait.kind, json.dumps(gait.params(), sort_keys=True), n, P)
+        if key in _TABLES:
+            return _TABLES[key]
+    from .gait_crossing import check_self_crossing
     # the body as a polyline of 512 segments (the crossing is the continuous body's; the
     # polyline departs from it by kappa h^2 / 8, 3e-6 L at kappa L = 7), 256 instants
     check_self_crossing(gait, n_points=min(n, 64))
-    T = float(gait.period)
-    dt = T / P
-    kin_mid = gait.kinematics((np.arange(P) + 0.5) * dt, n, weights)
-    kin_end = gait.kinematics(np.arange(P + 1) * dt, n, weights)
-    return _run(law, gait, kin_mid, kin_end, n, periods, P, dt, qs, g, mass, side, a,
-                settings)
+    dt = float(gait.period) / P
+    tables = (gait.kinematics((np.arange(P) + 0.5) * dt, n, weights),
+              gait.kinematics(np.arange(P + 1) * dt, n, weights))
+    if key is not None:
+        if len(_TABLES) >= TABLES_KEPT:
+            _TABLES.pop(next(iter(_TABLES)))
+        _TABLES[key] = tables
+    return tables
 
 
 def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):

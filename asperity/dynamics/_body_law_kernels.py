@@ -144,7 +144,9 @@ def _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, want_hull, R, J, ev, 
     skip >= 0: leave out point ``skip`` and every point at the same spot (its group).
     ext (n, 4) or (0, 4): per point, a slip offset (ext[i, 0], ext[i, 1]) added to W_i^T u
     (a point that moves in the body: a crawling body's gait) and the angle of its law
-    (:func:`_eval_at`); none for a rigid body."""
+    (:func:`_eval_at`); none for a rigid body.  With rows, ev (18,) also gets the
+    sum lam_i c_i . offset_i (ev[16]: the gait's work against friction) and
+    sum lam_i c_i . gamma_i (ev[17]: the dissipation) of the points summed."""
     for j in range(3):
         R[j] = md[j] * (u[j] - uf[j])
         for k in range(3):
@@ -156,6 +158,8 @@ def _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, want_hull, R, J, ev, 
     imin = -1
     rsum = 0.0
     moving = ext.shape[0] > 0
+    work = 0.0
+    dissipated = 0.0
     for i in range(ox.shape[0]):
         oxi = ox[i]
         oyi = oy[i]
@@ -180,6 +184,10 @@ def _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, want_hull, R, J, ev, 
         c = ev[off + 4]
         d = ev[off + 5]
         hsum += li * ev[12]
+        if moving:
+            # the gait's work against friction and the dissipation (ev[16], ev[17])
+            work += li * (cx * ext[i, 0] + cy * ext[i, 1])
+            dissipated += li * (cx * gx + cy * gy)
         R[0] += li * cx
         R[1] += li * cy
         R[2] += li * (oxi * cy - oyi * cx)
@@ -196,6 +204,9 @@ def _assemble(u, uf, md, ox, oy, ext, lam, kind, par, tab, want_hull, R, J, ev, 
     ev[13] = imin                      # the point of least slip (a kink of F near it)
     ev[14] = rmin
     ev[15] = rsum / ox.shape[0]
+    if moving:
+        ev[16] = work
+        ev[17] = dissipated
     return hsum
 
 
