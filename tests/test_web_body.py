@@ -26,7 +26,7 @@ httpx = pytest.importorskip("httpx")
 with warnings.catch_warnings():
     warnings.filterwarnings("ignore", message=".*httpx2.*")
     from web_forms import Page
-from web_server import Server
+from web_server import Server, job_done
 
 from asperity import ellipse_law, star_law
 from asperity.bodies.body_file import read_body
@@ -66,16 +66,7 @@ def post(server, data, files=None):
 
 
 def done(server, r, timeout=180.0) -> str:
-    assert r.status_code == 303, (r.status_code, alerts(r))
-    jid = r.headers["location"].rsplit("/", 1)[-1]
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < timeout:
-        st = httpx.get(f"{server.base}/api/jobs/{jid}").json()
-        if st["status"] not in ("queued", "running"):
-            assert st["status"] == "done", st
-            return jid
-        time.sleep(0.1)
-    raise AssertionError(f"job {jid} did not finish")
+    return job_done(server, r, alerts, timeout)
 
 
 def alerts(resp) -> list[str]:

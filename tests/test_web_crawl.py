@@ -10,7 +10,6 @@ from __future__ import annotations
 import html
 import json
 import re
-import time
 import warnings
 
 import numpy as np
@@ -21,7 +20,7 @@ httpx = pytest.importorskip("httpx")
 with warnings.catch_warnings():
     warnings.filterwarnings("ignore", message=".*httpx2.*")
     from web_forms import Page
-from web_server import Server
+from web_server import Server, job_done
 
 from asperity.crawling.gait import CurvatureWave
 from asperity.crawling.output import csv_text, summary, world_shapes
@@ -49,16 +48,7 @@ def post(server, data, files=None):
 
 
 def done(server, r, timeout=180.0) -> str:
-    assert r.status_code == 303, (r.status_code, r.text[-2000:])
-    jid = r.headers["location"].rsplit("/", 1)[-1]
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < timeout:
-        st = httpx.get(f"{server.base}/api/jobs/{jid}").json()
-        if st["status"] not in ("queued", "running"):
-            assert st["status"] == "done", st
-            return jid
-        time.sleep(0.1)
-    raise AssertionError(f"job {jid} did not finish")
+    return job_done(server, r, timeout=timeout)
 
 
 def cell(page: str, key: str) -> str:

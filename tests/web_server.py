@@ -75,3 +75,21 @@ def wait_for(pred, timeout: float = 60.0, step: float = 0.2):
             return v
         time.sleep(step)
     raise AssertionError("timed out")
+
+
+def job_done(server, r, why=None, timeout: float = 180.0) -> str:
+    """The id of the job a form's POST (``r``: 303 to the job's page) started, once it has
+    finished as "done" (``why(r)``: what to show when the POST was refused instead)."""
+    import time
+
+    import httpx
+    assert r.status_code == 303, (r.status_code, why(r) if why else r.text[-2000:])
+    jid = r.headers["location"].rsplit("/", 1)[-1]
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        st = httpx.get(f"{server.base}/api/jobs/{jid}").json()
+        if st["status"] not in ("queued", "running"):
+            assert st["status"] == "done", st
+            return jid
+        time.sleep(0.1)
+    raise AssertionError(f"job {jid} did not finish")
