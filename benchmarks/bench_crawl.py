@@ -32,6 +32,9 @@ def timed(fn, repeat=3):
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--pyelastica", action="store_true",
+                    help="run PyElastica's example in this run (installs pyelastica when "
+                         "missing; ~20 s) instead of reading its recorded results")
     args = ap.parse_args()
     import os
     from asperity.crawling.gait import CurvatureWave
@@ -49,6 +52,14 @@ def main() -> None:
     t_qs, qs = timed(lambda: cold(quasi_static=True))
     t_qs_warm, _ = timed(lambda: crawl(law, quasi_static=True))
     pe = json.loads((HERE / "crawl_pyelastica_results.json").read_text())
+    if args.pyelastica:
+        import sys
+        sys.path.insert(0, str(HERE))
+        from crawl_pyelastica import run_pyelastica
+        live = run_pyelastica(11.0)
+        pe["pyelastica"]["speed_body_lengths_per_period"] = live["speed_body_lengths_per_period"]
+        pe["pyelastica"]["wall_time_s"] = live["wall_time_s"]
+        pe["pyelastica"]["measured"] = "in this run"
     prm = pe["parameters"]
     mu = prm["mu_forward"]
     pe_law = coefficient_law(mu, 1.5 * mu, 2.0 * mu)

@@ -62,7 +62,7 @@ COSMIC_RAY = "cosmic-ray==8.7.0"
 VENV = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "asperity-mutation" / "venv"
 SCOPE = ("contact/*.py", "bodies/*.py", "dynamics/body*.py", "dynamics/_body*_kernels.py",
          "laws/family*.py", "friction/elastic*.py", "surface/contact_facets.py",
-         "surface/mesh_grid.py")
+         "surface/mesh_grid.py", "crawling/*.py")
 #: test files per module glob, the first match wins: globs in tests/ (missing ones ignored),
 #: "file::test_name" for one test function (all its cases), and an optional third item, a
 #: pytest -k expression over the whole selection (it sees file names too: "not (convergence
@@ -106,6 +106,10 @@ TESTS = (
                                    "test_contact_mesh.py", "test_metamorphic_contact.py")),
     ("surface/mesh_grid.py", ("test_mesh_grid_invariants.py", "test_contact_mesh.py",
                               "test_metamorphic_contact.py")),
+    ("crawling/gait*.py", ("test_crawl_gait.py", "test_crawl.py")),
+    ("crawling/design*.py", ("test_crawl_design.py",)),
+    ("crawling/output.py", ("test_crawl.py", "test_crawl_cli.py")),
+    ("crawling/*.py", ("test_crawl.py",)),
 )
 #: seconds a kernel module's mutant may spend compiling its kernels and their dependents again
 COMPILE_ALLOWANCE = 150.0
