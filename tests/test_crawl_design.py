@@ -106,7 +106,7 @@ def test_command_json_plot_and_the_crawl_at_the_optimum(capsys, tmp_path):
     assert o["params"] == ["waves"] and o["objective"] == "speed" and o["rule"] == "associated"
     assert obj["gait"]["waves"] == o["waves"] and obj["gait"]["amplitude"] == 7.0
     assert obj["points"] == 100 and o["search_points"] == 60
-    # the crawl at the optimum (100 points, 400 steps) and the search's (60, 100) agree
+    # the crawl at the optimum (100 points, 200 steps) and the search's (60, 100) agree
     assert obj["speed_body_lengths_per_period"] == pytest.approx(
         o["search_speed_body_lengths_per_period"], rel=1e-3)
     assert o["evaluations"] > 5 and o["seconds"] > 0

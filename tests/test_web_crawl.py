@@ -30,7 +30,7 @@ BASE = {"c_law": "coefficients", "c_mu_f": "0.1", "c_mu_b": "0.15", "c_mu_t": "0
         "c_rule": "componentwise", "c_texture_on": "body", "c_texture_angle": "0",
         "c_amplitude": "7", "c_waves": "1", "c_length": "1", "c_period": "1",
         "c_mode": "dynamic", "c_points": "40", "c_periods": "4", "c_g": "9.81",
-        "c_steps": "400"}
+        "c_steps": "200"}
 
 
 @pytest.fixture(scope="module")

@@ -70,7 +70,7 @@ def add_parser(sub) -> None:
                            "and, with the period and length, the Froude number")
     r.add_argument("--dt", type=float, default=None, metavar="S",
                    help="time step (s); rounded to a whole number of steps per period "
-                        "(default: 400 a period)")
+                        "(default: 200 a period: the dynamic speed within 3e-4 of its limit)")
     r.add_argument("--tol", type=float, default=1e-12,
                    help="relative tolerance of each step's Newton solve, in [1e-15, 1e-3]")
     r.add_argument("--max-iterations", default="200", metavar="N",

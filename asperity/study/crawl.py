@@ -7,7 +7,7 @@ sweep over wedge angles) or gaits by how fast a body crawls on them.
     amplitude = 7.0            # the curvature wave kappa L = A cos 2 pi (k s / L + t / T)
     waves = 1.0
     points = 60                # contact points, 3 to 1e5 (default 100)
-    steps_per_period = 100     # 8 to 1e5 (default 400)
+    steps_per_period = 100     # 8 to 1e5 (default 200)
     periods = 1                # default 1 quasi-static, 8 dynamic
     quasi_static = true        # default false (Newton-Euler, as asperity crawl)
     texture_on = "body"        # body | ground
@@ -183,7 +183,7 @@ def outputs(spec: dict, values: dict, texture, file=None) -> dict:
     try:
         res = crawl(law, gait=gait, points=s.get("points", 100), periods=s.get("periods"),
                     quasi_static=s.get("quasi_static", False), g=s.get("gravity", 9.81),
-                    steps_per_period=s.get("steps_per_period", 400),
+                    steps_per_period=s.get("steps_per_period", 200),
                     texture_on=s.get("texture_on", "body"),
                     texture_angle_deg=s.get("texture_angle_deg", 0.0))
     except InputError as exc:

@@ -148,7 +148,7 @@ async def crawl_params(web, form: Form, kept: dict) -> tuple[dict, str]:
               "periods": form.whole("c_periods", 1 if qs else 8, low=1, high=MAX_PERIODS,
                                     label=LABELS["c_periods"]),
               "g": 9.81 if qs else _number(form, "c_g", 9.81, 1e-6, 1e4),
-              "steps_per_period": form.whole("c_steps", 400, low=8, high=100_000,
+              "steps_per_period": form.whole("c_steps", 200, low=8, high=100_000,
                                              label=LABELS["c_steps"])}
     work = params["steps_per_period"] * params["periods"] * max(1.0, params["points"] / 16)
     if work > MAX_WORK:
