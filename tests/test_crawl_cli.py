@@ -150,3 +150,32 @@ def test_a_step_without_solution_stops_the_run_with_exit_3(tmp_path):
     assert obj["speed_body_lengths_per_period"] is None and obj["speed_per_period"] == []
     assert "did not converge at step" in p.stderr
     assert png.exists()
+
+
+def test_serpenoid_file_crawls_as_its_sampled_joint_table():
+    """surfaces/gaits/robot-serpenoid.toml (a = 40 deg, b = -360/7 deg) and
+    robot-joints.toml (the same serpenoid sampled at 16 instants, a periodic spline between
+    them) crawl alike: to the spline's error, 1e-4."""
+    out = {}
+    for name in ("robot-serpenoid.toml", "robot-joints.toml"):
+        p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait",
+                ROOT / "surfaces" / "gaits" / name, "--quasi-static", "--points", 64, "--json")
+        assert p.returncode == 0, p.stderr
+        out[name] = json.loads(p.stdout)
+    a, b = (out[n]["speed_body_lengths_per_period"] for n in sorted(out))
+    assert a > 0.05 and a == pytest.approx(b, rel=1e-4)
+    assert out["robot-serpenoid.toml"]["gait"]["kind"] == "serpenoid"
+
+
+@pytest.mark.parametrize("body,words", [
+    ('links = 8\namplitude = 40.0\n', "gait.phase"),
+    ('links = 8\namplitude = 400.0\nphase = -50.0\nunit = "deg"\n', "gait.amplitude"),
+    ('links = 1\namplitude = 0.5\nphase = -0.9\n', "gait.links"),
+    ('links = 8\namplitude = 0.5\nphase = -0.9\nunit = "grad"\n', "gait.unit"),
+    ('links = 8\namplitude = 0.5\nphase = -0.9\nangles = [[0.0]]\n', "angles"),
+])
+def test_serpenoid_file_refusals(tmp_path, body, words):
+    f = tmp_path / "s.toml"
+    f.write_text('[gait]\nkind = "serpenoid"\nlength = 1.0\nperiod = 1.0\n' + body)
+    p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait", f, "--quasi-static")
+    assert p.returncode == 1 and words in p.stderr and len(p.stderr.splitlines()) == 1, p.stderr

@@ -27,6 +27,19 @@ or, for a chain of ``links`` rigid links (joints counted from the tail, see
     unit = "deg"                            # rad (default) | deg
     angles = [[...7 angles...], ...]        # rows: equally spaced times over one period
 
+or a serpenoid chain (phi_j = a sin(2 pi t / T - j b) + c, joints counted from the tail:
+b < 0 runs the wave from the head to the tail, see :class:`.gait_chain.SerpenoidChain`)::
+
+    [gait]
+    kind = "serpenoid"
+    length = 0.8
+    period = 2.0
+    links = 8
+    unit = "deg"                            # rad (default) | deg: a, b and c
+    amplitude = 40.0                        # a in [0, 180] deg
+    phase = -51.43                          # b in [-360, 360] deg
+    offset = 0.0                            # c in [-180, 180] deg (optional: a steady turn)
+
 The table's rows are the times k T / rows (k = 0..rows-1; at least 4 rows), its columns
 the links - 1 joint angles; a periodic cubic spline interpolates them.  Every missing,
 unknown or bad field is one InputError line naming the file and the field
@@ -50,10 +63,12 @@ from ..errors import (
 from . import gait as gm
 from . import gait_chain as gc
 
-KINDS = ("fourier", "joints")
+KINDS = ("fourier", "joints", "serpenoid")
 _TOP = {"name", "description", "gait"}
 _KEYS = {"fourier": {"kind", "length", "period", "terms"},
-         "joints": {"kind", "length", "period", "links", "unit", "angles"}}
+         "joints": {"kind", "length", "period", "links", "unit", "angles"},
+         "serpenoid": {"kind", "length", "period", "links", "unit", "amplitude", "phase",
+                       "offset"}}
 _TERM_KEYS = {"m", "n", "cos", "sin"}
 
 
@@ -88,7 +103,25 @@ def gait_from_dict(data: dict, source: str = "", default_name: str = "gait") -> 
     check_text("description", data.get("description", ""))
     if kind == "fourier":
         return gm.FourierGait(_terms(g), period, length, name)
+    if kind == "serpenoid":
+        return _serpenoid(g, period, length)
     return _joints(g, period, length, name, source)
+
+
+def _serpenoid(g: dict, period: float, length: float) -> gc.SerpenoidChain:
+    for k in ("links", "amplitude", "phase"):
+        if k not in g:
+            raise InputError(f"missing key gait.{k}")
+    deg = check_choice("gait.unit", g.get("unit", "rad"), ("rad", "deg")) == "deg"
+    scale, unit = (math.pi / 180, "deg") if deg else (1.0, "rad")
+    values = {}
+    for key, (lo, hi) in (("amplitude", gc.JOINT_AMPLITUDE_RANGE), ("phase", gc.PHASE_RANGE),
+                          ("offset", gc.OFFSET_RANGE)):
+        v = check_range(f"gait.{key}", g.get(key, 0.0), lo / scale, hi / scale, unit=unit)
+        values[key] = min(max(v * scale, lo), hi)      # the range's ends exactly
+    return gc.SerpenoidChain(check_int("gait.links", g["links"], *gc.LINKS_RANGE),
+                             values["amplitude"], values["phase"], values["offset"],
+                             period, length)
 
 
 def _terms(g: dict) -> list[tuple]:
