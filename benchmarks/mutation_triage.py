@@ -9,6 +9,25 @@ iteration whose answers stay the same: only a test pinning an iteration count co
 """
 
 EQUIVALENT: dict[str, str] = {
+    "crawling/gait_crossing.py:ReplaceComparisonOperator_LtE_Lt:94d0f4ca5e":
+        "chunk pruning <= -> <: the bound (half-lengths + tol) is conservative; the chunks "
+        "differ only when their centres' distance equals it exactly, a float coincidence",
+    "crawling/gait_crossing.py:NumberReplacer:31f6909f74":
+        "q[c, -1, j] for q[c, 0, j]: q has shape (c, 1, size), so index -1 of that axis is 0",
+    "crawling/gait_crossing.py:ReplaceBinaryOperator_FloorDiv_Sub:63f9344a3d":
+        "the instants per batch (memory): another batching, the same instants tested in order",
+    "crawling/gait_crossing.py:NumberReplacer:2edc02302c":
+        "CHUNK = 15 segments a chunk for 16: the pruning's granularity, every pair still tested",
+    "crawling/gait_crossing.py:ReplaceBinaryOperator_Mul_Mod:57548ab238":
+        "segments from 8 % n for 8 * n: at most max(., 512) -- the crawl passes n <= 64, so "
+        "512 segments either way; only the polyline's resolution changes for larger n",
+    "crawling/gait_crossing.py:ReplaceComparisonOperator_Lt_LtE:6953df5fd8":
+        "(p, q) <= found for <: equal only for the same pair, recorded again unchanged",
+    "crawling/solver.py:ReplaceComparisonOperator_Eq_GtE:6d4fc4d4b8":
+        "rule >= 'componentwise' for ==: of the three rules (checked first) only "
+        "'componentwise' is >= it ('associated' < 'colinear' < 'componentwise')",
+    "crawling/_kernels.py:NumberReplacer:8046f4c4f3":
+        "ox.shape[-1] for ox.shape[0]: ox is one-dimensional",
     "bodies/body_file.py:ReplaceComparisonOperator_LtE_Eq:a7e718dc41":
         "inertia <= 0 -> == 0: inertia = mass * inertia_per_mass, mass > 0 (checked range) "
         "and inertia_per_mass >= 0 (checked by Footprint), so it is never negative",
@@ -109,6 +128,10 @@ EQUIVALENT: dict[str, str] = {
 }
 
 LEFT: dict[str, str] = {
+    "crawling/_kernels.py:NumberReplacer:13f4210f07":
+        "the fifth Newton start (from rest) dropped: the extrapolation, the pivots, uA and "
+        "the free velocity come first, and no case is known where only rest converges; the "
+        "step would then end not-converged, reported",
     "contact/solver.py:NumberReplacer:68b9381c89":
         "n == -1 for n == 0 in the gap step: with no free pixel the step keeps the last "
         "plane (gbar of an earlier iteration) instead of the plastic pixels' max(u - h).  "

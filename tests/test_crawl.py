@@ -241,3 +241,60 @@ def test_gait_tables_are_kept_only_for_gaits_their_parameters_define():
     assert U(d) != pytest.approx(U(a), rel=1e-6)
     with pytest.raises(Exception, match="crosses itself"):
         qs(law, gait=CurvatureWave(amplitude=20.0))
+
+
+@pytest.mark.parametrize("side", ["body", "ground"])
+@pytest.mark.parametrize("angle", [90.0, 30.0, -135.0])
+def test_texture_angle_is_the_law_turned_by_it(side, angle):
+    """A texture at ``angle`` is the same law with its axes turned by that angle (a
+    truncated ellipse of theta = angle) at angle 0: on the body and on the ground."""
+    from asperity.laws.planar import truncated_ellipse_law
+    a = qs(truncated_ellipse_law(0.1, 0.3, 0.25, 0.4), texture_on=side,
+           texture_angle_deg=angle, points=40, steps_per_period=100)
+    b = qs(truncated_ellipse_law(0.1, 0.3, 0.25, 0.4, theta=math.radians(angle)),
+           texture_on=side, points=40, steps_per_period=100)
+    assert U(a) == pytest.approx(U(b), rel=1e-6, abs=1e-9)
+    np.testing.assert_allclose(a.q, b.q, rtol=0, atol=1e-9)
+
+
+def test_world_shapes_text_and_final_state():
+    """The plot's snapshots: the body's points in the world, their mean the recorded centre
+    and their mean tangent the recorded heading; the text names the gait's parameters; the
+    JSON's final state is the last recorded one."""
+    from asperity.crawling.output import summary, text, world_shapes
+    res = crawl(coefficient_law(F, B, 2 * F), points=50, periods=2, steps_per_period=100)
+    idx = np.array([0, 37, 100, len(res.t) - 1])
+    sh = world_shapes(res, CurvatureWave(), idx)
+    np.testing.assert_allclose(sh.mean(axis=1), res.q[idx, :2], atol=1e-12)
+    # turned back by the recorded heading about the centre: the gait's body-frame shape
+    rel = (sh[..., 0] - res.q[idx, 0][:, None]) + 1j * (sh[..., 1] - res.q[idx, 1][:, None])
+    body = rel * np.exp(-1j * res.q[idx, 2])[:, None]
+    kin = CurvatureWave().kinematics(res.t[idx], 50)
+    np.testing.assert_allclose(body.real, kin.r[..., 0], atol=1e-12)
+    np.testing.assert_allclose(body.imag, kin.r[..., 1], atol=1e-12)
+    obj = summary(res)
+    fs = obj["final_state"]
+    assert [fs["x_m"], fs["y_m"], fs["theta_rad"]] == res.q[-1].tolist()
+    words = text(obj)
+    assert "amplitude 7" in words and "waves 1" in words and "kind" not in words
+
+
+def test_plot_draws_the_snapshots_and_each_periods_speed(tmp_path, monkeypatch):
+    """The figure's data: the snapshot lines are world_shapes at the last period's times, the
+    step line the speed of each period at the period's edges."""
+    import asperity.io as aio
+    from asperity.crawling import output
+    got = {}
+    monkeypatch.setattr(aio, "save_figure_atomic",
+                        lambda fig, path, **kw: got.setdefault("fig", fig))
+    res = crawl(coefficient_law(F, B, 2 * F), points=30, periods=3, steps_per_period=40)
+    output.plot(tmp_path / "c.png", res, CurvatureWave(), output.summary(res))
+    ax, bx = got["fig"].axes
+    k = len(res.t)
+    snaps = np.linspace(k - 1 - (k - 1) // 3, k - 1, 9).round().astype(int)
+    shapes = output.world_shapes(res, CurvatureWave(), snaps)
+    np.testing.assert_allclose(ax.lines[0].get_xydata(), shapes[0], atol=1e-12)
+    step = [ln for ln in bx.lines if ln.get_label() == "speed of each period"][0]
+    x, y = step.get_data()
+    np.testing.assert_allclose(x, [0.0, 1.0, 2.0, 3.0])
+    np.testing.assert_allclose(y[:3], res.speed_per_period)

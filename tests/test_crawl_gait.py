@@ -544,3 +544,45 @@ def test_a_body_turning_through_less_than_half_a_turn_is_cleared_without_positio
         assert _turns_less_than_half(g, t, 512) is clear, A
         verts, _ = g._polyline(t, 512)
         assert first_contact(verts, 1e-9) is None          # none of these crosses
+
+
+def test_the_crossing_is_placed_where_the_body_meets_itself():
+    """Just past the curl threshold (A = 13.2612 for k = 1) the k = 1 wave touches itself at
+    t = 0 at two places symmetric about the middle (s and L - s, s ~ 0.13 L): the message
+    names them."""
+    import re
+
+    import pytest
+
+    from asperity.crawling.gait import CurvatureWave
+    from asperity.crawling.gait_crossing import check_self_crossing
+    from asperity.errors import InputError
+    with pytest.raises(InputError) as e:
+        check_self_crossing(CurvatureWave(amplitude=13.3, length=2.0), n_points=64)
+    t, a, b = map(float, re.search(r"t = (\S+) s \(s = (\S+) m and (\S+) m", str(e.value))
+                  .groups())
+    assert t == 0.0
+    assert a + b == pytest.approx(2.0, abs=2 * 2.0 / 512)
+    assert 0.05 * 2.0 < a < 0.2 * 2.0
+
+
+@pytest.mark.parametrize("turn", [0.0, 0.7, 2.0, -2.5])
+def test_segment_distance_is_zero_for_crossing_segments_either_way(turn):
+    """Two segments crossing in an X (their ends far apart) are at distance 0 whichever way
+    each runs and however the pair is turned; parallel ones at their gap; a T at 0."""
+    import numpy as np
+
+    from asperity.crawling.gait_crossing import segment_distance
+    e = np.exp(1j * turn)
+    a, b = e * (-1 + 0.2j), e * (1 - 0.3j)
+    c, d = e * (0.1 - 1j), e * (-0.2 + 1j)
+    for p1, p2, q1, q2 in ((a, b, c, d), (b, a, c, d), (a, b, d, c), (b, a, d, c),
+                           (c, d, a, b)):
+        got = segment_distance(*(np.array([z]) for z in (p1, p2, q1, q2)))
+        assert got[0] == 0.0
+    gap = segment_distance(np.array([e * -1]), np.array([e * 1]), np.array([e * (-1 + 0.5j)]),
+                           np.array([e * (1 + 0.5j)]))
+    assert gap[0] == pytest.approx(0.5, rel=1e-12)
+    tee = segment_distance(np.array([e * -1]), np.array([e * 1]), np.array([e * 0.3]),
+                           np.array([e * (0.3 + 1j)]))
+    assert tee[0] == pytest.approx(0.0, abs=1e-15)
