@@ -26,6 +26,10 @@ EQUIVALENT: dict[str, str] = {
     "crawling/solver.py:ReplaceComparisonOperator_Eq_GtE:6d4fc4d4b8":
         "rule >= 'componentwise' for ==: of the three rules (checked first) only "
         "'componentwise' is >= it ('associated' < 'colinear' < 'componentwise')",
+    "crawling/gait_chain.py:NumberReplacer:0b199f1384":
+        "the link index clamped at links instead of links - 1: it reaches links only at s = L "
+        "exactly, and the chain is evaluated at the midpoints s_i < L (kinematics) and on "
+        "its joints (the crossing check's polyline), never at s = L through _curve",
     "crawling/_kernels.py:NumberReplacer:8046f4c4f3":
         "ox.shape[-1] for ox.shape[0]: ox is one-dimensional",
     "bodies/body_file.py:ReplaceComparisonOperator_LtE_Eq:a7e718dc41":

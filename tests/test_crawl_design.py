@@ -130,3 +130,16 @@ def test_bad_flags_one_line_exit_1(capsys, argv, msg):
                          "--quasi-static", *argv)
     assert code == 1 and out == ""
     assert err.count("\n") == 1 and msg in err and "Traceback" not in err
+
+
+def test_bounds_reach_the_gaits_own_range_and_no_further():
+    """Bounds may go to the gait's range, amplitude [0, 100] and waves (0, 20], ends
+    included where the gait takes them; one step past is refused naming the range."""
+    from asperity.crawling.design import check_bounds
+    from asperity.errors import InputError
+    got = check_bounds({"A": (0.0, 100.0), "k": (1e-9, 20.0)}, ("amplitude", "waves"))
+    assert got == {"amplitude": (0.0, 100.0), "waves": (1e-9, 20.0)}
+    with pytest.raises(InputError, match=r"bounds.waves high must be in \(0, 20\]"):
+        check_bounds({"k": (1.0, 20.000001)}, ("waves",))
+    with pytest.raises(InputError, match=r"bounds.waves low must be in \(0, 20\]"):
+        check_bounds({"k": (0.0, 2.0)}, ("waves",))

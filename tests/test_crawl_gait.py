@@ -586,3 +586,15 @@ def test_segment_distance_is_zero_for_crossing_segments_either_way(turn):
     tee = segment_distance(np.array([e * -1]), np.array([e * 1]), np.array([e * 0.3]),
                            np.array([e * (0.3 + 1j)]))
     assert tee[0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_a_ragged_joint_table_names_the_count_it_expects(tmp_path):
+    from asperity.crawling.gait_file import read_gait
+    from asperity.errors import InputError
+    f = tmp_path / "j.toml"
+    rows = ",\n".join("[0.1, 0.2, 0.3]" for _ in range(4))
+    f.write_text('[gait]\nkind = "joints"\nlength = 1.0\nperiod = 1.0\nlinks = 6\n'
+                 f"angles = [\n{rows}\n]\n")
+    with pytest.raises(InputError, match=r"gait.angles\[0\] has 3 values, expected 5 "
+                                         r"\(gait.links - 1\)"):
+        read_gait(f)
