@@ -6,6 +6,7 @@ the committed reports/web-*.png are refreshed; else into a scratch folder, so th
 run leaves the tree as it was).  One server and one browser for the module."""
 from __future__ import annotations
 
+import atexit
 import json
 import os
 import re
@@ -22,6 +23,10 @@ if not Path(CHROMIUM).is_file() and not shutil.which("chromium"):
 
 REPORTS = ROOT / "reports" if os.environ.get("ASPERITY_SCREENSHOTS") else \
     Path(tempfile.mkdtemp(prefix="asperity-shots-"))
+if not os.environ.get("ASPERITY_SCREENSHOTS"):
+    # the screenshots of a plain test run are thrown away with the process (they piled up
+    # in /tmp, two folders a run)
+    atexit.register(shutil.rmtree, REPORTS, True)
 SURFACES = ROOT / "surfaces"
 TIMEOUT = 90_000            # ms a result may take on a loaded 2-core machine
 

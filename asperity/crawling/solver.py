@@ -34,8 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import (InputError, check_choice, check_flag, check_instance, check_int,
-                      check_range)
+from ..errors import InputError, check_choice, check_flag, check_instance, check_int, check_range
 from ..laws.planar import PlanarLaw
 from ..resources import check_memory, check_work
 
