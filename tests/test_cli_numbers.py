@@ -150,8 +150,15 @@ def _base(cmd: str, action, gauge: Path, tmp: Path) -> list:
     if cmd == "study":
         return [tmp / "none.toml"]
     if cmd == "crawl":
+        run = ["--quasi-static", "--points", "8", "--dt", "0.05"]
         if f == "--pressure":
-            return [gauge, "--quasi-static", "--points", "8", "--dt", "0.05"]
+            return [gauge, *run]
+        if f in ("--alpha", "--beta", "--mu-alpha", "--mu-beta", "--height"):
+            return ["--alpha", "30", "--beta", "10", "--mu-alpha", "0.1", "--mu-beta", "0.2",
+                    *run]
+        if f in ("--mu", "--pixel-size", "--height-scale", "--max-slope", "--despike",
+                 "--despike-window", "--rest-level", "--bearing-fraction"):
+            return [SURF / "scan-ridges.txt", "--unit", "um", "--pixel-size", "1", *run]
         mus = [x for m, v in (("--mu-f", "0.1"), ("--mu-b", "0.15"), ("--mu-t", "0.2"))
                if m != f for x in (m, v)]
         mode = ["--periods", "1"] if f == "--gravity" else ["--quasi-static"]

@@ -179,3 +179,29 @@ def test_serpenoid_file_refusals(tmp_path, body, words):
     f.write_text('[gait]\nkind = "serpenoid"\nlength = 1.0\nperiod = 1.0\n' + body)
     p = run("--mu-f", 0.1, "--mu-b", 0.15, "--mu-t", 0.2, "--gait", f, "--quasi-static")
     assert p.returncode == 1 and words in p.stderr and len(p.stderr.splitlines()) == 1, p.stderr
+
+
+def test_texture_flags_surface_flags_and_contact_reach_the_fitted_law(tmp_path):
+    """The wedge flags make the texture the same file does; a mesh needs --unit (named);
+    --contact windward fits another law than all-faces."""
+    base = ("--quasi-static", "--points", 40, "--json")
+    f = json.loads(run(ROOT / "surfaces" / "wedge-asymmetric.toml", *base).stdout)
+    import tomllib
+    spec = tomllib.loads((ROOT / "surfaces" / "wedge-asymmetric.toml").read_text())
+    w = spec["texture"]
+    flags = ["--alpha", w["alpha_deg"], "--beta", w["beta_deg"], "--mu-alpha", w["mu_alpha"],
+             "--mu-beta", w["mu_beta"]]
+    g = json.loads(run(*flags, *base).stdout)
+    assert g["speed_body_lengths_per_period"] == pytest.approx(
+        f["speed_body_lengths_per_period"], rel=1e-9)
+    p = run(ROOT / "surfaces" / "wedge-30-10.stl", *base)
+    assert p.returncode == 1 and "--unit" in p.stderr
+    m = json.loads(run(ROOT / "surfaces" / "wedge-30-10.stl", "--unit", "mm", *base).stdout)
+    assert "mesh" in m["law"] and m["status"] == "ok"
+    wind = json.loads(run(ROOT / "surfaces" / "wedge-asymmetric.toml", "--contact",
+                          "windward", *base).stdout)
+    assert "windward" in wind["law"]
+    assert wind["speed_body_lengths_per_period"] != pytest.approx(
+        f["speed_body_lengths_per_period"], rel=1e-3)
+    p = run(ROOT / "surfaces" / "wedge-asymmetric.toml", "--mu-f", 0.1)
+    assert p.returncode == 1 and "do not apply" in p.stderr

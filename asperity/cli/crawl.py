@@ -26,9 +26,13 @@ def add_parser(sub) -> None:
                     "averaged after its transient), the heading drift, the cost of transport "
                     "and the Froude number. Exit status 3 if a step's solve did not converge.",
         formatter_class=DefaultsHelpFormatter)
-    p.add_argument("law", nargs="?", metavar="LAW",
-                   help="gauge file (.json, asperity fit) or texture / surface file (fitted "
-                        "on the fly)")
+    from .sources import add_source_arguments
+    add_source_arguments(p)
+    law = next(a for a in p._actions if a.dest == "texture")
+    law.metavar = "LAW"
+    law.help = ("gauge file (.json, asperity fit), or a texture or surface file fitted on the "
+                "fly as `asperity fit` fits it (with the texture and surface flags below; "
+                "--contact, --fit-law)")
     from .parsing import add_componentwise_flags
     add_componentwise_flags(p, "a law of three coefficients (with --rule)")
     p.add_argument("--rule", choices=("componentwise", "associated", "colinear"),
@@ -86,20 +90,29 @@ def add_parser(sub) -> None:
                         "(with --optimise: the objective over the search's grid, the "
                         "optimiser's path and the optimum)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False)],
-                   inputs=["law", "gait"])
+                   inputs=["texture", "gait", "friction_map"])
 
 
 def law_from_args(args):
-    """The PlanarLaw of the arguments: a gauge file, a texture or surface fitted on the fly,
-    or three coefficients with --rule."""
+    """The PlanarLaw of the arguments: a gauge file, a texture or surface (a file or the
+    wedge flags) fitted on the fly, or three coefficients with --rule."""
     from ..crawling.solver import coefficient_law
     from ..errors import InputError
     from .parsing import COMPONENTWISE_FLAGS, componentwise_given
-    from .sources import flag_names
-    if args.law is None:
+    from .sources import WEDGE_FLAGS, flag_names
+    from .sources import SURFACE_FLAGS
+    src = args.texture
+    wedge = any(getattr(args, k) is not None for k in WEDGE_FLAGS)
+    surface = [k for k in SURFACE_FLAGS if getattr(args, k, None) is not None]
+    if args.height_scale != 1.0:
+        surface.append("height_scale")
+    if surface and (src is None or str(src).lower().endswith(".json")):
+        raise InputError(f"--{surface[0].replace('_', '-')} applies to a texture or surface "
+                         f"file, not to {'a gauge file' if src else 'three coefficients'}")
+    if src is None and not wedge:
         if not componentwise_given(args):
-            raise InputError("no law: give a gauge file, a texture or surface file, or "
-                             "--mu-f, --mu-b and --mu-t (with --rule)")
+            raise InputError("no law: give a gauge file, a texture or surface file (or the "
+                             "wedge flags), or --mu-f, --mu-b and --mu-t (with --rule)")
         if args.pressure is not None:
             raise InputError("--pressure takes a law family's law; three coefficients do "
                              "not depend on it")
@@ -112,33 +125,29 @@ def law_from_args(args):
                                    "componentwise")
     if componentwise_given(args) or args.rule is not None:
         raise InputError("--mu-f/--mu-b/--mu-t and --rule make a law of three coefficients; "
-                         f"they do not apply with {args.law} (the file gives the law)")
+                         f"they do not apply with {src or 'the wedge flags'} (the texture "
+                         "gives the law)")
     from ..laws import planar as L
-    if str(args.law).lower().endswith(".json"):
+    if src is not None and str(src).lower().endswith(".json"):
         from ..laws.family import GaugeFamily, law_at
         from ..laws.gauge_file import read_gauge
-        gl = read_gauge(args.law)
+        if wedge:
+            raise InputError("the wedge flags make a texture; they do not apply with a gauge "
+                             f"file ({src})")
+        gl = read_gauge(src)
         if args.pressure is not None and not isinstance(gl, GaugeFamily):
-            raise InputError(f"--pressure applies to a law family; {args.law} holds one law")
-        gl, _ = law_at(gl, args.pressure, "--pressure", str(args.law))
+            raise InputError(f"--pressure applies to a law family; {src} holds one law")
+        gl, _ = law_at(gl, args.pressure, "--pressure", str(src))
         return L.from_gauge(gl)
     if args.pressure is not None:
         raise InputError("--pressure applies to a law family's gauge file, not to a texture "
                          "fitted here (fit a family with `asperity fit --elastic`)")
-    from ..friction.derive import derive
-    from ..friction.sources import is_texture_file
-    from ..laws.fitting import fit_derivation
+    from ..crawling.solver import fitted_law
     from ..progress import progress_bar
-    from .fit import LAWS
-    if is_texture_file(args.law):
-        from ..texture.wedges import load_texture_file
-        texture = load_texture_file(args.law).texture
-    else:
-        from ..surface.facets import load_surface
-        texture = load_surface(args.law)
+    from .sources import texture_from_args
+    texture, _ = texture_from_args(args)
     with flag_names(), progress_bar("facets") as progress:
-        d = derive(texture, "all-faces", "closed-form", 720, progress=progress)
-    return L.from_gauge(fit_derivation(d, LAWS[args.fit_law]))
+        return fitted_law(texture, args.fit_law, contact=args.contact, progress=progress)
 
 
 def run(args):
@@ -192,8 +201,8 @@ def run(args):
     obj = summary(res, law)
     if design is not None:
         obj["optimum"] = design.to_json()
-    if args.law:
-        obj["source"] = str(args.law)
+    if args.texture:
+        obj["source"] = str(args.texture)
     if args.csv:
         from ..crawling.output import csv_text
         from ..io import write_text_atomic

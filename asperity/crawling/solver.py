@@ -84,6 +84,25 @@ def coefficient_law(mu_f: float, mu_b: float, mu_t: float, rule: str = "componen
                                             law.law.C.mu_b_plus, law.law.C.mu_b_minus)))
 
 
+#: the law fitted to a texture: --fit-law -> asperity.laws.fitting's kind
+FIT_LAWS = {"star": "star", "ellipse": "truncated-ellipse"}
+#: sliding directions of a texture fitted for a crawl (as ``asperity fit``'s default)
+FIT_DIRECTIONS = 720
+
+
+def fitted_law(texture, fit_law: str = "star", contact: str = "all-faces",
+               progress=None) -> PlanarLaw:
+    """The law a crawl takes from a texture or surface: derived (closed form, ``contact``
+    model, FIT_DIRECTIONS directions) and fitted (``fit_law``: star or ellipse), as
+    ``asperity fit`` does; the command, the web page and studies take it from here."""
+    from ..friction.derive import derive
+    from ..laws.fitting import fit_derivation
+    from ..laws.planar import from_gauge
+    kind = FIT_LAWS[check_choice("fit_law", fit_law, tuple(FIT_LAWS))]
+    d = derive(texture, contact, "closed-form", FIT_DIRECTIONS, progress=progress)
+    return from_gauge(fit_derivation(d, kind))
+
+
 def law_rule(law: PlanarLaw) -> str:
     """The rule a law slides by, as the crawl's JSON states it."""
     if law.name == "componentwise":

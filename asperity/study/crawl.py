@@ -145,11 +145,8 @@ def _coefficients(s: dict):
 
 def law_of_texture(texture, fit_law: str = "star"):
     """The PlanarLaw ``asperity crawl TEXTURE --fit-law FIT_LAW`` crawls on."""
-    from ..friction.derive import derive
-    from ..laws import planar as L
-    from ..laws.fitting import fit_derivation
-    d = derive(texture, "all-faces", "closed-form", 720)
-    return L.from_gauge(fit_derivation(d, FIT_LAWS[fit_law]))
+    from ..crawling.solver import fitted_law
+    return fitted_law(texture, fit_law)
 
 
 def _law(s: dict, texture, key):

@@ -15,12 +15,6 @@ import json
 from ..errors import InputError
 from ..io import json_ready, write_text_atomic
 
-#: sliding directions of a texture fitted on the fly (as ``asperity crawl FILE``)
-FIT_DIRECTIONS = 720
-#: the form's law fitted -> the library's (as ``asperity fit --law``)
-FITS = {"star": "star", "ellipse": "truncated-ellipse"}
-
-
 def crawl_law(spec: dict, ctx: dict, bar):
     """The PlanarLaw of a crawl job's law (see the module docstring)."""
     kind = spec.get("kind")
@@ -32,18 +26,15 @@ def crawl_law(spec: dict, ctx: dict, bar):
         from .tasks_motion import build_law
         return build_law(spec, ctx)
     if kind == "texture":
-        from .. import law_from_gauge
-        from ..friction.derive import derive
-        from ..laws.fitting import fit_derivation
+        from ..crawling.solver import FIT_LAWS, fitted_law
         from .job_progress import phase
         from .tasks_surface import load_source
         texture = load_source(spec.get("source") or {}, ctx)[0]
         fit = spec.get("fit") or "star"
-        if fit not in FITS:
+        if fit not in FIT_LAWS:
             raise InputError("law fitted must be star or ellipse")
         with phase(bar, 0.0, 0.3, "fitting the law"):
-            d = derive(texture, "all-faces", "closed-form", FIT_DIRECTIONS, progress=bar)
-        return law_from_gauge(fit_derivation(d, FITS[fit]))
+            return fitted_law(texture, fit, progress=bar)
     raise InputError("law must be three coefficients, a Law result, a gauge file or a "
                      "texture")
 
