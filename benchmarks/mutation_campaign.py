@@ -90,6 +90,8 @@ TESTS = (
                               "test_body_convergence.py::test_t_end_below_one_step_is_refused",
                               "test_option_pairs.py::test_slide_body_option_pairs")),
     ("dynamics/body_horizon.py", _BODY),
+    # the body kernels also step crawling bodies (per-point rows): the crawl's tests too
+    ("dynamics/_body*_kernels.py", _BODY + ("test_crawl.py",), _BODY_K),
     ("dynamics/*.py", _BODY, _BODY_K),
     ("laws/family_report.py", ("test_family_report.py", "test_family_axes.py",
                                "test_law_family_cli.py")),
