@@ -116,8 +116,7 @@ def plot(path, res, gait, obj: dict) -> None:
     plt = pyplot()
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5), width_ratios=(1.3, 1))
     k = len(res.t)
-    per = (k - 1) // max(res.periods, 1)
-    snaps = np.linspace(k - 1 - per, k - 1, 9).round().astype(int)
+    snaps = np.linspace(max(0, k - 1 - res.records_per_period), k - 1, 9).round().astype(int)
     shapes = world_shapes(res, gait, snaps)
     for j, sh in enumerate(shapes):
         ax.plot(sh[:, 0], sh[:, 1], color=(0.15, 0.3 + 0.5 * j / 8, 0.8 - 0.5 * j / 8), lw=1.5)

@@ -73,15 +73,13 @@ def coefficient_law(mu_f: float, mu_b: float, mu_t: float, rule: str = "componen
     (mu_f | mu_b, mu_t): Antoni et al.'s truncated ellipse) or ``colinear`` (the force
     opposite to the slip, its size the radius of that set)."""
     from ..laws.planar import collinear_law, componentwise_law, truncated_ellipse_law
-    from ..laws.sets import TruncatedEllipse
     rule = check_choice("rule", rule, RULES)
     if rule == "componentwise":
         return componentwise_law(mu_f, mu_b, mu_t)
     law = truncated_ellipse_law(mu_f, mu_b, mu_t, mu_t)
     if rule == "associated":
         return law
-    return collinear_law(TruncatedEllipse(*(law.law.C.mu_a_plus, law.law.C.mu_a_minus,
-                                            law.law.C.mu_b_plus, law.law.C.mu_b_minus)))
+    return collinear_law(law.law.C)
 
 
 #: the law fitted to a texture: --fit-law -> asperity.laws.fitting's kind
@@ -148,6 +146,7 @@ class CrawlResult:
     mean_iterations: float
     max_iterations_used: int
     stick_fraction: float
+    records_per_period: int = 1
     law_description: str = ""
     extra: dict = field(default_factory=dict)
 
@@ -182,9 +181,8 @@ class CrawlResult:
         return self.length / (self.g * self.mu_forward * self.period ** 2)
 
     def _window(self):
-        P = self.steps_per_period
-        rec = int(round(P * self.dt / (self.t[1] - self.t[0]))) if len(self.t) > 1 else 1
-        return self.transient_periods * rec, self.periods * rec
+        r = self.records_per_period
+        return self.transient_periods * r, self.periods * r
 
     @property
     def cost_of_transport(self) -> float | None:
@@ -325,7 +323,7 @@ def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):
                                 f"{settings.tol:g}); the run stops there",
                "non-finite": f"the velocity became non-finite at step {fail}"}[status]
     t, qr, ur, e = rec_t[:k], rec_q[:k], rec_u[:k], rec_e[:k]
-    per_rec = P // record_every
+    per_rec = P // record_every             # records a period (the first state aside)
     done = (k - 1) // per_rec
     speed, drift = _per_period(qr, per_rec, done, float(gait.length))
     steps_done = int(info[K.INFO_STEPS])
@@ -340,7 +338,7 @@ def _run(law, gait, km, ke, n, periods, P, dt, qs, g, mass, side, a, settings):
         message=message, mean_iterations=float(info[K.INFO_ITER_TOTAL]) / max(steps_done, 1),
         max_iterations_used=int(info[K.INFO_MAX_ITER]),
         stick_fraction=float(info[K.INFO_STICK]) / max(steps_done * n, 1),
-        law_description=law.description)
+        records_per_period=per_rec, law_description=law.description)
 
 
 def _per_period(q, per_rec, periods, L):

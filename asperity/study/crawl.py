@@ -46,8 +46,6 @@ KEYS = tuple(NUMBERS) + tuple(WHOLE) + tuple(CHOICES) + ("quasi_static",)
 #: the keys that may vary (parameters "crawl.KEY")
 VARIED = ("amplitude", "waves", "texture_angle_deg", "mu_f", "mu_b", "mu_t")
 COEFFICIENTS = ("mu_f", "mu_b", "mu_t")
-#: crawl.fit_law -> the fit's kind (as ``asperity crawl --fit-law``)
-FIT_LAWS = {"star": "star", "ellipse": "truncated-ellipse"}
 #: fitted laws a worker keeps
 LAW_CACHE_SIZE = 256
 _LAWS: dict = {}
