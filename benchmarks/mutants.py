@@ -89,6 +89,8 @@ WEB_BODY = ("test_web_body.py",)
 BODY_CLI = ("test_slide_body_cli.py",)
 REPORT_BODIES = ("test_report_bodies.py",)
 BODY = ("test_dynamics_body.py", "test_body_convergence.py")
+CRAWL = ("test_crawl.py",)
+CRAWL_CLI = ("test_crawl_cli.py",)
 METAMORPHIC_CONTACT = ("test_metamorphic_contact.py",)
 METAMORPHIC_LAWS = ("test_metamorphic_laws.py",)
 METAMORPHIC_BODIES = ("test_metamorphic_bodies.py", "test_option_pairs.py")
@@ -1112,6 +1114,30 @@ MUTANTS = [
            "    R = _rot(-a)\n    c = np.asarray(force.constant)",
            "    R = _rot(a)\n    c = np.asarray(force.constant)", METAMORPHIC_BODIES,
            "an external force turned the wrong way into the frame of a turned law"),
+    # ---- issue 26: crawling (what cosmic-ray cannot make: dropped terms, a changed flag,
+    # word or key, a statement switched off)
+    Mutant("crawl-gait-spin-dropped", "crawling/_kernels.py",
+           "uf[2] = (iA * u[2] + spin[k] - spin[k + 1]) / iE",
+           "uf[2] = (iA * u[2]) / iE", CRAWL,
+           "the gait's own angular momentum left out of the body's turning"),
+    Mutant("crawl-ground-texture-ignored", "crawling/solver.py",
+           'QS_EPS if qs else 0.0, side == "body",', 'QS_EPS if qs else 0.0, True,', CRAWL,
+           "--texture-on ground crawls with the texture on the body"),
+    Mutant("crawl-no-transient", "crawling/solver.py",
+           "transient_periods=0 if qs else done // 2,", "transient_periods=0,", CRAWL,
+           "dynamic runs average their transient from rest into the speed"),
+    Mutant("crawl-json-drift-key", "crawling/output.py",
+           '"heading_drift_rad_per_period": res.heading_drift_rad_per_period,',
+           '"heading_drift": res.heading_drift_rad_per_period,', CRAWL_CLI,
+           "the JSON's heading drift under another key"),
+    Mutant("crawl-rule-spelling", "crawling/solver.py", 'return "colinear"',
+           'return "collinear"', CRAWL_CLI, "the colinear rule named otherwise than --rule"),
+    Mutant("crawl-qs-start-from-rest", "crawling/_kernels.py",
+           "if start == 0 and qs_eps > 0.0:", "if start == 0 and qs_eps < 0.0:", CRAWL,
+           "quasi-static runs start from rest (a first half step of order dt)"),
+    Mutant("crawl-fit-law-ignored", "cli/crawl.py",
+           "fitted_law(texture, args.fit_law,", 'fitted_law(texture, "star",', CRAWL_CLI,
+           "--fit-law ellipse fits the star law"),
     # ---- command-line names of library fields
     Mutant("cli-spring-ratio-flags-dropped", "cli/sources.py",
            '{"springs.k_f / k_n ": "--k-f / --k-n ", **fields}', "{**fields}",

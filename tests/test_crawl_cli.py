@@ -205,3 +205,12 @@ def test_texture_flags_surface_flags_and_contact_reach_the_fitted_law(tmp_path):
         f["speed_body_lengths_per_period"], rel=1e-3)
     p = run(ROOT / "surfaces" / "wedge-asymmetric.toml", "--mu-f", 0.1)
     assert p.returncode == 1 and "do not apply" in p.stderr
+
+
+def test_fit_law_ellipse_fits_the_truncated_ellipse():
+    base = (ROOT / "surfaces" / "wedge-asymmetric.toml", "--quasi-static", "--points", 40,
+            "--json")
+    star = json.loads(run(*base).stdout)
+    ell = json.loads(run(*base, "--fit-law", "ellipse").stdout)
+    assert "star" in star["law"] and "ellipse" in ell["law"]
+    assert ell["rule"] == "associated" and star["rule"] == "walker-leine"
