@@ -298,3 +298,18 @@ def test_plot_draws_the_snapshots_and_each_periods_speed(tmp_path, monkeypatch):
     x, y = step.get_data()
     np.testing.assert_allclose(x, [0.0, 1.0, 2.0, 3.0])
     np.testing.assert_allclose(y[:3], res.speed_per_period)
+
+
+def test_without_friction_the_gait_turns_the_body_keeping_its_angular_momentum():
+    """g -> 0 (friction 1e-7 of the inertial forces): the centre stays where it is and the
+    angular momentum I omega + S (S the gait's own spin, per unit mass) keeps its value at
+    rest, S(0), so the body turns against its gait's swing."""
+    gait = CurvatureWave()
+    res = crawl(coefficient_law(F, B, 2 * F), gait=gait, points=60, periods=1,
+                steps_per_period=100, g=1e-6)
+    kin = gait.kinematics(res.t, 60)
+    L = kin.inertia * res.u[:, 2] + kin.spin
+    assert np.abs(kin.spin).max() > 0.05                    # the gait does swing
+    np.testing.assert_allclose(L[1:], kin.spin[0], atol=1e-5 * np.abs(kin.spin).max())
+    assert np.abs(res.q[:, :2]).max() < 1e-6
+    assert np.abs(res.q[:, 2]).max() > 0.01                  # and the body turns
