@@ -18,7 +18,7 @@ import asperity
 
 PACKAGE = Path(asperity.__file__).resolve().parent
 ROOMS = ("texture", "surface", "friction", "laws", "dynamics", "microslip", "report", "cli",
-         "web", "contact", "crawling")
+         "web", "contact", "crawling", "fe")
 MAX_LINES = 400
 
 #: asperity.__all__ as the public API was fixed (issue 10): names may be added, never lost
