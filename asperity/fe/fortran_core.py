@@ -14,6 +14,9 @@ blended linearly in ln p between its levels and clamped outside them, NCLAMP = 1
 * IOP = 4: the 1D return map along the line at angle Y (rad) of the trial stress X: the
   stress OUT(1), d/dX OUT(2), d/dPRESS OUT(3), OUT(9) = 0 stick / 1 slip.
 
+``ASPFRC(PRESS, PSI, PX, PY, NCLAMP)`` and ``ASPRAD(PRESS, PHI, R, NCLAMP)`` are IOP 1 and 2
+as plain subroutines (the explicit wrappers call them).
+
 The return map (:mod:`asperity.fe.table`'s piecewise-linear force ``P(psi)`` on nodes):
 stick while ``q = trial / PRESS`` lies in the nodes' polygon (C); otherwise the force
 ``P(psi)`` with ``q - P(psi) = lam (cos psi, sin psi)``, ``lam >= 0`` (the plastic slip is
@@ -293,6 +296,27 @@ C       trial direction
       OUT(9) = 1.0D0
       OUT(10) = BEST*PRESS
       OUT(11) = BPS
+      RETURN
+      END
+C
+      SUBROUTINE ASPFRC(PRESS,PSI,PX,PY,NCLAMP)
+C     the force per unit normal load for sliding along PSI (law frame)
+      IMPLICIT NONE
+      INTEGER NCLAMP
+      DOUBLE PRECISION PRESS,PSI,PX,PY,OUT(12)
+      CALL ASPLAW(1,PRESS,PSI,0.0D0,OUT,NCLAMP)
+      PX = OUT(1)
+      PY = OUT(2)
+      RETURN
+      END
+C
+      SUBROUTINE ASPRAD(PRESS,PHI,R,NCLAMP)
+C     the distance to the boundary of C along the ray PHI (law frame)
+      IMPLICIT NONE
+      INTEGER NCLAMP
+      DOUBLE PRECISION PRESS,PHI,R,OUT(12)
+      CALL ASPLAW(2,PRESS,PHI,0.0D0,OUT,NCLAMP)
+      R = OUT(1)
       RETURN
       END
 C
