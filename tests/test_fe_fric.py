@@ -163,3 +163,27 @@ def test_units_and_the_side_flip(name):
         assert np.abs(scaled.tau - c * base.tau).max() < 1e-9 * c * P
         flipped = fric(name, tau0, dg, (K, th_deg + 180.0, -1.0))
         assert np.abs(flipped.tau - base.tau).max() < 1e-9 * P
+
+
+@pytest.mark.parametrize("name", ["windward", "componentwise"])
+def test_energies_slip_flag_and_no_pressure(name):
+    rng = np.random.default_rng(8)
+    for _ in range(20):
+        tau0 = 0.1 * P * rng.normal(size=2)
+        dg = 5e-5 * rng.normal(size=2) * rng.choice([1e-3, 1.0])
+        out = fric(name, tau0, dg, statev=(0.25, 3.0, 7.0))
+        assert out.sfd == pytest.approx(out.tau @ out.dslip, rel=1e-12, abs=1e-30)
+        assert out.sfd >= -1e-9 * P * np.abs(out.dslip).sum()   # friction dissipates
+        assert out.sed == pytest.approx(out.tau @ out.tau / (2 * K), rel=1e-12)
+        slipped = bool(np.abs(out.dslip).max() > 0)
+        assert out.statev[2] == (1.0 if slipped else 0.0)
+        assert out.statev[0] == pytest.approx(0.25 + np.hypot(*out.dslip), rel=1e-12)
+        assert out.statev[1] == 3.0
+    none = fric(name, [3e4, -2e4], [1e-6, 2e-6], press=0.0)
+    assert none.lm == 0 and np.all(none.tau == 0.0) and none.sed == 0.0 and none.sfd == 0.0
+    assert np.allclose(none.dslip, [3e4 / K + 1e-6, -2e4 / K + 2e-6], rtol=1e-12)
+
+
+def test_no_elastic_stiffness_asks_for_rigid_stick():
+    out = fric("star", [1e4, 0.0], [1e-6, 0.0], (0.0, 0.0, 1.0))
+    assert out.lm == 1

@@ -80,6 +80,33 @@ def test_outside_the_members_the_law_is_clamped_and_counted(name):
 
 
 @pytest.mark.parametrize("name", ["star", "ellipse"])
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_nfdir_1_takes_the_law_at_the_pressure_and_its_change(name, side):
+    fam = families()[name]
+    lo, hi = fam.pressures[0], fam.pressures[-1]
+    for w in (0.0, 0.3, 0.77, 1.0, 1.6):
+        press = lo * (hi / lo) ** w
+        ref = fam.at(min(press, hi))
+        th = math.radians(30.0) + (math.pi if side < 0 else 0.0)
+        s = np.array([math.cos(-th), math.sin(-th)])
+        for sign, psi in ((1.0, -th), (-1.0, math.pi - th)):
+            def tau(pp, sign=sign):
+                return call_fric(lib(name), lm=0, tau=[0.0], statev=np.zeros(3),
+                                 dgam=[sign * press / K], press=pp,
+                                 props=np.array([K, 30.0, side]),
+                                 nfdir=1)
+            out = tau(press)
+            assert out.tau[0] == pytest.approx(press * ref.force(np.array([psi])).p[0] @ s,
+                                               abs=1e-4 * press)
+            assert out.statev[1] == (1.0 if w > 1 else 0.0)
+            if w in (0.0, 1.0):          # a member's pressure: the law's slope changes there
+                continue
+            h = 1e-6 * press
+            num = (tau(press + h).tau[0] - tau(press - h).tau[0]) / (2 * h)
+            assert out.ddtddp[0] == pytest.approx(num, abs=1e-5), w
+
+
+@pytest.mark.parametrize("name", ["star", "ellipse"])
 def test_ddtddp_holds_the_change_of_the_law_with_pressure(name):
     fam = families()[name]
     rng = np.random.default_rng(2)

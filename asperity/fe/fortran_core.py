@@ -210,10 +210,9 @@ C       does the block hold the directions phq -+ 90 deg, phq?
      1      -SPQ*TSN(JL)-CPQ*TCS(JL) .GE. 0.0D0) SMN = -1.0D0
         IF (QN*SMN-MAX(TBHI(IB,K),TBHI(IB,K2)) .GT. EPS) GO TO 60
         IF (QN*SMX-MIN(TBLO(IB,K),TBLO(IB,K2)) .LT. -EPS) GO TO 60
-        IF (CA .LT. 0.0D0 .AND. CB .LT. 0.0D0) THEN
-          IF (TCS(JS)*SPQ-TSN(JS)*CPQ .LT. 0.0D0 .OR.
-     1        CPQ*TSN(JL)-SPQ*TCS(JL) .LT. 0.0D0) GO TO 60
-        END IF
+C       both ends behind q and less than half a turn between them: the
+C       block lies behind q, where lam < 0
+        IF (CA .LT. 0.0D0 .AND. CB .LT. 0.0D0) GO TO 60
    48   CONTINUE
         DO 50 J = JS, JE
           J1 = MOD(J,N) + 1
