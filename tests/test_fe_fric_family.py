@@ -90,9 +90,9 @@ def test_nfdir_1_takes_the_law_at_the_pressure_and_its_change(name, side):
         th = math.radians(30.0) + (math.pi if side < 0 else 0.0)
         s = np.array([math.cos(-th), math.sin(-th)])
         for sign, psi in ((1.0, -th), (-1.0, math.pi - th)):
-            def tau(pp, sign=sign):
+            def tau(pp, sign=sign, press=press):
                 return call_fric(lib(name), lm=0, tau=[0.0], statev=np.zeros(3),
-                                 dgam=[sign * press / K], press=pp,
+                                 dgam=[3.0 * sign * press / K], press=pp,
                                  props=np.array([K, 30.0, side]),
                                  nfdir=1)
             out = tau(press)
