@@ -8,7 +8,7 @@ many the FE tests kill.
 
 Population: every executable line (no comment, no declaration) of the Fortran templates --
 the FRIC wrapper (asperity/fe/abaqus_fric.py FRIC), the law-frame core
-(asperity/fe/fortran_core.py WORKER) and the explicit wrappers
+(asperity/fe/fortran/asp_core.f, fortran_core.CORE) and the explicit wrappers
 (asperity/fe/abaqus_explicit.py VFRIC/VFRICTION body) -- times the operators: a relational
 operator replaced (.LT. .LE. .GT. .GE. .EQ. .NE.), a binary + or - flipped, * and /
 exchanged, a real constant changed (0.0D0 -> 1.0D0, any other x -> 2x), an array index 1
@@ -33,7 +33,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 ENV = "ASPERITY_FORTRAN_MUTANT"
-TEMPLATES = (("asperity.fe.abaqus_fric", "FRIC"), ("asperity.fe.fortran_core", "WORKER"),
+TEMPLATES = (("asperity.fe.abaqus_fric", "FRIC"), ("asperity.fe.fortran_core", "CORE"),
              ("asperity.fe.abaqus_explicit", "BODY"))
 TESTS = ("tests/test_fe_fric.py", "tests/test_fe_fric_family.py", "tests/test_fe_explicit.py",
          "tests/test_fe_fric_driver.py", "tests/test_fe_routines.py")
@@ -98,7 +98,7 @@ def mutants() -> list[dict]:
 
 
 def _pick(pop: list[dict], n: int, seed: int) -> list[dict]:
-    key = lambda m: hashlib.sha1(f"{seed}:{m['id']}".encode()).hexdigest()  # noqa: E731
+    key = lambda m: hashlib.sha1(f"{seed}:{m['id']}".encode()).hexdigest()
     return sorted(pop, key=key)[:n]
 
 
@@ -109,7 +109,7 @@ def run_one(m: dict, timeout: float) -> tuple[str, float, str]:
     t0 = time.perf_counter()
     try:
         r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "fortran_mutants",
-                            "-p", "no:cacheprovider", *tests], cwd=REPO, env=env,
+                            "-p", "no:cacheprovider", *tests], check=False, cwd=REPO, env=env,
                            capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return "timeout", time.perf_counter() - t0, ""
