@@ -18,7 +18,7 @@ import pytest
 from fe_builds import library, needs_gfortran
 from fe_standin import ellipse_core
 
-from asperity.fe.abaqus_explicit import explicit_source
+from asperity.fe.abaqus_explicit import source
 from asperity.fe.fortran_harness import call_vfric, call_vfriction
 from asperity.laws.sets import TruncatedEllipse
 
@@ -31,7 +31,7 @@ CORE = ellipse_core(*AXES.values(), p_lo=P_LO, p_hi=P_HI)
 
 
 def lib(routine, precision="double"):
-    return library(explicit_source(routine, CORE, ["stand-in core"]), precision)
+    return library(source(routine) + CORE, precision)
 
 
 def reference(props, t1, n, fn, fs):

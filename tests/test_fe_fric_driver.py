@@ -25,9 +25,16 @@ MU_PLUS, MU_MINUS = 0.2, 0.1
 KT = 5.0e5
 
 
-@pytest.fixture(scope="module")
-def fric_lib():
-    return library(coulomb_fric(MU_PLUS, MU_MINUS))
+@pytest.fixture(scope="module", params=["stand-in", "generated"])
+def fric_lib(request):
+    """The hand-written Coulomb FRIC, and the FRIC generated from the componentwise law
+    mu_f = mu+ along +x, mu_b = mu- along -x (mu_t = 0.15 across)."""
+    if request.param == "stand-in":
+        return library(coulomb_fric(MU_PLUS, MU_MINUS))
+    from asperity.fe.abaqus_fric import routine_source
+    from asperity.laws.componentwise import componentwise_gauge
+    gl = componentwise_gauge(mu_f=MU_PLUS, mu_b=MU_MINUS, mu_t=0.15)
+    return library(routine_source(gl, "fric"))
 
 
 PROPS = np.array([KT, 0.0, 1.0])
@@ -51,7 +58,7 @@ def test_iterations_leave_no_trace(fric_lib):
     it: another first guess (other iterations, other trial slips) commits exactly what one
     call with the increment's final DGAM on the start values gives, stick and slip alike."""
     fric = fric_of(fric_lib, PROPS, 2)
-    w = np.array([[2e-6, 1e-6], [9e-6, -4e-6], [3e-6, 8e-6], [20e-6, 8e-6], [25e-6, 2e-6]])
+    w = np.array([[2e-6, 1e-6], [9e-6, -4e-6], [3e-6, 8e-6], [20e-6, 8e-6], [40e-6, 9e-6]])
     a = spring_driven_point(fric, w, ks=2e5, press=10.0)
     b = spring_driven_point(fric, w, ks=2e5, press=10.0, guess=lambda u, w: w)
     assert [len(r.residuals) for r in b] != [len(r.residuals) for r in a]
@@ -64,7 +71,7 @@ def test_iterations_leave_no_trace(fric_lib):
         assert rb.state.tau[0] == pytest.approx(one.tau, abs=1e-12)
         assert ra.state.tau[0] == pytest.approx(one.tau, abs=1e-12)
         assert rb.state.statev[0].tolist() == one.statev.tolist()
-        slid.append(np.linalg.norm(one.tau) > 2.0 * (1 - 1e-12))
+        slid.append(np.linalg.norm(one.dslip) > 1e-9 * np.linalg.norm(rb.u - u))
         tau, sv, u = rb.state.tau[0], rb.state.statev[0], rb.u
     assert any(slid) and not all(slid)
 
@@ -83,10 +90,11 @@ def test_spring_driven_point_converges_quadratically(fric_lib):
     w = np.array([[4e-5, 3e-5]])
     ks = np.array([[3e5, 1.5e5], [1.5e5, 1e5]])
     res = spring_driven_point(fric, w, ks=ks, press=40.0)[0]
-    tau = res.state.tau[0]
-    assert np.linalg.norm(tau) == pytest.approx(MU_PLUS * 40.0, rel=1e-12)   # it slides
+    tau, u = res.state.tau[0], res.u
+    assert np.linalg.norm(tau - KT * u) > 0.1 * np.linalg.norm(tau)         # it slides
     orders = newton_orders(res.residuals)
-    assert orders and max(orders) > 1.8 and len(res.residuals) <= 6, res.residuals
+    assert len(res.residuals) <= 6, res.residuals
+    assert len(res.residuals) <= 3 or max(orders) > 1.8, res.residuals
 
     def elastic_tangent(**kw):
         out = fric(**kw)
