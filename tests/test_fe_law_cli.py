@@ -139,3 +139,9 @@ def test_a_table_that_cannot_meet_the_bound_names_directions(star_gauge, tmp_pat
     err = bad(capsys, tmp_path, star_gauge, "--fric", tmp_path / "a.f", "--abaqus-user",
               tmp_path / "a.inp")
     assert "cannot hold the force within 1e-09" in err and " deg " in err
+
+
+def test_conventions_figure_draws(tmp_path):
+    from asperity.fe.conventions_figure import draw
+    path = draw(str(tmp_path / "conventions.png"))
+    assert (tmp_path / "conventions.png").stat().st_size > 20_000 and path.endswith(".png")
