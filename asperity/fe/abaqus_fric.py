@@ -154,8 +154,6 @@ def routine_source(gauge, routine: str = "fric", header=(), table=None) -> str:
     routine = check_choice("routine", routine, ROUTINES)
     table = table if table is not None else law_table_of(gauge)
     if routine == "fric":
-        body = FRIC
-    else:
-        from . import abaqus_explicit
-        body = abaqus_explicit.source(routine)
-    return _comment_block(header) + body + law_source(table)
+        return _comment_block(header) + FRIC + law_source(table)
+    from .abaqus_explicit import explicit_source
+    return explicit_source(routine, law_source(table), header)

@@ -14,6 +14,9 @@ blended linearly in ln p between its levels and clamped outside them, NCLAMP = 1
 * IOP = 4: the 1D return map along the line at angle Y (rad) of the trial stress X: the
   stress OUT(1), d/dX OUT(2), d/dPRESS OUT(3), OUT(9) = 0 stick / 1 slip.
 
+``ASPFRC(PRESS, PSI, PX, PY, NCLAMP)`` and ``ASPRAD(PRESS, PHI, R, NCLAMP)`` are IOP 1 and 2
+as plain subroutines (the explicit wrappers call them).
+
 The return map (:mod:`asperity.fe.table`'s piecewise-linear force ``P(psi)`` on nodes):
 stick while ``q = trial / PRESS`` lies in the nodes' polygon (C); otherwise the force
 ``P(psi)`` with ``q - P(psi) = lam (cos psi, sin psi)``, ``lam >= 0`` (the plastic slip is
@@ -31,21 +34,24 @@ from ..laws.geometry import TWO_PI, polar_angle
 
 #: values per continuation line and continuation lines per DATA statement
 PER_LINE, LINES = 3, 19
+#: nodes per block of the root search
+BLOCK = 32
 
 WORKER = """\
       SUBROUTINE ASPW(IOP,PRESS,X,Y,OUT,NCLAMP,N,L,TPSI,TCS,TSN,
-     1 TPX,TPY,TLAT,TPHI,TLMX,TLNP)
+     1 TPX,TPY,TLAT,TPHI,TLNP,NB,NBK,TBLO,TBHI)
 C     core of the generated friction routines (asperity): see ASPLAW
       IMPLICIT NONE
-      INTEGER IOP,NCLAMP,N,L
+      INTEGER IOP,NCLAMP,N,L,NB,NBK
       DOUBLE PRECISION PRESS,X,Y,OUT(12),TPSI(N),TCS(N),TSN(N),
-     1 TPX(N,L),TPY(N,L),TLAT(N,L),TPHI(N,L),TLMX(L),TLNP(L)
-      INTEGER K,K2,J,J1,J0,I,IT,NSCAN,JB,IDIR
+     1 TPX(N,L),TPY(N,L),TLAT(N,L),TPHI(N,L),TLNP(L),TBLO(NBK,L),
+     2 TBHI(NBK,L)
+      INTEGER K,K2,J,J1,I,IT,JB,IB,JS,JE,JL
       DOUBLE PRECISION W,DWDP,PL,PI,TWOPI,BX,BY,BL,DX,DY,T,QX,QY,QN,
-     1 PHQ,R,WIN,GA,GB,G,GT,TL,TH,TN,PS,PSA,DPS,C,S,PX,PY,DPX,DPY,
-     2 XLAM,BEST,BT,BPS,BPX,BPY,BDPX,BDPY,BGT,OFF,WX,WY,DTP,
+     1 PHQ,R,GA,GB,G,GT,TL,TH,TN,PS,PSA,DPS,C,S,PX,PY,DPX,DPY,
+     2 XLAM,BEST,BT,BPS,BPX,BPY,BDPX,BDPY,BGT,WX,WY,DTP,
      3 GLO,GHI,AMUP,AMUM,DMUP,DMUM,EPS,SX0,SY0,AX,AY,AN,RA,SL,SH,SM,
-     4 VX,VY,XX,XY,D2,BD2
+     4 VX,VY,XX,XY,D2,BD2,CPQ,SPQ,SPAN,SA,SB,CA,CB,SMN,SMX
       PARAMETER (PI=3.141592653589793D0,TWOPI=6.283185307179586D0)
       BX(J) = (1.0D0-W)*TPX(J,K) + W*TPX(J,K2)
       BY(J) = (1.0D0-W)*TPY(J,K) + W*TPY(J,K2)
@@ -167,15 +173,12 @@ C     there: for a start on the boundary, the start itself)
         XX = AX + SH*(QX-AX)
         XY = AY + SH*(QY-AY)
       END IF
-C     the roots of G(psi) = (cos psi, sin psi) x (q - P(psi)) near
-C     the direction of q (|G + lateral| <= |q| sin|psi - phq|)
-      WIN = 1.01D0*MAX(TLMX(K),TLMX(K2))
-      IF (QN .GT. WIN) THEN
-        WIN = ASIN(WIN/QN) + 1.0D-9
-      ELSE
-        WIN = PI + 1.0D0
-      END IF
-      CALL ASPLOC(N,TPSI,PHQ,J0,T)
+C     the roots of G(psi) = (cos psi, sin psi) x (q - P(psi)) =
+C     |q| sin(phq - psi) - lateral(psi) at the nodes, by blocks of NB
+C     nodes: a block whose bounds keep G of one sign, or where every
+C     slip would run against q (lam < 0), holds no root
+      CPQ = QX/QN
+      SPQ = QY/QN
       BEST = 1.0D300
       BD2 = 1.0D300
       JB = 0
@@ -187,26 +190,33 @@ C     the direction of q (|G + lateral| <= |q| sin|psi - phq|)
       BDPY = 0.0D0
       BGT = 0.0D0
       EPS = 1.0D-15*(QN+1.0D0)
-      DO 60 IDIR = 1, 2
-        NSCAN = N
-        IF (IDIR .EQ. 2) NSCAN = N - 1
-        IF (WIN .GT. PI) NSCAN = N*(2-IDIR)
-        DO 50 I = 0, NSCAN-1
-          IF (IDIR .EQ. 1) THEN
-            J = MOD(J0-1+I,N) + 1
-          ELSE
-            J = MOD(J0-2-I+2*N,N) + 1
-          END IF
+      DO 60 IB = 1, NBK
+        JS = (IB-1)*NB + 1
+        JE = MIN(IB*NB,N)
+        JL = MOD(JE,N) + 1
+        SA = SPQ*TCS(JS) - CPQ*TSN(JS)
+        SB = SPQ*TCS(JL) - CPQ*TSN(JL)
+        CA = CPQ*TCS(JS) + SPQ*TSN(JS)
+        CB = CPQ*TCS(JL) + SPQ*TSN(JL)
+        SMN = MIN(SA,SB)
+        SMX = MAX(SA,SB)
+C       a block turning by half a turn or more is always searched
+        SPAN = TCS(JS)*TSN(JL) - TSN(JS)*TCS(JL)
+        IF (SPAN .LE. 0.0D0) GO TO 48
+C       does the block hold the directions phq -+ 90 deg, phq?
+        IF (-TCS(JS)*CPQ-TSN(JS)*SPQ .GE. 0.0D0 .AND.
+     1      SPQ*TSN(JL)+CPQ*TCS(JL) .GE. 0.0D0) SMX = 1.0D0
+        IF (TCS(JS)*CPQ+TSN(JS)*SPQ .GE. 0.0D0 .AND.
+     1      -SPQ*TSN(JL)-CPQ*TCS(JL) .GE. 0.0D0) SMN = -1.0D0
+        IF (QN*SMN-MAX(TBHI(IB,K),TBHI(IB,K2)) .GT. EPS) GO TO 60
+        IF (QN*SMX-MIN(TBLO(IB,K),TBLO(IB,K2)) .LT. -EPS) GO TO 60
+        IF (CA .LT. 0.0D0 .AND. CB .LT. 0.0D0) THEN
+          IF (TCS(JS)*SPQ-TSN(JS)*CPQ .LT. 0.0D0 .OR.
+     1        CPQ*TSN(JL)-SPQ*TCS(JL) .LT. 0.0D0) GO TO 60
+        END IF
+   48   CONTINUE
+        DO 50 J = JS, JE
           J1 = MOD(J,N) + 1
-          IF (I .GT. 0 .AND. WIN .LE. PI) THEN
-            IF (IDIR .EQ. 1) THEN
-              OFF = TPSI(J) - PHQ
-            ELSE
-              OFF = PHQ - TPSI(J1)
-            END IF
-            OFF = OFF - TWOPI*ANINT(OFF/TWOPI)
-            IF (OFF .GT. WIN) GO TO 60
-          END IF
           GA = TCS(J)*QY - TSN(J)*QX - BL(J)
           GB = TCS(J1)*QY - TSN(J1)*QX - BL(J1)
           IF (GA*GB .GT. 0.0D0) GO TO 50
@@ -241,6 +251,7 @@ C     the direction of q (|G + lateral| <= |q| sin|psi - phq|)
             TN = 0.5D0*(TL+TH)
             IF (GT .NE. 0.0D0) TN = T - G/GT
             IF (TN .LE. TL .OR. TN .GE. TH) TN = 0.5D0*(TL+TH)
+            IF (ABS(TN-T) .LE. 1.0D-13) GO TO 45
             T = TN
    40     CONTINUE
    45     D2 = (PX-XX)**2 + (PY-XY)**2
@@ -293,6 +304,27 @@ C       trial direction
       OUT(9) = 1.0D0
       OUT(10) = BEST*PRESS
       OUT(11) = BPS
+      RETURN
+      END
+C
+      SUBROUTINE ASPFRC(PRESS,PSI,PX,PY,NCLAMP)
+C     the force per unit normal load for sliding along PSI (law frame)
+      IMPLICIT NONE
+      INTEGER NCLAMP
+      DOUBLE PRECISION PRESS,PSI,PX,PY,OUT(12)
+      CALL ASPLAW(1,PRESS,PSI,0.0D0,OUT,NCLAMP)
+      PX = OUT(1)
+      PY = OUT(2)
+      RETURN
+      END
+C
+      SUBROUTINE ASPRAD(PRESS,PHI,R,NCLAMP)
+C     the distance to the boundary of C along the ray PHI (law frame)
+      IMPLICIT NONE
+      INTEGER NCLAMP
+      DOUBLE PRECISION PRESS,PHI,R,OUT(12)
+      CALL ASPLAW(2,PRESS,PHI,0.0D0,OUT,NCLAMP)
+      R = OUT(1)
       RETURN
       END
 C
@@ -421,7 +453,20 @@ def table_arrays(psi: np.ndarray, p: np.ndarray, pressures=None) -> dict:
     lnp = np.log(np.asarray(pressures, dtype=float)) if pressures is not None else np.zeros(1)
     return {"N": psi.size, "L": levels, "TPSI": psi, "TCS": c, "TSN": s,
             "TPX": p[:, :, 0].ravel(), "TPY": p[:, :, 1].ravel(), "TLAT": lat.ravel(),
-            "TPHI": phi.ravel(), "TLMX": np.abs(lat).max(axis=1), "TLNP": lnp}
+            "TPHI": phi.ravel(), "TLNP": lnp, **_blocks(lat)}
+
+
+def _blocks(lat: np.ndarray) -> dict:
+    """Bounds of the lateral force over blocks of NB nodes (a block's segments run from its
+    first node to the first node of the next block)."""
+    levels, n = lat.shape
+    nbk = -(-n // BLOCK)
+    lo, hi = np.empty((levels, nbk)), np.empty((levels, nbk))
+    for ib in range(nbk):
+        idx = np.append(np.arange(ib * BLOCK, min((ib + 1) * BLOCK, n)), min((ib + 1) * BLOCK, n) % n)
+        lo[:, ib] = lat[:, idx].min(axis=1)
+        hi[:, ib] = lat[:, idx].max(axis=1)
+    return {"NB": BLOCK, "NBK": nbk, "TBLO": lo.ravel(), "TBHI": hi.ravel()}
 
 
 def law_source(table, comment: str = "") -> str:
@@ -431,19 +476,20 @@ def law_source(table, comment: str = "") -> str:
         arr = table_arrays(table.psi, table.p, table.pressures)
     else:
         arr = table_arrays(table.psi, table.p)
-    n, levels = arr["N"], arr["L"]
+    n, levels, nbk = arr["N"], arr["L"], arr["NBK"]
     lines = ["      SUBROUTINE ASPLAW(IOP,PRESS,X,Y,OUT,NCLAMP)",
              "C     the friction law's table (asperity): see ASPW"]
     lines += [f"C     {c}" for c in comment.splitlines()]
     lines += ["      IMPLICIT NONE",
-              "      INTEGER IOP,NCLAMP,I,N,L",
-              f"      PARAMETER (N={n},L={levels})",
+              "      INTEGER IOP,NCLAMP,I,N,L,NB,NBK",
+              f"      PARAMETER (N={n},L={levels},NB={arr['NB']},NBK={nbk})",
               "      DOUBLE PRECISION PRESS,X,Y,OUT(12),TPSI(N),TCS(N),TSN(N),",
-              "     1 TPX(N*L),TPY(N*L),TLAT(N*L),TPHI(N*L),TLMX(L),TLNP(L)",
-              "      SAVE TPSI,TCS,TSN,TPX,TPY,TLAT,TPHI,TLMX,TLNP"]
-    for name in ("TPSI", "TCS", "TSN", "TPX", "TPY", "TLAT", "TPHI", "TLMX", "TLNP"):
+              "     1 TPX(N*L),TPY(N*L),TLAT(N*L),TPHI(N*L),TLNP(L),TBLO(NBK*L),",
+              "     2 TBHI(NBK*L)",
+              "      SAVE TPSI,TCS,TSN,TPX,TPY,TLAT,TPHI,TLNP,TBLO,TBHI"]
+    for name in ("TPSI", "TCS", "TSN", "TPX", "TPY", "TLAT", "TPHI", "TLNP", "TBLO", "TBHI"):
         lines += data_lines(name, arr[name])
     lines += ["      CALL ASPW(IOP,PRESS,X,Y,OUT,NCLAMP,N,L,TPSI,TCS,TSN,",
-              "     1 TPX,TPY,TLAT,TPHI,TLMX,TLNP)",
+              "     1 TPX,TPY,TLAT,TPHI,TLNP,NB,NBK,TBLO,TBHI)",
               "      RETURN", "      END", "C"]
     return "\n".join(lines) + "\n" + WORKER

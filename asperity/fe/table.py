@@ -204,7 +204,8 @@ def _checked(gl, psi, p, tol, edges) -> LawTable:
         raise TableError(
             f"law table: {psi.size} nodes cannot hold the {what} within {tol:g} at "
             f"{bad.size} directions, from {bad.min():.4f} to {bad.max():.4f} deg (largest "
-            f"error {max(err.max(), rerr.max()):.3g}; the law's force jumps there)")
+            f"error {max(err.max(), rerr.max()):.3g}: the force changes faster there than "
+            f"{MAX_NODES} nodes can follow, or jumps)")
     psi.setflags(write=False)
     p.setflags(write=False)
     return LawTable(psi, p, float(err.max()), float(rerr.max()))
