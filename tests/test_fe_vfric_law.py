@@ -172,3 +172,29 @@ def test_family_member_blend_and_clamp_follow_each_nodes_pressure(routine):
             if not near.any():
                 assert ft[:, k] == pytest.approx(ref, abs=TOL * fn[k]), (k, phi)
         assert sv[0].tolist() == clamped
+
+
+@pytest.mark.parametrize("routine", ["vfric", "vfriction"])
+def test_2d_sliding_meets_mu_plus_and_mu_minus(routine):
+    """2D (nDir = 2, nFricDir = 1), the law's +x along global x: a secondary node
+    sliding towards +x over the textured main surface meets mu+ = p(0).x, towards -x
+    mu- = -p(180).x; with the texture on the secondary surface the two swap."""
+    gl = LAWS["ellipse"]
+    lib = library(routine_source(gl, routine))
+    mu_p = gl.force(np.array([0.0])).p[0, 0]
+    mu_m = -gl.force(np.array([math.pi])).p[0, 0]
+    assert abs(mu_p - mu_m) > 0.005                          # an asymmetric law
+    fn = np.array([10.0, 10.0])
+    sl = np.array([[1.0, 0.0], [-1.0, 0.0]]).T
+    nrm = np.array([[0.0, 1.0], [0.0, 1.0]]).T
+    for side, expect in ((1.0, [mu_p, mu_m]), (-1.0, [mu_m, mu_p])):
+        kw = {"fnormal": fn, "fstick": 1e3 * fn, "dircos_sl": sl, "dircos_n": nrm,
+              "props": [1.0, 0.0, 0.0, side]}
+        if routine == "vfric":
+            ft = call_vfric(lib, statev=np.zeros((2, 2)), jconslvid=[2, 1],
+                            area=[1e-5, 1e-5], **kw)["fTangential"]
+        else:
+            ft = call_vfriction(lib, state=np.zeros((2, 1, 2)), area=[1e-5, 1e-5],
+                                **kw)["fTangential"]
+        assert ft.shape == (1, 2)
+        assert ft[0] == pytest.approx(-fn * np.array(expect), abs=TOL * 10.0)
