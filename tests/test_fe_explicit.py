@@ -150,8 +150,8 @@ def test_vfric_writes_only_the_state_variables_that_exist():
 
 
 def test_vfric_2d_gives_mu_plus_and_mu_minus():
-    """2D (nDir = 2, nFricDir = 1): the law's +x along the global x; sliding towards +x
-    on a textured main surface meets mu_a+ along t_a... here the law's p(0) and p(180)."""
+    """2D (nDir = 2, nFricDir = 1), the law's +x along global x, texture on the main
+    surface: sliding towards +x meets |p(0).x|, towards -x |p(180).x|."""
     fn, fs = 10.0, 100.0
     for t1, psi in (([1.0, 0.0], 0.0), ([-1.0, 0.0], math.pi)):
         got = call_vfric(lib("vfric"), fnormal=[fn], fstick=[fs],
