@@ -61,7 +61,7 @@ def coulomb_fric(mu_plus: float, mu_minus: float) -> str:
             GO TO 90
          END IF
          STK = 0.0D0
-         DSLIP(1) = DGAM(1) - (TAU(1) - (TTR(1) - AK*DGAM(1)))/AK
+         DSLIP(1) = (TTR(1) - TAU(1))/AK
          DDTDDG(1,1) = 0.0D0
       ELSE
          TN = SQRT(TTR(1)**2 + TTR(2)**2)
@@ -73,6 +73,7 @@ def coulomb_fric(mu_plus: float, mu_minus: float) -> str:
          STK = 0.0D0
          DO 30 I = 1, 2
             TAU(I) = XMUP*PRESS*TTR(I)/TN
+            DSLIP(I) = (TTR(I) - TAU(I))/AK
             DDTDDP(I) = XMUP*TTR(I)/TN
             DO 20 J = 1, 2
                DDTDDG(I,J) = -XMUP*PRESS*AK*TTR(I)*TTR(J)/TN**3
@@ -89,47 +90,36 @@ def coulomb_fric(mu_plus: float, mu_minus: float) -> str:
 
 def ellipse_core(ap: float, am: float, bp: float, bm: float, theta: float = 0.0,
                  p_lo: float = 0.0, p_hi: float = 1e30) -> str:
-    """ASPFRC(PRESS, PSI, PX, PY, NCLAMP) and ASPRAD(PRESS, PHI, R, NCLAMP) of the
-    associated truncated ellipse with semi-axes ap/am along +-t_a, bp/bm along +-t_b,
-    t_a at ``theta`` rad in the law frame (double precision, explicit declarations).
-    NCLAMP = 1 when PRESS lies outside [p_lo, p_hi] (as a family's pressures would be)."""
+    """ASPLAW(IOP, PRESS, X, Y, OUT, NCLAMP) for IOP = 1 (the force OUT(1:2) for sliding
+    along X rad) and IOP = 2 (the radial function OUT(1) of C at X) of the associated
+    truncated ellipse with semi-axes ap/am along +-t_a, bp/bm along +-t_b, t_a at
+    ``theta`` rad in the law frame. NCLAMP = 1 when PRESS lies outside [p_lo, p_hi] (as
+    a family's pressures would be)."""
     consts = "".join(f"      PARAMETER ({k}={_d(v)})\n" for k, v in
                      (("AP", ap), ("AM", am), ("BP", bp), ("BM", bm), ("TH", theta),
                       ("PLO", p_lo), ("PHI", p_hi)))
-    return f"""      SUBROUTINE ASPFRC(PRESS, PSI, PX, PY, NCLAMP)
+    return f"""      SUBROUTINE ASPLAW(IOP, PRESS, X, Y, OUT, NCLAMP)
       IMPLICIT NONE
-      DOUBLE PRECISION PRESS, PSI, PX, PY, A, B, C, S, Q, XL, YL
+      INTEGER IOP, NCLAMP
+      DOUBLE PRECISION PRESS, X, Y, OUT(12), A, B, C, S, Q, XL, YL
       DOUBLE PRECISION AP, AM, BP, BM, TH, PLO, PHI
-      INTEGER NCLAMP
 {consts}      NCLAMP = 0
-      C = COS(PSI - TH)
-      S = SIN(PSI - TH)
+      IF (PRESS .LT. PLO .OR. PRESS .GT. PHI) NCLAMP = 1
+      C = COS(X - TH)
+      S = SIN(X - TH)
       A = AP
       IF (C .LT. 0.0D0) A = AM
       B = BP
       IF (S .LT. 0.0D0) B = BM
+      IF (IOP .EQ. 2) THEN
+         OUT(1) = 1.0D0/SQRT((C/A)**2 + (S/B)**2)
+         RETURN
+      END IF
       Q = SQRT((A*C)**2 + (B*S)**2)
       XL = A*A*C/Q
       YL = B*B*S/Q
-      PX = XL*COS(TH) - YL*SIN(TH)
-      PY = XL*SIN(TH) + YL*COS(TH)
-      IF (PRESS .LT. PLO .OR. PRESS .GT. PHI) NCLAMP = 1
-      RETURN
-      END
-      SUBROUTINE ASPRAD(PRESS, ANG, R, NCLAMP)
-      IMPLICIT NONE
-      DOUBLE PRECISION PRESS, ANG, R, A, B, C, S
-      DOUBLE PRECISION AP, AM, BP, BM, TH, PLO, PHI
-      INTEGER NCLAMP
-{consts}      NCLAMP = 0
-      C = COS(ANG - TH)
-      S = SIN(ANG - TH)
-      A = AP
-      IF (C .LT. 0.0D0) A = AM
-      B = BP
-      IF (S .LT. 0.0D0) B = BM
-      R = 1.0D0/SQRT((C/A)**2 + (S/B)**2)
-      IF (PRESS .LT. PLO .OR. PRESS .GT. PHI) NCLAMP = 1
+      OUT(1) = XL*COS(TH) - YL*SIN(TH)
+      OUT(2) = XL*SIN(TH) + YL*COS(TH)
       RETURN
       END
 """

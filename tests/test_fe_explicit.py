@@ -18,7 +18,7 @@ import pytest
 from fe_builds import library, needs_gfortran
 from fe_standin import ellipse_core
 
-from asperity.fe.abaqus_explicit import explicit_source
+from asperity.fe.abaqus_explicit import source
 from asperity.fe.fortran_harness import call_vfric, call_vfriction
 from asperity.laws.sets import TruncatedEllipse
 
@@ -31,7 +31,7 @@ CORE = ellipse_core(*AXES.values(), p_lo=P_LO, p_hi=P_HI)
 
 
 def lib(routine, precision="double"):
-    return library(explicit_source(routine, CORE, ["stand-in core"]), precision)
+    return library(source(routine) + CORE, precision)
 
 
 def reference(props, t1, n, fn, fs):
@@ -150,8 +150,8 @@ def test_vfric_writes_only_the_state_variables_that_exist():
 
 
 def test_vfric_2d_gives_mu_plus_and_mu_minus():
-    """2D (nDir = 2, nFricDir = 1): the law's +x along the global x; sliding towards +x
-    on a textured main surface meets mu_a+ along t_a... here the law's p(0) and p(180)."""
+    """2D (nDir = 2, nFricDir = 1), the law's +x along global x, texture on the main
+    surface: sliding towards +x meets |p(0).x|, towards -x |p(180).x|."""
     fn, fs = 10.0, 100.0
     for t1, psi in (([1.0, 0.0], 0.0), ([-1.0, 0.0], math.pi)):
         got = call_vfric(lib("vfric"), fnormal=[fn], fstick=[fs],

@@ -47,9 +47,11 @@ def add_parser(sub) -> None:
     p.add_argument("--abaqus", metavar="FILE.inp",
                    help="write an Abaqus *FRICTION, ANISOTROPIC block (symmetric orthotropic "
                         "approximation of the gauge's own law)")
+    from .law_fe import FE_OUTPUTS, add_fe_flags
+    add_fe_flags(p)
     p.set_defaults(func=main, outputs=[("--plot", "plot", True), ("--csv", "csv", False),
                                        ("--abaqus", "abaqus", False),
-                                       ("--output", "output", False)],
+                                       ("--output", "output", False), *FE_OUTPUTS],
                    inputs=["gauge"])
 
 
@@ -87,6 +89,7 @@ def run(args) -> dict:
     if args.plot:
         from ..laws.plot import plot_law
         plot_law(gl, args.plot)
+    _abaqus_user(args, gl, obj, how)
     return gl, obj
 
 
@@ -120,7 +123,19 @@ def _family(args, fam):
         write_text_atomic(args.abaqus, R.family_abaqus(fam))
     if args.plot:
         R.plot_family(fam, args.plot)
-    return fam, R.family_summary(fam)
+    obj = R.family_summary(fam)
+    _abaqus_user(args, fam, obj, None)
+    return fam, obj
+
+
+def _abaqus_user(args, gauge, obj, how) -> None:
+    """--fric / --vfric / --vfriction / --abaqus-user: the routines, in ``obj["abaqus_user"]``."""
+    from .law_fe import write_fe
+    src = args.gauge or "--mu-f/--mu-b/--mu-t"
+    what = f"{src} ({gauge.kind})" + (f" at {args.pressure:g} Pa" if how else "")
+    done = write_fe(args, gauge, what)
+    if done is not None:
+        obj["abaqus_user"] = done
 
 
 def main(args) -> int:
@@ -130,6 +145,8 @@ def main(args) -> int:
                (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot"),
                 ("output", "gauge file"))
                if getattr(args, flag)]
+    from .law_fe import written
+    outputs += written(args)
     stream = sys.stderr if any(v == "-" for _, v in outputs) else sys.stdout
 
     def say(text):

@@ -1,5 +1,6 @@
 """Fortran text of the Abaqus/Explicit wrappers VFRIC (contact pairs) and VFRICTION
-(general contact) around the generated law-frame core (``ASPFRC``, ``ASPRAD``).
+(general contact) around the generated law-frame core (``ASPLAW``: IOP = 1 the force for
+a sliding direction, IOP = 2 the radial function of C; :mod:`asperity.fe.fortran_core`).
 
 Per contact point: the local frame is t1 = dirCosSl (the slip direction of this
 increment), n = dirCosN (the main surface's normal), t2 = n x t1 (3D; nFricDir = 1 in 2D).
@@ -108,9 +109,10 @@ C
 BODY = """\
 C
       double precision dpr, dth, dphi, drad, dpx, dpy, dfx, dfy, da1,
-     1 da2, dc, ds, dfs, dfn, df1, df2, dpi
+     1 da2, dc, ds, dfs, dfn, df1, df2, dpi, dout(12), dzero
       integer nclamp, lstick
       parameter (dpi = 3.141592653589793238D0)
+      dzero = 0.0D0
 C
       do 100 k = 1, {n}
          fTangential(1,k) = 0
@@ -143,14 +145,17 @@ C        node along t1 (texture on main), or the main surface along -t1
          if (nProps .ge. 4) side = props(4)
          dphi = -dth
          if (side .lt. 0) dphi = dpi - dth
-         call aspRad(dpr, dphi, drad, nclamp)
+         call asplaw(2, dpr, dphi, dzero, dout, nclamp)
+         drad = dout(1)
          if (dfs .le. dfn*drad) then
             lstick = 1
             df1 = -dfs
             df2 = 0.0D0
          else
             lstick = 0
-            call aspFrc(dpr, dphi, dpx, dpy, nclamp)
+            call asplaw(1, dpr, dphi, dzero, dout, nclamp)
+            dpx = dout(1)
+            dpy = dout(2)
             dfx = -dfn*dpx
             dfy = -dfn*dpy
             if (side .lt. 0) then
@@ -175,28 +180,36 @@ C        node along t1 (texture on main), or the main surface along -t1
 """
 
 
-def _comment(lines) -> str:
-    return "".join(("C " + x).rstrip()[:72] + "\n" if x else "C\n" for x in lines)
-
-
-def explicit_wrapper(routine: str, header_lines=()) -> str:
-    """The VFRIC (``routine`` = "vfric") or VFRICTION ("vfriction") subroutine text, with
-    ``header_lines`` as its leading comment block (each at most 70 characters). The core
-    (ASPFRC, ASPRAD) must be appended to make a self-contained file."""
+def source(routine: str) -> str:
+    """The VFRIC (``routine`` = "vfric") or VFRICTION ("vfriction") subroutine text; the
+    law's ASPLAW and core must follow it to make a self-contained file."""
     if routine == "vfric":
         body = BODY.format(n="nContact", jn="jConSlvid(k)", area="areaSlv(jn)",
                            sl="dirCosSl", cn="dirCosN", sv1="statev(1,jn)",
                            sv2="statev(2,jn)").replace("nStates", "nStateVar")
-        head = VFRIC_HEAD
-    elif routine == "vfriction":
-        body = BODY.format(n="nBlock", jn="k", area="areaCont(k)", sl="dircosSl",
-                           cn="dircosN", sv1="state(1,1,k)", sv2="state(2,1,k)")
-        head = VFRICTION_HEAD
-    else:
-        raise ValueError(f"routine must be vfric or vfriction, got {routine!r}")
-    return _comment(header_lines) + head + body
+        return VFRIC_HEAD + body
+    if routine == "vfriction":
+        return VFRICTION_HEAD + BODY.format(n="nBlock", jn="k", area="areaCont(k)",
+                                            sl="dircosSl", cn="dircosN", sv1="state(1,1,k)",
+                                            sv2="state(2,1,k)")
+    raise ValueError(f"routine must be vfric or vfriction, got {routine!r}")
+
+
+def _comment(lines) -> str:
+    """Comment lines ``C text``, wrapped within 72 columns."""
+    out = []
+    for text in lines:
+        text = text.rstrip()
+        while len(text) > 70:
+            cut = text.rfind(" ", 0, 70)
+            cut = cut if cut > 20 else 70
+            out.append("C " + text[:cut])
+            text = "   " + text[cut:].lstrip()
+        out.append("C " + text if text else "C")
+    return "".join(x + "\n" for x in out)
 
 
 def explicit_source(routine: str, core: str, header_lines=()) -> str:
-    """A self-contained routine file: the wrapper, then the law-frame core."""
-    return explicit_wrapper(routine, header_lines) + core
+    """A self-contained routine file: ``header_lines`` as comments, the wrapper, then the
+    law's table and core ``core`` (the text of :func:`asperity.fe.fortran_core.law_source`)."""
+    return _comment(header_lines) + source(routine) + core

@@ -94,5 +94,8 @@ def newton_increment(fric, state: ContactState, u_start, B, press, residual, *,
         if norm <= tol:
             out.u, out.state = u, new
             return out
-        u = u - np.linalg.solve(J, R)
+        try:
+            u = u - np.linalg.solve(J, R)
+        except np.linalg.LinAlgError:                  # e.g. every point sliding at once
+            u = u - np.linalg.lstsq(J, R, rcond=None)[0]
     raise NotConverged(f"no convergence in {max_iter} iterations: |R| = {out.residuals}")

@@ -1,0 +1,147 @@
+"""``asperity law GAUGE --fric/--vfric/--vfriction FILE.f --abaqus-user FILE.inp`` (issue
+27, items 1 and 2): self-contained fixed-form files that gfortran compiles against the
+include stand-ins (72 columns enforced), a header holding the deck lines that
+--abaqus-user writes, the JSON record of what was written, and bad input in one line
+with nothing written."""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cli_run import run, run_json
+from fe_builds import library, needs_gfortran
+from law_families import four_members
+
+from asperity import derive, fit_derivation, write_gauge
+from asperity.fe.fortran_harness import call_fric
+from asperity.texture.wedges import WedgeTexture
+
+ROUTINES = ("fric", "vfric", "vfriction")
+
+
+@pytest.fixture(scope="module")
+def star_gauge(tmp_path_factory):
+    path = tmp_path_factory.mktemp("gauge") / "star.json"
+    d = derive(WedgeTexture(30.0, 10.0, 0.1, 0.2), n_directions=360)
+    write_gauge(path, fit_derivation(d, "star"))
+    return path
+
+
+def routine_files(tmp_path):
+    return {r: tmp_path / f"{r}.f" for r in ROUTINES}
+
+
+def test_writes_three_routines_and_the_deck(star_gauge, tmp_path, capsys):
+    files = routine_files(tmp_path)
+    deck = tmp_path / "deck.inp"
+    d = run_json(capsys, "law", star_gauge, *(x for r in ROUTINES for x in
+                                              (f"--{r}", files[r])), "--abaqus-user", deck)
+    rec = d["abaqus_user"]
+    assert rec["table_nodes"] >= 360 and 0.0 <= rec["max_table_error"] <= 1e-4
+    assert [x["routine"] for x in rec["routines"]] == ["FRIC", "VFRIC", "VFRICTION"]
+    assert all(0.0 < x["seconds"] < 60.0 for x in rec["routines"])
+    assert rec["deck"]["routines"] == ["FRIC", "VFRIC", "VFRICTION"]
+    inp = deck.read_text()
+    for line in ("*FRICTION, USER, DEPVAR=3, PROPERTIES=3",
+                 "*FRICTION, USER, DEPVAR=2, PROPERTIES=4",
+                 "*FRICTION, USER=FRICTION, DEPVAR=2, PROPERTIES=4",
+                 "*CONTACT PAIR, INTERACTION=TEXTURED", "*CONTACT PROPERTY ASSIGNMENT",
+                 "*CONTACT FORMULATION, TYPE=PURE MASTER-SLAVE", "** *STEP, UNSYMM=YES"):
+        assert line in inp.splitlines()
+    for r, path in files.items():
+        text = path.read_text()
+        code = [x for x in text.splitlines() if x and x[0] not in "Cc*!"]
+        assert max(len(x) for x in code) <= 72
+        assert re.search(r"^      SUBROUTINE " + r.upper() + r"\(", text, re.IGNORECASE | re.MULTILINE)
+        inc = "INCLUDE 'ABA_PARAM.INC'" if r == "fric" else "include 'vaba_param.inc'"
+        assert inc in text
+        block = text.split("C Input deck:\n")[1].split("\nC\n")[0]
+        header = [x[4:] for x in block.splitlines()]
+        section = next(x for x in inp.split("\n**\n") if f"user subroutine {r.upper()}" in x)
+        assert header == section.splitlines()
+        assert "State variables" in text and "Assumptions:" in text
+
+
+@needs_gfortran
+@pytest.mark.parametrize("routine", ROUTINES)
+def test_written_routine_compiles_in_double_and_single(star_gauge, tmp_path, capsys, routine):
+    path = tmp_path / f"{routine}.f"
+    code, _, err = run(capsys, "law", star_gauge, f"--{routine}", path)
+    assert code == 0, err
+    library(path.read_text())
+    if routine != "fric":
+        library(path.read_text(), "single")
+
+
+@needs_gfortran
+def test_written_fric_slides_at_the_laws_force(star_gauge, tmp_path, capsys):
+    """The command's FRIC, driven far along local direction 1 (law turned by PROPS(2)
+    = 30 deg), gives PRESS p(-30 deg) as `asperity law --psi -30` prints it."""
+    path = tmp_path / "fric.f"
+    assert run(capsys, "law", star_gauge, "--fric", path)[0] == 0
+    lib = library(path.read_text())
+    ref = run_json(capsys, "law", star_gauge, "--psi", "-30")["p"]
+    out = call_fric(lib, lm=0, tau=[0.0, 0.0], statev=np.zeros(3), dgam=[1.0, 0.0],
+                    press=2.0, props=[1e6, 30.0, 1.0], nfdir=2)
+    c, s = np.cos(np.radians(30.0)), np.sin(np.radians(30.0))
+    expect = 2.0 * np.array([c * ref[0] - s * ref[1], s * ref[0] + c * ref[1]])
+    assert out.tau == pytest.approx(expect, abs=2e-4)
+    assert out.statev[2] == 1.0
+
+
+def test_family_routine_reports_its_levels(tmp_path, capsys):
+    gauge = tmp_path / "family.json"
+    write_gauge(gauge, four_members())
+    d = run_json(capsys, "law", gauge, "--vfric", tmp_path / "v.f")
+    levels = d["abaqus_user"]["table_pressure_levels_Pa"]
+    assert levels[0] == 1e6 and levels[-1] == 5e7 and levels == sorted(levels)
+    assert "pressure levels" in (tmp_path / "v.f").read_text()
+
+
+def bad(capsys, tmp_path, *argv):
+    before = set(tmp_path.rglob("*"))
+    code, out, err = run(capsys, "law", *argv)
+    assert code == 1 and out == ""
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert set(tmp_path.rglob("*")) == before, "nothing may be written"
+    return err
+
+
+def test_bad_input_is_one_line_and_writes_nothing(star_gauge, tmp_path, capsys):
+    f = tmp_path / "out.f"
+    err = bad(capsys, tmp_path, tmp_path / "missing.json", "--fric", f)
+    assert "missing.json" in err
+    broken = tmp_path / "broken.json"
+    broken.write_text("{not json")
+    err = bad(capsys, tmp_path, broken, "--vfric", f, "--abaqus-user", tmp_path / "d.inp")
+    assert "broken.json" in err
+    err = bad(capsys, tmp_path, star_gauge, "--fric", tmp_path / "no" / "such" / "x.f")
+    assert "--fric" in err
+    copy = tmp_path / "g.json"
+    copy.write_text(Path(star_gauge).read_text())
+    err = bad(capsys, tmp_path, copy, "--vfriction", copy)
+    assert "--vfriction" in err
+    assert json.loads(copy.read_text())
+
+
+def test_a_table_that_cannot_meet_the_bound_names_directions(star_gauge, tmp_path, capsys,
+                                                               monkeypatch):
+    """The table refuses a bound it cannot meet; the command says so in one line and
+    writes none of its files (a bound of 1e-9 with at most 400 nodes stands in for a
+    law whose 1e-4 table cannot be built)."""
+    import asperity.fe.abaqus_fric as A
+    import asperity.fe.table as T
+    monkeypatch.setattr(T, "MAX_NODES", 400)
+    monkeypatch.setattr(A, "law_table_of", lambda g, tol=1e-4: T.law_table(g, 1e-9))
+    err = bad(capsys, tmp_path, star_gauge, "--fric", tmp_path / "a.f", "--abaqus-user",
+              tmp_path / "a.inp")
+    assert "cannot hold the force within 1e-09" in err and " deg " in err
+
+
+def test_conventions_figure_draws(tmp_path):
+    from asperity.fe.conventions_figure import draw
+    path = draw(str(tmp_path / "conventions.png"))
+    assert (tmp_path / "conventions.png").stat().st_size > 20_000 and path.endswith(".png")
