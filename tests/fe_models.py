@@ -8,7 +8,7 @@ from functools import partial
 import numpy as np
 
 from asperity.fe.fortran_harness import call_fric
-from asperity.fe.implicit_driver import ContactState, newton_increment
+from asperity.fe.implicit_driver import ContactState, newton_increment, two_node_cycles  # noqa: F401
 
 
 def fric_of(lib, props, nfdir, **kw):
@@ -34,28 +34,3 @@ def spring_driven_point(fric, w_path, ks, press: float, nfdir: int = 2, nstatv: 
         state, u = res.state, res.u
         out.append(res)
     return out
-
-
-def two_node_cycles(fric, *, k, l0, alpha_T, k_t, N, dT_min, dT_max, cycles: int = 4,
-                    steps: int = 6, nstatv: int = 4):
-    """The two-node bar (stiffness k, length l0, expansion alpha_T) on two contact points
-    (area 1, pressure N, FRIC's PROPS(1) = k_t) through ``cycles`` thermal cycles
-    dT_min -> dT_max -> dT_min, ``steps`` increments each way. Returns the mean node
-    displacement at the end of each cycle (m) and the Newton iterations per increment."""
-    state = ContactState.fresh(2, 1, nstatv)
-    u = np.zeros(2)
-    B = np.array([[[1.0, 0.0]], [[0.0, 1.0]]])
-    K = k * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    ends, iterations = [], []
-    ramp = np.linspace(dT_min, dT_max, steps + 1)[1:]
-    path = np.r_[ramp, ramp[::-1][1:], dT_min]
-    for _ in range(cycles):
-        for dT in path:
-            def residual(x, dT=dT):
-                T = k * (x[1] - x[0] - alpha_T * l0 * dT)        # tension of the bar
-                return np.array([-T, T]), K
-            res = newton_increment(fric, state, u, B, [N, N], residual, tol=1e-10)
-            state, u = res.state, res.u
-            iterations.append(len(res.residuals))
-        ends.append(float(u.mean()))
-    return np.array(ends), iterations

@@ -20,7 +20,7 @@ from ..io import write_text_atomic
 
 #: the sections in report order: module of this package with ``section(folder) -> lines``
 SECTIONS = ("spec", "springs", "polar", "loading", "surfaces", "measured", "gauges", "moreau",
-            "bodies", "crawling", "microslip", "studies", "contact")
+            "bodies", "crawling", "microslip", "studies", "contact", "fe_abaqus")
 
 
 def _numbered(k: int, section: list[str]) -> list[str]:
