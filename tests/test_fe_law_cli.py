@@ -145,3 +145,23 @@ def test_conventions_figure_draws(tmp_path):
     from asperity.fe.conventions_figure import draw
     path = draw(str(tmp_path / "conventions.png"))
     assert (tmp_path / "conventions.png").stat().st_size > 20_000 and path.endswith(".png")
+
+
+def test_deck_lines_carry_the_models_properties(star_gauge, tmp_path, capsys):
+    deck, f = tmp_path / "deck.inp", tmp_path / "fric.f"
+    run_json(capsys, "law", star_gauge, "--fric", f, "--vfriction", tmp_path / "v.f",
+             "--abaqus-user", deck, "--slip-stiffness", "2.5e11", "--law-angle", "-30",
+             "--texture-side", "secondary", "--law-axis", "0", "1", "0.5")
+    lines = deck.read_text().splitlines()
+    fric = lines[lines.index("*FRICTION, USER, DEPVAR=3, PROPERTIES=3") + 1]
+    assert [float(x) for x in fric.split(",")] == [2.5e11, -30.0, -1.0]
+    vf = lines[lines.index("*FRICTION, USER=FRICTION, DEPVAR=2, PROPERTIES=4") + 1]
+    assert [float(x) for x in vf.split(",")] == [0.0, 1.0, 0.5, -1.0]
+    assert "placeholder" not in deck.read_text()
+    head = [ln[2:] for ln in f.read_text().splitlines() if ln.startswith("C ")]
+    assert "  2.5E+11, -30.0, -1.0" in head
+    for flags, name in ((("--slip-stiffness", "0"), "--slip-stiffness"),
+                        (("--law-angle", "400"), "--law-angle"),
+                        (("--law-axis", "0", "0", "0"), "--law-axis")):
+        err = bad(capsys, tmp_path, star_gauge, "--fric", tmp_path / "x.f", *flags)
+        assert name in err

@@ -34,17 +34,28 @@ EXPLICIT_PROPS = ("** props(1:3) the law's +x axis in global coordinates",
                   "**   the secondary (slave) surface")
 
 
-def deck_lines(routine: str, name: str = "TEXTURED") -> list[str]:
+def _g(x: float) -> str:
+    return f"{x:.6G}" if "." in f"{x:.6G}" or "E" in f"{x:.6G}" else f"{x:.6G}.0"
+
+
+def deck_lines(routine: str, name: str = "TEXTURED", props=None) -> list[str]:
     """The deck snippet for ``routine`` ("fric", "vfric" or "vfriction"): keyword lines,
-    ``**`` comment lines saying what to replace."""
+    ``**`` comment lines saying what to replace.  ``props``: {"stiffness": PROPS(1) or
+    None (a placeholder), "angle_deg": PROPS(2), "side": +1/-1, "axis": (x, y, z)}."""
+    pr = {"stiffness": None, "angle_deg": 0.0, "side": 1, "axis": (1.0, 0.0, 0.0),
+          **(props or {})}
+    side = _g(float(pr["side"]))
     if routine == "fric":
+        k = K_PLACEHOLDER if pr["stiffness"] is None else _g(pr["stiffness"])
         return [f"** {SOLVERS['fric']}: user subroutine FRIC",
                 f"*SURFACE INTERACTION, NAME={name}",
                 "*FRICTION, USER, DEPVAR=3, PROPERTIES=3",
-                f"{K_PLACEHOLDER}, 0.0, 1.0",
-                "** PROPS(1) elastic slip stiffness, stress per unit slip:",
-                "**   replace the placeholder (e.g. the friction stress over",
-                "**   the slip accepted before sliding)",
+                f"{k}, {_g(pr['angle_deg'])}, {side}",
+                *(["** PROPS(1) elastic slip stiffness, stress per unit slip:",
+                   "**   replace the placeholder (e.g. the friction stress over",
+                   "**   the slip accepted before sliding; --slip-stiffness)"]
+                  if pr["stiffness"] is None else
+                  ["** PROPS(1) elastic slip stiffness, stress per unit slip"]),
                 "** PROPS(2) angle (deg) from local slip direction 1 to the",
                 "**   law's +x axis",
                 "** PROPS(3) +1 texture on the main (master) surface, -1 on",
@@ -58,7 +69,7 @@ def deck_lines(routine: str, name: str = "TEXTURED") -> list[str]:
         return [f"** {SOLVERS['vfric']}: user subroutine VFRIC",
                 f"*SURFACE INTERACTION, NAME={name}",
                 "*FRICTION, USER, DEPVAR=2, PROPERTIES=4",
-                "1.0, 0.0, 0.0, 1.0",
+                ", ".join(_g(float(v)) for v in pr["axis"]) + f", {side}",
                 *EXPLICIT_PROPS,
                 f"*CONTACT PAIR, INTERACTION={name}",
                 "SECONDARY_SURFACE, MAIN_SURFACE"]
@@ -66,7 +77,7 @@ def deck_lines(routine: str, name: str = "TEXTURED") -> list[str]:
         return [f"** {SOLVERS['vfriction']}: user subroutine VFRICTION",
                 f"*SURFACE INTERACTION, NAME={name}",
                 "*FRICTION, USER=FRICTION, DEPVAR=2, PROPERTIES=4",
-                "1.0, 0.0, 0.0, 1.0",
+                ", ".join(_g(float(v)) for v in pr["axis"]) + f", {side}",
                 *EXPLICIT_PROPS,
                 "*CONTACT",
                 "*CONTACT INCLUSIONS, ALL EXTERIOR",
@@ -78,12 +89,12 @@ def deck_lines(routine: str, name: str = "TEXTURED") -> list[str]:
     raise ValueError(f"routine must be fric, vfric or vfriction, got {routine!r}")
 
 
-def deck_text(routines, name: str = "TEXTURED", what: str = "") -> str:
+def deck_text(routines, name: str = "TEXTURED", what: str = "", props=None) -> str:
     """The ``--abaqus-user`` file: the snippet of each routine in ``routines``."""
     lines = [("** Abaqus input-deck lines for the friction user routines written by "
              "asperity"), *(f"** {x}" for x in what.splitlines() if x)]
     for r in routines:
-        lines += ["**", *deck_lines(r, name)]
+        lines += ["**", *deck_lines(r, name, props)]
     return "\n".join(lines) + "\n"
 
 
@@ -124,13 +135,13 @@ def assumptions(routine: str) -> list[str]:
            "each contact point (node-to-face: nNodState = 1).")])]
 
 
-def header_lines(routine: str, what: str, name: str = "TEXTURED") -> list[str]:
+def header_lines(routine: str, what: str, name: str = "TEXTURED", props=None) -> list[str]:
     """The header comment of a generated routine (lines without the leading ``C``)."""
     state = FRIC_STATE if routine == "fric" else EXPLICIT_STATE
     var = "STATEV" if routine == "fric" else ("statev(i, node)" if routine == "vfric"
                                                else "state(i, 1, point)")
     out = [f"{routine.upper()} ({SOLVERS[routine]}) written by asperity", *what.splitlines(),
-           "", "Input deck:", *(f"  {x}" for x in deck_lines(routine, name)), "",
+           "", "Input deck:", *(f"  {x}" for x in deck_lines(routine, name, props)), "",
            f"State variables ({var}; each written only if DEPVAR provides it):",
            *(f"  {k}: {v}" for k, v in state), "", "Assumptions:"]
     for a in assumptions(routine):
