@@ -26,7 +26,8 @@ WEDGE = SURF / "wedge-asymmetric.toml"
 #: flags that take text (paths, names, addresses), not numbers
 TEXT_FLAGS = {"--friction-map", "--unit", "--plot", "--output", "--csv", "--abaqus", "--out",
               "--scan-dir", "--body", "--scheduler", "--map", "--export", "--host",
-              "--data-dir", "--save-pressure", "--gait", "--optimise", "--bounds"}
+              "--data-dir", "--save-pressure", "--gait", "--optimise", "--bounds",
+              "--fric", "--vfric", "--vfriction", "--abaqus-user"}
 #: flags typed as text whose value is a number (checked by the command: whole_flag)
 NUMERIC_METAVARS = {"N", "K", "W", "S", "STEPS"}
 PARSER = build_parser()
