@@ -12,8 +12,9 @@ use exactly that text.  Jobs (``task``):
   and tied in x by the bed (stiffness k_t per area in series with the slider of the
   macros ``asp_tx``), marched through the load history.  Also its elastic limit.
 * ``drag``: a square plate in plan view (the contact plane is the model plane), friction
-  as an area term (macro ``asp_t`` of the slip increment), dragged by one edge along each
-  direction; the pull force per unit normal load.
+  as an area term (macro ``asp_t`` of the slip increment, the law's table in the functions
+  ``asp_px``, ``asp_py``), dragged by one edge along each direction; the pull force per
+  unit normal load.
 
 The process dies with its parent (PR_SET_PDEATHSIG, and a thread watching the parent id).
 """
@@ -45,6 +46,12 @@ def _die_with_parent():
 def _macros(md, macros):
     for name, expr in macros:
         md.add_macro(name, expr)
+
+
+def _functions(gf, functions):
+    """The law's tables as GetFEM functions of one argument (compiled once)."""
+    for name, expr, der in functions:
+        gf.asm_define_function(name, 1, expr, der)
 
 
 def _elastic(gf, md, E, nu):
@@ -187,6 +194,7 @@ def run_drag(gf, np, job):
         md.add_initialized_data(k, v if isinstance(v, list) else [v])
     _elastic(gf, md, job["E"], job["nu"])
     md.add_macro("asp_du", "u - u_prev")
+    _functions(gf, job["functions"])
     _macros(md, job["macros"])
     md.add_nonlinear_term(mim, "sig:Grad_Test_u")
     md.add_nonlinear_term(mim, "-asp_t.Test_u")

@@ -15,8 +15,9 @@ GetFEM's own friction operators project on a Coulomb ball (isotropic), so an asy
   mu- = -p(180 deg).x = T(180 deg): the return mapping of one increment,
   clamp(kt (u - s0), -mu- p, mu+ p), written with pos_part.
 
-The file is ``name = expression`` lines (``#`` comments); :func:`parse_gwfl` reads it back,
-and the GetFEM runs (:mod:`.getfem_runner`) use exactly these macros.
+The file holds ``name(t) = expression`` / ``name'(t) = derivative`` lines (functions for
+``gf.asm_define_function``) and ``name = expression`` lines (macros), ``#`` comments;
+:func:`parse_gwfl` reads it back, and the GetFEM runs use exactly this text.
 """
 from __future__ import annotations
 
@@ -49,8 +50,11 @@ def _uniform_table(gl, tol):
     while True:
         psi = np.arange(n) * (2.0 * math.pi / n)
         p = np.asarray(gl.force(psi).p, float)
-        mid = np.asarray(gl.force(psi + math.pi / n).p, float)
-        err = np.abs(mid - 0.5 * (p + np.roll(p, -1, axis=0))).max(axis=1)
+        nxt = np.roll(p, -1, axis=0)
+        err = np.zeros(n)
+        for a in (0.25, 0.5, 0.75):            # inside every interval
+            mid = np.asarray(gl.force(psi + a * 2.0 * math.pi / n).p, float)
+            err = np.maximum(err, np.abs(mid - ((1 - a) * p + a * nxt)).max(axis=1))
         if err.max() <= tol:
             return psi, p
         if 2 * n > MAX_KNOTS:
@@ -66,10 +70,10 @@ def _num(x: float) -> str:
     return repr(float(x))
 
 
-def piecewise_linear(psi, f, var: str = "asp_psi") -> str:
-    """A periodic piecewise-linear function of ``var`` in (-pi, pi] through the knots
-    ``(psi, f)`` (one turn, any start) as ``f0 + b (t + pi) + sum c_k pos_part(t - t_k)``:
-    only pos_part, so its derivative is exact."""
+def piecewise_linear(psi, f, var: str = "t") -> tuple[str, str]:
+    """A periodic piecewise-linear function of ``var`` in [-pi, pi] through the knots
+    ``(psi, f)`` (one turn, any start) as ``f0 + b (t + pi) + sum c_k pos_part(t - t_k)``,
+    and its derivative ``b + sum c_k Heaviside(t - t_k)``: only pos_part, exact."""
     psi = np.asarray(psi, float)
     f = np.asarray(f, float)
     t = np.mod(psi + math.pi, 2.0 * math.pi) - math.pi          # knots in [-pi, pi)
@@ -86,22 +90,33 @@ def piecewise_linear(psi, f, var: str = "asp_psi") -> str:
     f = np.concatenate([f, [f_pi]])
     slopes = np.diff(f) / np.diff(t)
     terms = [_num(f[0]), f"{_num(slopes[0])}*({var}+{_num(math.pi)})"]
+    dterms = [_num(slopes[0])]
     for tk, c in zip(t[1:-1], np.diff(slopes)):
         if c != 0.0:
             terms.append(f"{_num(c)}*pos_part({var}-{_num(tk)})")
-    return " + ".join(terms).replace("+ -", "- ").replace("--", "+")
+            dterms.append(f"{_num(c)}*Heaviside({var}-{_num(tk)})")
+    return _tidy(" + ".join(terms)), _tidy(" + ".join(dterms))
 
 
-def plan_macros(gl, tol: float = TABLE_TOL) -> list[tuple[str, str]]:
-    """The plan-view vector law as (name, GWFL expression) macros: ``asp_t`` the support's
-    traction on the body for the slip increment ``asp_du`` under the pressure ``asp_p``."""
+def _tidy(expr: str) -> str:
+    return expr.replace("+ -", "- ").replace("--", "+")
+
+
+def plan_law(gl, tol: float = TABLE_TOL) -> dict:
+    """The plan-view vector law: ``functions`` (name, expression in t, derivative) for
+    ``gf.asm_define_function`` -- p_x and p_y of the sliding angle t -- and ``macros``
+    (name, expression): ``asp_t`` the support's traction on the body for the slip
+    increment ``asp_du`` under the pressure ``asp_p``.  The table sits in functions, which
+    GetFEM compiles once, not in the macros it compiles at every assembly."""
     psi, p = law_table(gl, tol)
-    return [("asp_psi", "atan2(asp_du(2), asp_du(1))"),
-            ("asp_px", piecewise_linear(psi, p[:, 0])),
-            ("asp_py", piecewise_linear(psi, p[:, 1])),
-            ("asp_slip", "sqrt(asp_du.asp_du)"),
-            ("asp_t", "-asp_p*asp_slip/sqrt(asp_slip*asp_slip + asp_eps*asp_eps)"
-                      "*[asp_px, asp_py]")]
+    fx, dfx = piecewise_linear(psi, p[:, 0])
+    fy, dfy = piecewise_linear(psi, p[:, 1])
+    return {"functions": [("asp_px", fx, dfx), ("asp_py", fy, dfy)],
+            "macros": [("asp_psi", "atan2(asp_du(2), asp_du(1))"),
+                       ("asp_slip", "sqrt(asp_du.asp_du)"),
+                       ("asp_t", "-asp_p*asp_slip/sqrt(asp_slip*asp_slip + asp_eps*asp_eps)"
+                                 "*[asp_px(asp_psi), asp_py(asp_psi)]")],
+            "knots": int(psi.size)}
 
 
 def strip_limits(gl) -> tuple[float, float]:
@@ -131,10 +146,11 @@ HEADER = """\
 # law: {law}
 # Units: SI (Pa, m); p(psi) is the force per unit normal load (SPEC.md 3), in the law's frame
 # ({frame}).  The texture is on the rigid support; the body slides over it.
-# Load: for name, expr in lines 'name = expr' (skip '#'): md.add_macro(name, expr)
+# Load (skip '#' lines): each pair 'NAME(t) = F' and "NAME'(t) = DF":
+#   gf.asm_define_function(NAME, 1, F, DF); each 'NAME = EXPR': md.add_macro(NAME, EXPR)
 #
-# 1. Plan view (contact plane = model plane, friction as an area term), macros asp_psi ..
-#    asp_t.  Expects: asp_du (the slip increment u - u_prev, a macro you define), asp_p
+# 1. Plan view (contact plane = model plane, friction as an area term): functions asp_px,
+#    asp_py of the sliding angle t in [-pi, pi] (p's components), macros asp_psi .. asp_t.  Expects: asp_du (the slip increment u - u_prev, a macro you define), asp_p
 #    (contact pressure, Pa), asp_eps (slip length of the regularisation, m, << the slip per
 #    increment).  Gives asp_t = -asp_p p(psi) |du|/sqrt(|du|^2 + asp_eps^2), the support's
 #    traction on the body (Pa); weak form: md.add_nonlinear_term(mim, '-asp_t.Test_u').
@@ -154,16 +170,19 @@ HEADER = """\
 
 
 def gwfl_text(gl, law_name: str, tol: float = TABLE_TOL) -> str:
-    """The ``--gwfl`` file: the header, the plan-view macros, the strip macros."""
+    """The ``--gwfl`` file: the header, the plan-view functions and macros, the strip
+    macros."""
     from .. import __version__
-    plan = plan_macros(gl, tol)
+    plan = plan_law(gl, tol)
     mp, mm = strip_limits(gl)
-    knots = plan[1][1].count("pos_part") + 2
     frame = ("psi from t_a towards t_b" if getattr(gl, "principal_direction_deg", 0.0) == 0.0
              else "psi from +x towards +y of the source")
     head = HEADER.format(version=__version__, law=" ".join(law_name.split()), frame=frame,
-                         knots=knots, tol=tol, mup=_mu(mp), mum=_mu(mm))
-    lines = [f"{k} = {v}" for k, v in plan + strip_macros(mp, mm)]
+                         knots=plan["knots"], tol=tol, mup=_mu(mp), mum=_mu(mm))
+    lines = []
+    for name, f, df in plan["functions"]:
+        lines += [f"{name}(t) = {f}", f"{name}'(t) = {df}"]
+    lines += [f"{k} = {v}" for k, v in plan["macros"] + strip_macros(mp, mm)]
     return head + "\n".join(lines) + "\n"
 
 
@@ -171,19 +190,32 @@ def _mu(x: float) -> str:
     return f"{x:.6g}" if math.isfinite(x) else "inf (self-locking)"
 
 
-def parse_gwfl(text: str) -> list[tuple[str, str]]:
-    """The (name, expression) macros of a ``--gwfl`` file."""
-    out = []
+def parse_gwfl(text: str) -> dict:
+    """``functions`` [(name, expression in t, derivative)] and ``macros`` [(name,
+    expression)] of a ``--gwfl`` file."""
+    funcs, ders, macros = {}, {}, []
     for i, line in enumerate(text.splitlines(), 1):
         s = line.strip()
         if not s or s.startswith("#"):
             continue
         name, eq, expr = s.partition("=")
-        if not eq or not name.strip().isidentifier() or not expr.strip():
-            raise InputError(f"GWFL file line {i}: expected 'name = expression', got "
-                             f"{s[:40]!r}")
-        out.append((name.strip(), expr.strip()))
-    return out
+        name, expr = name.strip(), expr.strip()
+        base = name[:-3] if name.endswith("(t)") else name
+        key = base.rstrip("'")
+        if not eq or not key.isidentifier() or not expr or base.count("'") > 1:
+            raise InputError(f"GWFL file line {i}: expected 'name = expression' or "
+                             f"'name(t) = expression', got {s[:40]!r}")
+        if name.endswith("'(t)"):
+            ders[key] = expr
+        elif name.endswith("(t)"):
+            funcs[key] = expr
+        else:
+            macros.append((name, expr))
+    missing = sorted(set(funcs) ^ set(ders))
+    if missing:
+        raise InputError(f"GWFL file: function {missing[0]} needs both {missing[0]}(t) and "
+                         f"{missing[0]}'(t)")
+    return {"functions": [(k, funcs[k], ders[k]) for k in funcs], "macros": macros}
 
 
 def write_gwfl(path, gl, law_name: str, tol: float = TABLE_TOL) -> str:
