@@ -26,7 +26,7 @@ _OK, _WHY = getfem_status()
 needs_getfem = pytest.mark.skipif(not _OK, reason=f"GetFEM unavailable: {_WHY}")
 
 #: a slender strip (h / l = 1/50, k_t h / G = 0.05): the chain's assumptions hold
-SLENDER = dict(h=2e-3, E=1e11, p=5e6, l=0.1, k_t=1e12, alpha_T=1e-5, n=401, nu=0.3)
+SLENDER = {"h": 2e-3, "E": 1e11, "p": 5e6, "l": 0.1, "k_t": 1e12, "alpha_T": 1e-5, "n": 401, "nu": 0.3}
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +41,7 @@ def ellipse():
 
 
 def _eval(expr: str, t):
-    return eval(expr, {"pos_part": lambda x: np.maximum(x, 0.0),     # noqa: S307
+    return eval(expr, {"pos_part": lambda x: np.maximum(x, 0.0),
                        "Heaviside": lambda x: (x >= 0).astype(float), "t": t})
 
 
@@ -85,7 +85,7 @@ def test_gwfl_strip_limits_are_the_law_along_x(star):
     assert mup != pytest.approx(mum, rel=1e-3), "the wedge must be asymmetric along x"
     # clamp(ttr, -mu- p, mu+ p) evaluated from the text: below, inside and above
     for ttr, want in ((-5.0, -mum), (0.01, 0.01), (5.0, mup)):
-        tx = eval(macros["asp_tx"], {"pos_part": lambda x: max(x, 0.0),  # noqa: S307
+        tx = eval(macros["asp_tx"], {"pos_part": lambda x: max(x, 0.0),
                                      "asp_ttr": ttr, "asp_p": 1.0})
         assert tx == pytest.approx(-want, rel=1e-12), "asp_tx is minus the clamped trial"
 
@@ -198,7 +198,7 @@ def test_fe_elastic_limit_is_the_shear_lag_closed_form(alpha_T, tmp_path, capsys
 ])
 def test_bad_fe_flags_one_line(argv, words, tmp_path, capsys):
     plot = tmp_path / "r.png"
-    code, out, err = run(capsys, "risk", _strip(tmp_path), *argv, "--plot", plot)
+    code, _out, err = run(capsys, "risk", _strip(tmp_path), *argv, "--plot", plot)
     assert code == 1 and words in err and len(err.strip().splitlines()) == 1
     assert not plot.exists() and "Traceback" not in err
 

@@ -44,7 +44,7 @@ def run_job(job: dict, timeout: float = TIMEOUT) -> dict:
     if not os.path.isfile(py) or not os.access(py, os.X_OK):
         raise GetfemUnavailable(INSTALL.format(py=py, why="no such interpreter"))
     try:
-        r = subprocess.run([py, "-I", str(SCRIPT)], input=json.dumps(job),
+        r = subprocess.run([py, "-I", str(SCRIPT)], check=False, input=json.dumps(job),
                            capture_output=True, text=True, timeout=timeout,
                            preexec_fn=preexec())
     except subprocess.TimeoutExpired:

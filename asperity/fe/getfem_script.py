@@ -115,9 +115,12 @@ def _bottom(np, mfs, l, nx):
 def _elastic_limit(gf, np, job, m):
     """dT_c of the FE model: the elastic response to dT = 1 K (no slip), then the smallest
     dT at which a bottom node's bed traction reaches mu+ p (slides +x) or mu- p (-x)."""
-    md, mfu, mfs, mim, mimN = _strip_model(gf, np, job, m, [("asp_tx", "-asp_kt*(u(1)-asp_s0)")])
+    elastic_bed = [("asp_tx", "-asp_kt*(u(1)-asp_s0)")]
+    md, _mfu, mfs, _mim, _mimN = _strip_model(gf, np, job, m, elastic_bed)
     md.set_variable("dT", [1.0])
-    md.solve("max_res", 1e-9 * job["p"] * job["l"], "max_iter", 5)
+    it, ok = md.solve("max_res", job["max_res"], "max_iter", 5)
+    if not ok:
+        raise RuntimeError(f"the elastic solve did not converge ({it} iterations)")
     dofs, x, _ = _bottom(np, mfs, job["l"], job["nx"])
     q = -md.interpolation("asp_tx", mfs, 1)[dofs]      # bed force on the support per K, Pa
     mup = job["mu_plus"] if job["mu_plus"] is not None else float("inf")
@@ -136,25 +139,43 @@ def run_strip(gf, np, job):
     out = {"elements": int(m.nbcvs()), "nodes": int(m.nbpts()),
            "elements_along_l": job["nx"], "elements_through_h": job["ny"]}
     out.update(_elastic_limit(gf, np, job, m))
-    md, mfu, mfs, mim, mimN = _strip_model(gf, np, job, m, job["macros"])
+    md, mfu, mfs, _mim, _mimN = _strip_model(gf, np, job, m, job["macros"])
     out["dofs"] = int(mfu.nbdof())
     dofs, x, w = _bottom(np, mfs, job["l"], job["nx"])
     res = job["max_res"]
     newton = incs = 0
     worst = 0
 
-    def step(dT, F):
-        nonlocal newton, incs, worst
+    state = {"dT": 0.0, "F": 0.0}
+    cuts = 0
+
+    def solve(dT, F, depth=0):
+        """One increment to (dT, F); halved (up to 10 times) when semismooth Newton
+        stalls on the slider's kinks."""
+        nonlocal newton, worst, cuts
+        u0 = md.variable("u").copy()
         md.set_variable("dT", [dT])
         md.set_variable("Fx", [F])
-        it, ok = md.solve("max_res", res, "max_iter", job["max_iter"], "lsearch", "simplest")
-        if not ok:
-            raise RuntimeError(f"Newton did not converge at dT = {dT:g} K (increment "
-                               f"{incs + 1}, {it} iterations)")
+        it, ok = md.solve("max_res", res, "max_iter", job["max_iter"], "lsearch", "basic")
         newton += int(it)
-        worst = max(worst, int(it))
+        if ok:
+            worst = max(worst, int(it))
+            md.set_variable("asp_s0", md.interpolation("u(1) + asp_tx/asp_kt", mfs, 1))
+            state.update(dT=dT, F=F)
+            return
+        if depth >= 10:
+            raise RuntimeError(f"Newton did not converge at dT = {dT:g} K (increment "
+                               f"{incs + 1}, {it} iterations, halved 10 times)")
+        cuts += 1
+        md.set_variable("u", u0)
+        a, b = state["dT"], state["F"]
+        solve(0.5 * (a + dT), 0.5 * (b + F), depth + 1)
+        solve(dT, F, depth + 1)
+
+    def step(dT, F):
+        nonlocal incs
+        solve(dT, F)
         incs += 1
-        md.set_variable("asp_s0", md.interpolation("u(1) + asp_tx/asp_kt", mfs, 1))
 
     def profile():
         return md.interpolation("u(1)", mfs, 1)[dofs]
@@ -173,7 +194,8 @@ def run_strip(gf, np, job):
                 "mean_u_m": [float(u @ w) for u in ends], "x_m": x.tolist(),
                 "u_end_m": ends[-1].tolist(), "cycles_run": len(drifts),
                 "increments": incs, "newton_iterations": newton,
-                "max_newton_per_increment": worst, "seconds": time.time() - t0})
+                "max_newton_per_increment": worst, "halvings": cuts,
+                "seconds": time.time() - t0})
     return out
 
 
@@ -235,8 +257,8 @@ def run_drag(gf, np, job):
 def main():
     _die_with_parent()
     try:
-        import numpy as np
         import getfem as gf
+        import numpy as np
     except ImportError as exc:
         print(json.dumps({"error": "import", "detail": str(exc)}))
         return 0
@@ -245,7 +267,7 @@ def main():
     task = job.get("task")
     try:
         if task == "probe":
-            out = {"getfem": getattr(gf, "__version__", "?"), "numpy": np.__version__}
+            out = {"getfem": gf.getfem_env("release"), "numpy": np.__version__}
         elif task == "strip":
             out = run_strip(gf, np, job)
         elif task == "drag":

@@ -114,8 +114,8 @@ def plan_law(gl, tol: float = TABLE_TOL) -> dict:
     return {"functions": [("asp_px", fx, dfx), ("asp_py", fy, dfy)],
             "macros": [("asp_psi", "atan2(asp_du(2), asp_du(1))"),
                        ("asp_slip", "sqrt(asp_du.asp_du)"),
-                       ("asp_t", "-asp_p*asp_slip/sqrt(asp_slip*asp_slip + asp_eps*asp_eps)"
-                                 "*[asp_px(asp_psi), asp_py(asp_psi)]")],
+                       ("asp_t", ("-asp_p*asp_slip/sqrt(asp_slip*asp_slip + asp_eps*asp_eps)"
+                                 "*[asp_px(asp_psi), asp_py(asp_psi)]"))],
             "knots": int(psi.size)}
 
 
@@ -200,7 +200,7 @@ def parse_gwfl(text: str) -> dict:
             continue
         name, eq, expr = s.partition("=")
         name, expr = name.strip(), expr.strip()
-        base = name[:-3] if name.endswith("(t)") else name
+        base = name.removesuffix("(t)")
         key = base.rstrip("'")
         if not eq or not key.isidentifier() or not expr or base.count("'") > 1:
             raise InputError(f"GWFL file line {i}: expected 'name = expression' or "

@@ -109,8 +109,9 @@ def chain_drift(asm, mu_plus, mu_minus, k_t=None, max_marched: int = 200) -> flo
     c = strip_chain(p["h"], p["E"], p["p"], p["l"], p["k_t"] if k_t is None else k_t,
                     p["alpha_T"], p["n"], mu_plus, mu_minus)
     if asm.force_at != "uniform":
-        import numpy as np
         from dataclasses import replace
+
+        import numpy as np
         fw = np.zeros(c.n)
         fw[0 if asm.force_at == "start" else -1] = 1.0
         c = replace(c, fw=fw)
@@ -147,7 +148,8 @@ def run_strip_fe(asm, mu_plus: float, mu_minus: float, *, mesh: int = MESH_DEFAU
            "first_slip_towards": r["first_slip_towards"],
            "nu": nu, "nu_from": nu_from}
     for k in ("elements", "elements_along_l", "elements_through_h", "nodes", "dofs",
-              "increments", "newton_iterations", "max_newton_per_increment", "cycles_run",
+              "increments", "newton_iterations", "max_newton_per_increment", "halvings",
+              "cycles_run",
               "drifts_m", "mean_u_m", "seconds"):
         out[k] = r[k]
     out["explanation"] = explain(out, p)
