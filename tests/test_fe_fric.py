@@ -1,0 +1,165 @@
+"""The generated Abaqus/Standard FRIC, compiled with gfortran and called through ctypes as
+Abaqus calls it, against ``asperity law --psi`` (``GaugeLaw.force``) and against itself:
+
+* steady sliding along 360 local directions stays on TAU = PRESS R(th) p(phi - th) (texture
+  on the main surface) or -PRESS R(th) p(phi + 180 - th) (secondary), for an asymmetric
+  ellipse, a star law, the windward star law with set-valued directions and the
+  componentwise law, at several angles PROPS(2);
+* sliding from rest reaches that force (laws without flat edges);
+* elastic stick, reversal (mu_a+ one way, mu_a- the other), NFDIR = 1;
+* DDTDDG and DDTDDP against central differences of the routine itself;
+* invariances: turning DGAM, TAU and PROPS(2) together turns the answer; scaling
+  PRESS, PROPS(1) and TAU together scales it; the side flip equals a half turn.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from fe_builds import needs_gfortran
+from fe_laws import fric_library, law, rot, steady_tau
+
+from asperity.fe.fortran_harness import call_fric
+
+pytestmark = needs_gfortran
+K, P = 1e10, 2e6                      # elastic slip stiffness (Pa/m), pressure (Pa)
+LAWS = ("ellipse", "star", "windward", "componentwise")
+
+
+def fric(name, tau, dgam, props=(K, 0.0, 1.0), press=P, nfdir=2, statev=(0.0, 0.0, 0.0)):
+    return call_fric(fric_library(name), lm=0, tau=np.atleast_1d(np.asarray(tau, float)),
+                     statev=np.asarray(statev, float), dgam=np.atleast_1d(dgam), press=press,
+                     props=np.asarray(props, float), nfdir=nfdir)
+
+
+@pytest.mark.parametrize("name", LAWS)
+@pytest.mark.parametrize("th_deg, side", [(0.0, 1), (30.0, 1), (-70.0, -1), (0.0, -1)])
+def test_steady_sliding_keeps_the_laws_force_in_360_directions(name, th_deg, side):
+    gl = law(name)
+    th = math.radians(th_deg)
+    worst = 0.0
+    for phi in np.radians(np.arange(360.0) + 0.5):
+        ref = steady_tau(gl, phi, th, side, P)
+        u = np.array([math.cos(phi), math.sin(phi)])
+        for dg in (1e-7, 1e-4):                       # 0.02 and 20 elastic slips
+            out = fric(name, ref, dg * u, (K, th_deg, side))
+            assert out.lm == 0
+            worst = max(worst, float(np.abs(out.tau - ref).max()) / P)
+            plastic = out.dslip
+            assert plastic @ u > 0.0                  # the plastic slip goes along the slip
+    assert worst < 1e-4
+
+
+@pytest.mark.parametrize("name", ["ellipse", "star", "componentwise"])
+def test_sliding_from_rest_reaches_the_laws_force(name):
+    gl = law(name)
+    for phi in np.radians([0.0, 37.0, 90.0, 181.0, 250.0, 333.0]):
+        u = np.array([math.cos(phi), math.sin(phi)])
+        tau = np.zeros(2)
+        for _ in range(40):
+            tau = fric(name, tau, 5e-5 * u).tau
+        assert np.abs(tau - steady_tau(gl, phi, 0.0, 1, P)).max() < 1e-4 * P
+
+
+@pytest.mark.parametrize("name", LAWS)
+def test_elastic_stick_is_the_predictor(name):
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        tau0 = 0.3 * P * 0.1 * rng.normal(size=2)
+        dg = 1e-6 * P / K * rng.normal(size=2)
+        out = fric(name, tau0, dg)
+        assert np.allclose(out.tau, tau0 + K * dg, rtol=0, atol=1e-12 * P)
+        assert np.allclose(out.ddtddg, K * np.eye(2), rtol=1e-15)
+        assert np.all(out.ddtddp == 0.0) and np.all(np.abs(out.dslip) < 1e-20)
+
+
+@pytest.mark.parametrize("name", LAWS)
+def test_reversal_keeps_mu_plus_and_mu_minus(name):
+    gl = law(name)
+    mu_plus = gl.force(np.array([0.0])).p[0, 0]
+    mu_minus = -gl.force(np.array([math.pi])).p[0, 0]
+    for nfdir in (1, 2):
+        tau = np.zeros(nfdir)
+        e1 = np.eye(nfdir)[0]
+        for sign, mu in ((1.0, mu_plus), (-1.0, -mu_minus), (1.0, mu_plus)):
+            for _ in range(30):
+                tau = fric(name, tau, sign * 3e-5 * e1, nfdir=nfdir).tau
+            assert abs(tau[0] - mu * P) < 1e-4 * P, (nfdir, sign)
+
+
+@pytest.mark.parametrize("name", LAWS)
+def test_nfdir_1_limits_along_the_turned_law(name):
+    gl = law(name)
+    for th_deg, side in ((0.0, 1), (25.0, 1), (25.0, -1), (200.0, 1)):
+        th = math.radians(th_deg) + (math.pi if side < 0 else 0.0)
+        up = fric(name, [0.0], [1e-3], (K, th_deg, side), nfdir=1)
+        down = fric(name, [0.0], [-1e-3], (K, th_deg, side), nfdir=1)
+        s = np.array([math.cos(-th), math.sin(-th)])            # direction 1 in the law frame
+        mu_up = gl.force(np.array([-th])).p[0] @ s                # > 0
+        mu_down = -gl.force(np.array([math.pi - th])).p[0] @ s    # > 0
+        assert up.tau[0] == pytest.approx(mu_up * P, abs=1e-4 * P)
+        assert down.tau[0] == pytest.approx(-mu_down * P, abs=1e-4 * P)
+        assert up.ddtddg[0, 0] == 0.0 and up.ddtddp[0] == pytest.approx(up.tau[0] / P)
+
+
+def _numeric(name, tau0, dg, props, press, nfdir):
+    out = fric(name, tau0, dg, props, press, nfdir)
+    h = 1e-6 * np.abs(dg).max() + 1e-12
+    num = np.zeros((nfdir, nfdir))
+    for b in range(nfdir):
+        e = np.zeros(nfdir)
+        e[b] = h
+        num[:, b] = (fric(name, tau0, dg + e, props, press, nfdir).tau
+                     - fric(name, tau0, dg - e, props, press, nfdir).tau) / (2 * h)
+    hp = 1e-6 * press
+    nump = (fric(name, tau0, dg, props, press + hp, nfdir).tau
+            - fric(name, tau0, dg, props, press - hp, nfdir).tau) / (2 * hp)
+    return out, num, nump
+
+
+@pytest.mark.parametrize("name", LAWS)
+def test_tangents_match_central_differences(name):
+    rng = np.random.default_rng(11)
+    checked = 0
+    for _ in range(30):
+        nfdir = 2 if rng.random() < 0.8 else 1
+        th_deg, side = rng.uniform(-180, 180), rng.choice([-1.0, 1.0])
+        tau0 = 0.05 * P * rng.normal(size=nfdir)
+        dg = 4e-5 * rng.normal(size=nfdir)
+        out, num, nump = _numeric(name, tau0, dg, (K, th_deg, side), P, nfdir)
+        scale = K * max(1e-3, float(np.abs(num).max()) / K)
+        assert np.abs(out.ddtddg - num).max() < 2e-5 * scale, (out.ddtddg, num)
+        assert np.abs(out.ddtddp - nump).max() < 2e-5, (out.ddtddp, nump)
+        checked += 1
+    assert checked == 30
+
+
+@pytest.mark.parametrize("name", ["star", "windward"])
+def test_turning_everything_turns_the_answer(name):
+    rng = np.random.default_rng(5)
+    for _ in range(10):
+        a = rng.uniform(-math.pi, math.pi)
+        th_deg = rng.uniform(-90, 90)
+        tau0 = 0.1 * P * rng.normal(size=2)
+        dg = 5e-5 * rng.normal(size=2)
+        base = fric(name, tau0, dg, (K, th_deg, 1.0))
+        R = rot(a)
+        turned = fric(name, R @ tau0, R @ dg, (K, th_deg + math.degrees(a), 1.0))
+        assert np.abs(turned.tau - R @ base.tau).max() < 1e-9 * P
+        assert np.abs(turned.ddtddg - R @ base.ddtddg @ R.T).max() < 1e-7 * K
+
+
+@pytest.mark.parametrize("name", ["ellipse", "windward"])
+def test_units_and_the_side_flip(name):
+    rng = np.random.default_rng(9)
+    for _ in range(10):
+        th_deg = rng.uniform(-180, 180)
+        tau0 = 0.1 * P * rng.normal(size=2)
+        dg = 5e-5 * rng.normal(size=2)
+        base = fric(name, tau0, dg, (K, th_deg, 1.0))
+        c = 7.5                             # PRESS, PROPS(1), TAU in other units of stress
+        scaled = fric(name, c * tau0, dg, (c * K, th_deg, 1.0), press=c * P)
+        assert np.abs(scaled.tau - c * base.tau).max() < 1e-9 * c * P
+        flipped = fric(name, tau0, dg, (K, th_deg + 180.0, -1.0))
+        assert np.abs(flipped.tau - base.tau).max() < 1e-9 * P
