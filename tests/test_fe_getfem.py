@@ -36,8 +36,12 @@ def star():
 
 
 def ellipse():
-    """Antoni et al.'s figure 7 truncated ellipse (asymmetric along both axes)."""
-    return associated(TruncatedEllipse(0.2, 0.08, 0.12, 0.15))
+    """Antoni et al.'s figure 7 truncated ellipse (asymmetric along both axes), as a
+    gauge law (a fitted ellipse's GaugeLaw with its law replaced)."""
+    from dataclasses import replace
+    d = derive(WedgeTexture(30.0, 10.0, 0.1, 0.2), n_directions=90)
+    return replace(fit_derivation(d, "truncated-ellipse"),
+                   law=associated(TruncatedEllipse(0.2, 0.08, 0.12, 0.15)))
 
 
 def _eval(expr: str, t):

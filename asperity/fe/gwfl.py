@@ -27,43 +27,17 @@ import numpy as np
 
 from ..errors import InputError
 
-#: largest table written (knots over one turn) before the law is refused
-MAX_KNOTS = 20_000
 #: default accuracy of the table against the law, per unit normal load
 TABLE_TOL = 1e-4
 
 
 def law_table(gl, tol: float = TABLE_TOL):
-    """(psi (n,), p (n, 2)): the law's periodic piecewise-linear table over one turn,
-    within ``tol`` of ``gl.force(psi).p``.  The lead's :mod:`asperity.fe.table` when it is
-    there, else a uniform grid refined until every mid-interval force is within tol."""
-    try:
-        from .table import law_table as lead_table
-    except ImportError:
-        return _uniform_table(gl, tol)
-    t = lead_table(gl, tol=tol)
+    """(psi (n,), p (n, 2)): the law's periodic piecewise-linear table over one turn, within
+    ``tol`` of ``gl.force(psi).p`` everywhere (:func:`asperity.fe.table.law_table`, the table
+    the Abaqus routines bake in too; TableError names the directions it cannot meet)."""
+    from .table import law_table as table
+    t = table(gl, tol=tol)
     return np.asarray(t.psi, float), np.asarray(t.p, float)
-
-
-def _uniform_table(gl, tol):
-    n = 360
-    while True:
-        psi = np.arange(n) * (2.0 * math.pi / n)
-        p = np.asarray(gl.force(psi).p, float)
-        nxt = np.roll(p, -1, axis=0)
-        err = np.zeros(n)
-        for a in (0.25, 0.5, 0.75):            # inside every interval
-            mid = np.asarray(gl.force(psi + a * 2.0 * math.pi / n).p, float)
-            err = np.maximum(err, np.abs(mid - ((1 - a) * p + a * nxt)).max(axis=1))
-        if err.max() <= tol:
-            return psi, p
-        if 2 * n > MAX_KNOTS:
-            bad = np.degrees(psi[err > tol] + math.pi / n)
-            raise InputError(f"the law's table cannot meet {tol:g} with {n} directions: "
-                             f"{bad.size} directions miss it, e.g. psi = "
-                             f"{', '.join(f'{x:.4g}' for x in bad[:5])} deg (a kink or a "
-                             "self-locking direction)")
-        n *= 2
 
 
 def _num(x: float) -> str:

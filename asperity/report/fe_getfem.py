@@ -32,11 +32,13 @@ def _laws():
     from ..laws.sets import TruncatedEllipse
     from ..laws.walker_leine import associated
     from ..texture.wedges import WedgeTexture
+    from dataclasses import replace
     d = derive(WedgeTexture(30.0, 10.0, 0.1, 0.2), n_directions=360)
+    ellipse = replace(fit_derivation(d, "truncated-ellipse"),
+                      law=associated(TruncatedEllipse(0.2, 0.08, 0.12, 0.15)))
     return [("star law of the wedge (alpha 30, beta 10, mu 0.1 / 0.2)",
              fit_derivation(d, "star")),
-            ("truncated ellipse 0.2 / 0.08 / 0.12 / 0.15 (Antoni fig. 7)",
-             associated(TruncatedEllipse(0.2, 0.08, 0.12, 0.15)))]
+            ("truncated ellipse 0.2 / 0.08 / 0.12 / 0.15 (Antoni fig. 7)", ellipse)]
 
 
 def sweep(h_over_l=H_OVER_L, mesh: int = SWEEP_MESH) -> list[dict]:
