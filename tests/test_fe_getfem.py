@@ -26,7 +26,8 @@ _OK, _WHY = getfem_status()
 needs_getfem = pytest.mark.skipif(not _OK, reason=f"GetFEM unavailable: {_WHY}")
 
 #: a slender strip (h / l = 1/50, k_t h / G = 0.05): the chain's assumptions hold
-SLENDER = {"h": 2e-3, "E": 1e11, "p": 5e6, "l": 0.1, "k_t": 1e12, "alpha_T": 1e-5, "n": 401, "nu": 0.3}
+SLENDER = {"h": 2e-3, "E": 1e11, "p": 5e6, "l": 0.1, "k_t": 1e12, "alpha_T": 1e-5, "n": 401,
+           "nu": 0.3}
 
 
 @pytest.fixture(scope="module")
@@ -220,3 +221,103 @@ def test_fe_without_getfem_says_how_to_install(tmp_path, capsys, monkeypatch):
     code, _, err = run(capsys, "risk", _strip(tmp_path), "--fe", "getfem", "--plot", plot)
     assert code == 1 and "apt-get install python3-getfem" in err
     assert len(err.strip().splitlines()) == 1 and not plot.exists()
+
+
+def test_gwfl_of_a_family_needs_a_pressure_and_takes_the_member_there(tmp_path, capsys):
+    from law_families import four_members
+    fam = four_members()
+    g, out = tmp_path / "fam.json", tmp_path / "fam.gwfl"
+    write_gauge(g, fam)
+    code, _, err = run(capsys, "law", g, "--gwfl", out)
+    assert code == 1 and "--pressure" in err and not out.exists()
+    assert len(err.strip().splitlines()) == 1
+    code, _, err = run(capsys, "law", g, "--pressure", fam.pressures[1], "--gwfl", out)
+    assert code == 0, err
+    member = fam.members[1]
+    assert parse_gwfl(out.read_text()) == parse_gwfl(gwfl_text(member, "member"))
+
+
+def test_gwfl_over_the_gauge_file_itself_is_refused(tmp_path, capsys, star):
+    g = tmp_path / "star.json"
+    write_gauge(g, star)
+    before = g.read_text()
+    code, _, err = run(capsys, "law", g, "--gwfl", g)
+    assert code == 1 and len(err.strip().splitlines()) == 1 and g.read_text() == before
+
+
+@needs_getfem
+def test_the_getfem_child_dies_with_its_parent(tmp_path):
+    """SIGKILL the asperity process mid-run: its GetFEM child (a /usr/bin/python3) goes too."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    from asperity.lifeline import children_of
+    root = Path(__file__).resolve().parents[1]
+    asm = _strip(tmp_path, dT=(0.0, 60.0), n=201)
+    parent = subprocess.Popen([sys.executable, "-m", "asperity", "risk", str(asm), "--fe",
+                               "getfem", "--fe-mesh", "2500", "-q"], cwd=root,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        child = None
+        for _ in range(400):                               # up to 40 s to start GetFEM
+            kids = [k for k in children_of(parent.pid) if _is_getfem(k)]
+            if kids:
+                child = kids[0]
+                break
+            assert parent.poll() is None, "the run ended before GetFEM started"
+            time.sleep(0.1)
+        assert child is not None, "no GetFEM child seen"
+        os.kill(parent.pid, signal.SIGKILL)
+        parent.wait()
+        for _ in range(50):
+            if _gone(child):
+                break
+            time.sleep(0.1)
+        assert _gone(child), "the GetFEM child outlived its parent"
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+            parent.wait()
+
+
+def _is_getfem(pid) -> bool:
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as fh:
+            return b"getfem_script.py" in fh.read()
+    except OSError:
+        return False
+
+
+def _gone(pid) -> bool:
+    """No such process, or a zombie (dead, waiting for its new parent to reap it)."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] == "Z"
+    except OSError:
+        return True
+
+
+
+@needs_getfem
+def test_a_tangential_force_history_drifts_as_in_the_chain(tmp_path, capsys):
+    """The same history as the chain: a force 0 -> -30 kN/m in phase with the heating,
+    spread over the length or on an end face (force_at); the three drift differently, in
+    the same order in both models."""
+    fe, chain = {}, {}
+    for at in ("uniform", "start", "end"):
+        path = _strip(tmp_path, at)
+        path.write_text(path.read_text()
+                        + f'force_min = 0.0\nforce_max = -3e4\nforce_at = "{at}"\n')
+        out = _fe(capsys, path, "--fe-mesh", "200")
+        assert out["verdict"] == "ratchet"
+        f = out["fe"]
+        fe[at], chain[at] = f["drift_per_cycle_m"], out["drift_per_cycle_m"]
+        assert fe[at] == pytest.approx(chain[at], rel=0.05)
+        assert fe[at] == pytest.approx(f["chain_shear_corrected"]["drift_per_cycle_m"],
+                                       rel=0.01)
+    assert sorted(fe, key=fe.get) == sorted(chain, key=chain.get)
+    assert min(abs(fe[a] / fe[b] - 1) for a in fe for b in fe if a != b) > 0.1
