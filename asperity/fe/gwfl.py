@@ -124,7 +124,8 @@ HEADER = """\
 #   gf.asm_define_function(NAME, 1, F, DF); each 'NAME = EXPR': md.add_macro(NAME, EXPR)
 #
 # 1. Plan view (contact plane = model plane, friction as an area term): functions asp_px,
-#    asp_py of the sliding angle t in [-pi, pi] (p's components), macros asp_psi .. asp_t.  Expects: asp_du (the slip increment u - u_prev, a macro you define), asp_p
+#    asp_py of the sliding angle t in [-pi, pi] (p's components), macros asp_psi .. asp_t.
+#    Expects: asp_du (the slip increment u - u_prev, a macro you define), asp_p
 #    (contact pressure, Pa), asp_eps (slip length of the regularisation, m, << the slip per
 #    increment).  Gives asp_t = -asp_p p(psi) |du|/sqrt(|du|^2 + asp_eps^2), the support's
 #    traction on the body (Pa); weak form: md.add_nonlinear_term(mim, '-asp_t.Test_u').
