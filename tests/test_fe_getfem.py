@@ -321,3 +321,16 @@ def test_a_tangential_force_history_drifts_as_in_the_chain(tmp_path, capsys):
                                        rel=0.01)
     assert sorted(fe, key=fe.get) == sorted(chain, key=chain.get)
     assert min(abs(fe[a] / fe[b] - 1) for a in fe for b in fe if a != b) > 0.1
+
+
+@needs_getfem
+def test_fe_displacement_is_the_mean_of_the_contact_face(tmp_path):
+    """The assembly's displacement (as the chain's: weighted by contact length) is the
+    trapezoidal mean of the bottom face's u(x) over its length."""
+    from asperity.fe.strip import run_strip_fe
+    from asperity.microslip.assembly import load_assembly
+    fe = run_strip_fe(load_assembly(_strip(tmp_path)), 0.2, 0.1, mesh=40)
+    x, u = np.asarray(fe["_profile"]["x_m"]), np.asarray(fe["_profile"]["u_m"])
+    assert x.size == 41 and x[0] == 0.0 and x[-1] == pytest.approx(SLENDER["l"])
+    mean = float(np.sum(0.5 * (u[1:] + u[:-1]) * np.diff(x))) / SLENDER["l"]
+    assert fe["mean_u_m"][-1] == pytest.approx(mean, rel=1e-12)
