@@ -27,6 +27,7 @@ WEDGE = SURF / "wedge-asymmetric.toml"
 TEXT_FLAGS = {"--friction-map", "--unit", "--plot", "--output", "--csv", "--abaqus", "--out",
               "--scan-dir", "--body", "--scheduler", "--map", "--export", "--host",
               "--data-dir", "--save-pressure", "--gait", "--optimise", "--bounds"}
+TEXT_FLAGS |= {"--gwfl", "--fe"}              # the GetFEM hand-off: a file, a code's name
 #: flags typed as text whose value is a number (checked by the command: whole_flag)
 NUMERIC_METAVARS = {"N", "K", "W", "S", "STEPS"}
 PARSER = build_parser()
