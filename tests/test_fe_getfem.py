@@ -334,3 +334,13 @@ def test_fe_displacement_is_the_mean_of_the_contact_face(tmp_path):
     assert x.size == 41 and x[0] == 0.0 and x[-1] == pytest.approx(SLENDER["l"])
     mean = float(np.sum(0.5 * (u[1:] + u[:-1]) * np.diff(x))) / SLENDER["l"]
     assert fe["mean_u_m"][-1] == pytest.approx(mean, rel=1e-12)
+
+
+def test_fe_is_not_run_when_the_assembly_slides_off(tmp_path, capsys):
+    path = _strip(tmp_path)
+    path.write_text(path.read_text() + "force = 1.2e5\n")     # beyond mu+ p l = 1e5 N/m
+    code, out, err = run(capsys, "risk", path, "--fe", "getfem")
+    assert code == 0, err
+    assert "slides off" in out.lower() and "FE (GetFEM): not run" in out
+    obj = json.loads(run(capsys, "risk", path, "--fe", "getfem", "--json")[1])
+    assert obj["verdict"] == "slides-off" and "skipped" in obj["fe"]

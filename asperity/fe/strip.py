@@ -182,6 +182,8 @@ def explain(fe: dict, p: dict) -> str:
 
 def fe_lines(fe: dict) -> list[str]:
     """The FE part of ``asperity risk``'s text."""
+    if "skipped" in fe:
+        return [f"FE (GetFEM): not run: {fe['skipped']}"]
     rel = fe["relative_difference"]
     dc = fe["elastic_limit_K"]
     return [
