@@ -187,6 +187,7 @@ def test_fe_elastic_limit_is_the_shear_lag_closed_form(alpha_T, tmp_path, capsys
     G = a["E"] / (2 * (1 + a["nu"]))
     assert kt_eff == pytest.approx(a["k_t"] / (1 + a["k_t"] * a["h"] / (3 * G)), rel=1e-12)
     closed = strip_dT_c(a["h"], a["E"], a["p"], a["l"], kt_eff, 0.2, 0.1, alpha_T)
+    assert fe["elastic_limit_shear_corrected_K"] == pytest.approx(closed, rel=1e-12)
     assert fe["elastic_limit_K"] == pytest.approx(closed, rel=5e-3)
     assert fe["elastic_limit_K"] == pytest.approx(fe["elastic_limit_closed_form_K"], rel=0.03)
     assert fe["first_slip_towards"] == "-x"

@@ -144,6 +144,7 @@ def run_strip_fe(asm, mu_plus: float, mu_minus: float, *, mesh: int = MESH_DEFAU
                                      _rel(d, corrected, scale)},
            "elastic_limit_K": r["elastic_limit_K"],
            "elastic_limit_closed_form_K": asm.dT_c_closed_form(mu_plus, mu_minus),
+           "elastic_limit_shear_corrected_K": _dT_c(p, kt_eff, mu_plus, mu_minus),
            "first_slip_x_m": r["first_slip_x_m"],
            "first_slip_towards": r["first_slip_towards"],
            "nu": nu, "nu_from": nu_from}
@@ -155,6 +156,11 @@ def run_strip_fe(asm, mu_plus: float, mu_minus: float, *, mesh: int = MESH_DEFAU
     out["explanation"] = explain(out, p)
     out["_profile"] = {"x_m": r["x_m"], "u_m": r["u_end_m"]}
     return out
+
+
+def _dT_c(p: dict, k_t: float, mu_plus: float, mu_minus: float) -> float:
+    from ..microslip.closed_forms import strip_dT_c
+    return strip_dT_c(p["h"], p["E"], p["p"], p["l"], k_t, mu_plus, mu_minus, p["alpha_T"])
 
 
 def _rel(a: float, b: float, scale: float) -> float | None:
@@ -176,8 +182,10 @@ def explain(fe: dict, p: dict) -> str:
             f"1/k_t = {1 / p['k_t']:.3g}): with k_t,eff = {c['k_t_eff_Pa_per_m']:.4g} Pa/m "
             f"the chain drifts {c['drift_per_cycle_m']:.4g} m/cycle, {100 * rc:.2g} % from "
             f"the FE model (against {100 * r:.2g} % with k_t); the rest is the mesh "
-            f"({fe['elements_along_l']} x {fe['elements_through_h']} elements) and the "
-            "lumping of the bed at the nodes")
+            f"({fe['elements_along_l']} x {fe['elements_through_h']} elements), the "
+            f"lumping of the bed at the nodes and, as lam h = sqrt(k_t h / E) = "
+            f"{math.sqrt(p['k_t'] * p['h'] / p['E']):.2g} grows towards 1, a shear through "
+            "the height that is no longer linear")
 
 
 def fe_lines(fe: dict) -> list[str]:
@@ -192,8 +200,10 @@ def fe_lines(fe: dict) -> list[str]:
         f"{fe['drift_per_cycle_m']:+.6g} m beside the chain's "
         f"{fe['chain_drift_per_cycle_m']:+.6g} m"
         + (f" ({100 * rel:.3g} % apart)" if rel is not None else ""),
-        f"  FE elastic limit dT_c = {dc:.6g} K (closed form {fe['elastic_limit_closed_form_K']:.6g}"
-        f" K); {fe['cycles_run']} cycles, {fe['increments']} increments, "
-        f"{fe['newton_iterations']} Newton iterations, {fe['seconds']:.3g} s"
-        if dc is not None else "  FE: no slip ever (self-locking both ways)",
+        (f"  FE elastic limit dT_c = {dc:.6g} K (closed form "
+         f"{fe['elastic_limit_closed_form_K']:.6g} K, with k_t,eff "
+         f"{fe['elastic_limit_shear_corrected_K']:.6g} K); {fe['cycles_run']} cycles, "
+         f"{fe['increments']} increments, {fe['newton_iterations']} Newton iterations, "
+         f"{fe['seconds']:.3g} s") if dc is not None else
+        "  FE: no slip ever (self-locking both ways)",
         f"  why: {fe['explanation']}"]
