@@ -124,7 +124,8 @@ def section(folder) -> list[str]:
             (f"| relative difference to FE | - | {fe['relative_difference']:.2e} | "
             f"{c['relative_difference']:.2e} |"),
             (f"| elastic limit dT_c (K) | {fe['elastic_limit_K']:.6g} | "
-            f"{fe['elastic_limit_closed_form_K']:.6g} (closed form) | - |"), "",
+            f"{fe['elastic_limit_closed_form_K']:.6g} (closed form) | "
+             f"{fe['elastic_limit_shear_corrected_K']:.6g} (closed form, k_t,eff) |"), "",
             (f"Why they differ: {fe['explanation']}. First slip: x = "
             f"{fe['first_slip_x_m']:g} m towards {fe['first_slip_towards']} (SPEC.md 5). "
             f"{fe['cycles_run']} cycles, {fe['increments']} increments, "
