@@ -27,12 +27,13 @@ def _asm(h=None, dT=DT):
 
 
 def _laws():
+    from dataclasses import replace
+
     from ..friction.derive import derive
     from ..laws.fitting import fit_derivation
     from ..laws.sets import TruncatedEllipse
     from ..laws.walker_leine import associated
     from ..texture.wedges import WedgeTexture
-    from dataclasses import replace
     d = derive(WedgeTexture(30.0, 10.0, 0.1, 0.2), n_directions=360)
     ellipse = replace(fit_derivation(d, "truncated-ellipse"),
                       law=associated(TruncatedEllipse(0.2, 0.08, 0.12, 0.15)))
