@@ -27,7 +27,7 @@ WEDGE = SURF / "wedge-asymmetric.toml"
 TEXT_FLAGS = {"--friction-map", "--unit", "--plot", "--output", "--csv", "--abaqus", "--out",
               "--scan-dir", "--body", "--scheduler", "--map", "--export", "--host",
               "--data-dir", "--save-pressure", "--gait", "--optimise", "--bounds",
-              "--fric", "--vfric", "--vfriction", "--abaqus-user"}
+              "--fric", "--vfric", "--vfriction", "--abaqus-user", "--gwfl", "--fe"}
 #: flags typed as text whose value is a number (checked by the command: whole_flag)
 NUMERIC_METAVARS = {"N", "K", "W", "S", "STEPS"}
 PARSER = build_parser()

@@ -53,6 +53,34 @@ def add_parser(sub) -> None:
                                        ("--abaqus", "abaqus", False),
                                        ("--output", "output", False), *FE_OUTPUTS],
                    inputs=["gauge"])
+    _add_gwfl(p)
+
+
+def _add_gwfl(p) -> None:
+    """--gwfl: the law as GetFEM weak-form macros (asperity.fe.gwfl)."""
+    p.add_argument("--gwfl", metavar="FILE",
+                   help="write the law as GetFEM weak-form language (GWFL) macros: the "
+                        "plan-view traction p(psi) of the slip increment (a piecewise-linear "
+                        "table within 1e-4 of --psi) and the strip's bed law (mu+ = p(0).x, "
+                        "mu- = -p(180).x), with a header naming the variables they expect; "
+                        "a law family needs --pressure")
+    outputs = p.get_default("outputs")
+    p.set_defaults(outputs=outputs + [("--gwfl", "gwfl", False)])
+
+
+def _gwfl(args, gl) -> None:
+    """Write --gwfl (after the law is resolved; a family needs --pressure)."""
+    from ..errors import InputError
+    from ..laws.family import GaugeFamily
+    if isinstance(gl, GaugeFamily):
+        raise InputError(f"--gwfl writes one law; {args.gauge} holds a law family over the "
+                         f"pressures {gl.pressures[0]:g} to {gl.pressures[-1]:g} Pa: give "
+                         "--pressure")
+    from ..fe.gwfl import write_gwfl
+    name = args.gauge or "componentwise law (--mu-f --mu-b --mu-t)"
+    if args.pressure is not None:
+        name = f"{name} at {args.pressure:g} Pa"
+    write_gwfl(args.gwfl, gl, f"{name} ({getattr(gl, 'kind', 'law')})")
 
 
 def run(args) -> dict:
@@ -72,6 +100,8 @@ def run(args) -> dict:
     gl = _componentwise(args) if args.gauge is None else read_gauge(args.gauge)
     from ..laws.family import GaugeFamily, law_at
     if isinstance(gl, GaugeFamily) and args.pressure is None:
+        if getattr(args, "gwfl", None):
+            _gwfl(args, gl)
         return _family(args, gl)
     if args.pressure is not None and not isinstance(gl, GaugeFamily):
         raise InputError(f"--pressure applies to a law family; {args.gauge} holds one law "
@@ -89,6 +119,8 @@ def run(args) -> dict:
     if args.plot:
         from ..laws.plot import plot_law
         plot_law(gl, args.plot)
+    if getattr(args, "gwfl", None):
+        _gwfl(args, gl)
     _abaqus_user(args, gl, obj, how)
     return gl, obj
 
@@ -143,7 +175,7 @@ def main(args) -> int:
     gl, obj = run(args)
     outputs = [(what, getattr(args, flag)) for flag, what in
                (("csv", "polar table"), ("abaqus", "Abaqus block"), ("plot", "plot"),
-                ("output", "gauge file"))
+                ("output", "gauge file"), ("gwfl", "GWFL law"))
                if getattr(args, flag)]
     from .law_fe import written
     outputs += written(args)

@@ -62,6 +62,14 @@ def add_parser(sub) -> None:
                         "agree to first order in 1/STEPS: the two-node SPEC case to 1e-3 at "
                         "80000; the 201-node bushing strip to 0.54, 0.23, 0.095 at 8e4, 3.2e5, "
                         "1.28e6 steps)")
+    p.add_argument("--fe", metavar="CODE", default=None,
+                   help="also run the strip assembly in a finite-element code: getfem (2D "
+                        "plane-stress body on the rigid textured support, the same law and "
+                        "load history; needs apt-get install python3-getfem) and print its "
+                        "drift per cycle beside the chain's, with the difference explained")
+    p.add_argument("--fe-mesh", default=None, metavar="N",
+                   help="--fe: elements along the length l (4 to 4000, default 200); "
+                        "ceil(N h / l) through the height h, at least 2")
     p.add_argument("--map", nargs=2, metavar="P=LO:HI:N", default=None,
                    help="risk map over two wedge parameters, e.g. alpha=5:40:8 beta=5:40:8 "
                         "(the others from the texture or wedge flags)")
@@ -116,6 +124,7 @@ def run(args) -> dict:
                              "(the assembly file's friction table has none)")
         if args.map is not None:
             raise InputError("--map varies the wedge's parameters; not with --elastic")
+    fe_mesh = _fe_settings(args, asm)
     texture = texture_from_args(args)[0] if _texture_given(args) else None
     if args.map is not None:
         x, y = (parse_map_axis(t) for t in args.map)
@@ -132,8 +141,36 @@ def run(args) -> dict:
                                  textured=args.textured)
     if pressure is not None:
         friction.detail["contact_pressure"] = pressure
-    return assess_assembly(asm, friction, cycles=cycles, tolerance=tol, max_marched=mm,
-                           dynamic_steps=dyn)
+    out = assess_assembly(asm, friction, cycles=cycles, tolerance=tol, max_marched=mm,
+                          dynamic_steps=dyn)
+    if fe_mesh is not None:
+        out["fe"] = _fe_block(asm, friction, out, fe_mesh)
+    return out
+
+
+def _fe_settings(args, asm):
+    """--fe and --fe-mesh checked before any work: the mesh (elements along l), or None."""
+    if args.fe is None:
+        if args.fe_mesh is not None:
+            raise InputError("--fe-mesh sets the mesh of --fe getfem; give --fe getfem")
+        return None
+    from ..fe.strip import MESH_DEFAULT, MESH_RANGE, check_fe_assembly, fe_mesh
+    if args.fe != "getfem":
+        raise InputError(f"--fe must be getfem (the FE code asperity runs), got {args.fe!r}")
+    if args.map is not None:
+        raise InputError("--fe runs one assembly; not with --map")
+    check_fe_assembly(asm)
+    n = whole_flag("--fe-mesh", args.fe_mesh, *MESH_RANGE) if args.fe_mesh else MESH_DEFAULT
+    fe_mesh(asm, n)
+    return n
+
+
+def _fe_block(asm, friction, out, mesh):
+    from ..fe.strip import run_strip_fe
+    if out["verdict"] == "slides-off":
+        return {"skipped": "the assembly slides off: no cycle to compare"}
+    return run_strip_fe(asm, friction.mu_plus, friction.mu_minus, mesh=mesh,
+                        chain_drift_m=out["drift_per_cycle_m"])
 
 
 def _elastic_pressure(args, asm):
@@ -186,7 +223,10 @@ def parse_map_axis(text: str):
 
 
 def _public(out: dict) -> dict:
-    return {k: v for k, v in out.items() if not k.startswith("_")}
+    pub = {k: v for k, v in out.items() if not k.startswith("_")}
+    if isinstance(pub.get("fe"), dict):
+        pub["fe"] = _public(pub["fe"])
+    return pub
 
 
 def main(args) -> int:
@@ -204,8 +244,12 @@ def main(args) -> int:
     if args.plot:
         from ..microslip.plot import plot_assembly_history
         plot_assembly_history(out["_chain"], _loading_from(args), args.plot,
-                              title=out["assembly"]["name"])
-    emit(args, _public(out), format_text(out))
+                              title=out["assembly"]["name"], fe=out.get("fe"))
+    text = format_text(out)
+    if out.get("fe"):
+        from ..fe.strip import fe_lines
+        text += "\n" + "\n".join(fe_lines(out["fe"]))
+    emit(args, _public(out), text)
     return 0
 
 

@@ -11,7 +11,7 @@ width, so its pressure is in Pa, its bed stiffness in Pa/m and its force in N/m)
     # strip: h (thickness), E (modulus), p (contact pressure), l (length along the slip
     #        axis), k_t (tangential bed stiffness per unit area), alpha_T (expansion relative
     #        to the support, 1/K, signed: < 0 if the part expands less), n (nodes,
-    #        default 201)
+    #        default 201), nu (Poisson's ratio, optional: only the FE run uses it)
     # two-node: k (bar stiffness, N/m), l0 (length), alpha_T, k_t (contact stiffness of
     #        one node, N/m), N (normal force on each node), contact_area (optional:
     #        the nominal contact area of one node, m^2; its contact pressure N /
@@ -215,7 +215,7 @@ def assembly_from_dict(data: dict, path) -> Assembly:
         raise AssemblyFileError(f"{p}: assembly.model must be one of {', '.join(MODELS)}, "
                                 f"got {_short(model)}")
     keys = _MODEL_KEYS[model]
-    allowed = set(keys) | {"model"} | ({"n"} if model == "strip" else {"contact_area"})
+    allowed = set(keys) | {"model"} | ({"n", "nu"} if model == "strip" else {"contact_area"})
     a = _table(data, "assembly", allowed, p)
     missing = [k for k in keys if k not in a]
     if missing:
@@ -229,6 +229,8 @@ def assembly_from_dict(data: dict, path) -> Assembly:
                       _field("assembly", check_param, k, a[k], ranges[k])) for k in keys}
         if model == "strip":
             params["n"] = _field("assembly", check_nodes, "n", a.get("n", 201))
+            if "nu" in a:                  # Poisson's ratio: the FE run's (asperity.fe)
+                params["nu"] = _field("assembly", _check_nu, "nu", a["nu"])
         elif "contact_area" in a:
             params["contact_area"] = _field("assembly", check_param, "contact_area",
                                             a["contact_area"], CONTACT_AREA)
@@ -256,6 +258,10 @@ def with_loading(asm: Assembly, table: dict, path) -> Assembly:
         msg = str(exc).lstrip(".")
         raise AssemblyFileError(f"{p}: {msg}") from None
     return replace(asm, loading=loading, force_at=force_at, cycles=cycles, tolerance=tolerance)
+
+
+def _check_nu(name: str, value) -> float:
+    return check_range(name, value, 0.0, 0.5, high_open=True)
 
 
 def _loading(lo: dict):

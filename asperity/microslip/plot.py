@@ -43,11 +43,13 @@ def assembly_history(chain, loading, *, cycles: int = 6, substeps: int = 24) -> 
 
 
 def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int = 6,
-                          substeps: int = 24, history: dict | None = None) -> None:
+                          substeps: int = 24, history: dict | None = None,
+                          fe: dict | None = None) -> None:
     """Node displacement against cycles (Antoni et al. figure 3 redrawn from the model,
     temperature on a second axis); for a strip also the displacement profiles u(x) at the
     end of each cycle and at the hottest point of the last one (``history``: what
-    :func:`assembly_history` gave, else it is computed)."""
+    :func:`assembly_history` gave, else it is computed).  ``fe``: the ``fe`` block of
+    ``risk --fe``, drawn as its mean displacement at the cycle ends and its last profile."""
     from ..io import pyplot, save_figure_atomic
     plt = pyplot()
     h = history or assembly_history(chain, loading, cycles=cycles, substeps=substeps)
@@ -67,7 +69,16 @@ def plot_assembly_history(chain, loading, path, *, title: str = "", cycles: int 
     d = h["drift"]
     ax.set_title((title + ": " if title else "") + f"mu+={chain.mu_plus:.4g}, "
                  f"mu-={chain.mu_minus:.4g}; drift {d * 1e6:+.4g} um/cycle", fontsize=10)
+    fe = fe if fe and "mean_u_m" in fe else None
+    if fe:
+        ax.plot(range(len(fe["mean_u_m"])), np.asarray(fe["mean_u_m"]) * 1e6, "ks", ms=4,
+                mfc="none", label=f"FE (GetFEM) mean u at cycle ends, "
+                                  f"{fe['drift_per_cycle_m'] * 1e6:+.4g} um/cycle")
     ax.legend(fontsize=8, loc="best")
+    if strip and fe:
+        pr = fe["_profile"]
+        ax2.plot(np.asarray(pr["x_m"]) * 1e3, np.asarray(pr["u_m"]) * 1e6, "k--", lw=1.0,
+                 label=f"FE bottom face, end of cycle {fe['cycles_run']}")
     if strip:
         cmap = plt.get_cmap("viridis")
         k = len(h["profiles"])

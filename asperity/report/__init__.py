@@ -6,7 +6,8 @@ form against the spring simulation, polar diagrams of both contact regimes, the 
 curve, wedge meshes and height maps against the closed form, the measured surfaces of
 ``../shared/data/surfaces`` (when that folder is present), friction laws and gauge files,
 Moreau time-stepping, planar rigid bodies (footprints that slide and spin), crawling
-(bodies that change shape), cumulative microslip, studies, the elastic contact.  The
+(bodies that change shape), cumulative microslip, studies, the elastic contact, the
+GetFEM runs (the law in an FE model, the strip against the chain).  The
 sections call library APIs only; only ``asperity report`` (:mod:`asperity.cli.report`)
 imports this package.
 """
@@ -20,7 +21,8 @@ from ..io import write_text_atomic
 
 #: the sections in report order: module of this package with ``section(folder) -> lines``
 SECTIONS = ("spec", "springs", "polar", "loading", "surfaces", "measured", "gauges", "moreau",
-            "bodies", "crawling", "microslip", "studies", "contact", "fe_abaqus")
+            "bodies", "crawling", "microslip", "studies", "contact", "fe_abaqus",
+            "fe_getfem")
 
 
 def _numbered(k: int, section: list[str]) -> list[str]:
