@@ -1,7 +1,8 @@
 """Laws for the FE routine tests, built once per process: an asymmetric truncated ellipse and
 a star law fitted to the asymmetric wedge texture (all faces in contact), the windward star
 law of the same texture (D with flat edges: set-valued directions), and Hu et al.'s
-componentwise law; plus their generated FRIC libraries."""
+componentwise law, and a strongly non-associated law with several returns; plus their
+generated FRIC libraries."""
 from __future__ import annotations
 
 import math
@@ -18,6 +19,16 @@ def law(name: str):
     if name == "componentwise":
         from asperity.laws.componentwise import componentwise_gauge
         return componentwise_gauge(mu_f=0.1, mu_b=0.15, mu_t=0.2)
+    if name == "skewed":
+        # strongly non-associated: D turned 29 deg against an asymmetric C, so that a trial
+        # stress can have several returns on the boundary of C, far apart
+        from types import SimpleNamespace
+
+        from asperity.laws.sets import TruncatedEllipse
+        from asperity.laws.walker_leine import WalkerLeineLaw
+        wl = WalkerLeineLaw(TruncatedEllipse(0.5, 0.3, 0.2, 0.2),
+                            TruncatedEllipse(0.1, 0.1, 0.6, 0.6, theta=0.5))
+        return SimpleNamespace(force=wl.force, law=wl, kind="skewed")
     contact = "windward" if name == "windward" else "all-faces"
     kind = "truncated-ellipse" if name == "ellipse" else "star"
     return fit_derivation(derive(WedgeTexture(20, 40, 0.15, 0.1), contact, "closed-form", 72),

@@ -187,3 +187,94 @@ def test_energies_slip_flag_and_no_pressure(name):
 def test_no_elastic_stiffness_asks_for_rigid_stick():
     out = fric("star", [1e4, 0.0], [1e-6, 0.0], (0.0, 0.0, 1.0))
     assert out.lm == 1
+
+
+@pytest.mark.parametrize("name", ["windward", "star", "ellipse"])
+def test_a_small_slip_moves_the_stress_a_little_from_anywhere_on_the_boundary(name):
+    """Continuity of the return map: from any stress on PRESS C (the arcs of C that slide
+    along one direction included), a slip increment of size d moves the stress by O(K d),
+    never to another root of a non-associated law far along the boundary."""
+    gl = law(name)
+    rng = np.random.default_rng(17)
+    worst = 0.0
+    for _ in range(400):
+        phi = rng.uniform(-math.pi, math.pi)
+        th_deg, side = rng.uniform(-180, 180), rng.choice([-1.0, 1.0])
+        th = math.radians(th_deg) + (math.pi if side < 0 else 0.0)
+        c = (1 + 1e-6) * gl.law.C.radial(np.array([phi]))[0]    # on the boundary
+        tau0 = P * rot(th) @ (c * np.array([math.cos(phi), math.sin(phi)]))
+        a = rng.uniform(-math.pi, math.pi)
+        dg = 1e-4 * P / K * np.array([math.cos(a), math.sin(a)])
+        out = fric(name, tau0, dg, (K, th_deg, side))
+        worst = max(worst, float(np.linalg.norm(out.tau - tau0)) / (1e-4 * P))
+    assert worst < 30.0
+
+
+def _returns(tab, q):
+    """Every return of the trial q (per unit pressure) on the table: points P(psi) of the
+    nodes' polygon with q - P(psi) = lam (cos psi, sin psi), lam >= 0 (bisection in each
+    interval where the cross product changes sign)."""
+    psi = np.append(tab.psi, tab.psi[0] + 2 * math.pi)
+    p = np.vstack([tab.p, tab.p[:1]])
+
+    def g(j, t):
+        s = psi[j] + t * (psi[j + 1] - psi[j])
+        x = p[j] + t * (p[j + 1] - p[j])
+        return (math.cos(s) * (q[1] - x[1]) - math.sin(s) * (q[0] - x[0]),
+                math.cos(s) * (q[0] - x[0]) + math.sin(s) * (q[1] - x[1]), x)
+    out = []
+    gn = np.cos(psi) * (q[1] - p[:, 1]) - np.sin(psi) * (q[0] - p[:, 0])
+    for j in np.flatnonzero(gn[:-1] * gn[1:] <= 0):
+        a = gn[j]
+        lo, hi = 0.0, 1.0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if (g(j, mid)[0] > 0) == (a > 0):
+                lo = mid
+            else:
+                hi = mid
+        _, lam, x = g(j, 0.5 * (lo + hi))
+        if lam >= 0:
+            out.append(x)
+    return np.array(out)
+
+
+def test_of_several_returns_the_one_nearest_where_the_path_leaves_c():
+    """A strongly non-associated law (D turned against C) has trial stresses with several
+    returns far apart: FRIC takes the one nearest the point where the elastic path from
+    the start stress leaves C (the start itself on the boundary)."""
+    from asperity.fe.table import law_table
+    gl = law("skewed")
+    tab = law_table(gl)
+    rng = np.random.default_rng(4)
+    seen = 0
+    for _ in range(12000):
+        phi = rng.uniform(-math.pi, math.pi)
+        on = rng.random() < 0.5
+        r = float(tab.radial([phi])[0])
+        start = (1.0 if on else rng.uniform(0.0, 0.9)) * r * np.array([math.cos(phi),
+                                                                         math.sin(phi)])
+        q = r * (1 + rng.uniform(0.0, 0.3)) * np.array([math.cos(phi + rng.normal(0, 0.3)),
+                                                        math.sin(phi + rng.normal(0, 0.3))])
+        if np.hypot(*q) <= tab.radial([math.atan2(q[1], q[0])])[0]:
+            continue
+        roots = _returns(tab, q)
+        if len(roots) < 2 or np.ptp(np.linalg.norm(roots - roots[0], axis=1)) < 0.05:
+            continue
+        if on:
+            x = start
+        else:                                   # where the path start -> q leaves C
+            lo, hi = 0.0, 1.0
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                v = start + mid * (q - start)
+                inside = np.hypot(*v) <= tab.radial([math.atan2(v[1], v[0])])[0]
+                lo, hi = (mid, hi) if inside else (lo, mid)
+            x = start + hi * (q - start)
+        want = roots[np.argmin(np.linalg.norm(roots - x, axis=1))]
+        th_deg, side = rng.uniform(-180, 180), rng.choice([-1.0, 1.0])
+        R = rot(math.radians(th_deg) + (math.pi if side < 0 else 0.0))   # law -> local
+        out = fric("skewed", P * R @ start, R @ (q - start) * P / K, (K, th_deg, side))
+        assert np.abs(out.tau / P - R @ want).max() < 1e-6, (start, q, roots)
+        seen += 1
+    assert seen >= 30
