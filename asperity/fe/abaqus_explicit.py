@@ -22,6 +22,8 @@ called with DBLE arguments.
 """
 from __future__ import annotations
 
+from .fortran_core import comment_block
+
 #: state variables of the explicit routines (1-based), written only when they exist
 EXPLICIT_STATE = (
     ("clamped", ("increments at which the pressure lay outside the law family's "
@@ -195,21 +197,7 @@ def source(routine: str) -> str:
     raise ValueError(f"routine must be vfric or vfriction, got {routine!r}")
 
 
-def _comment(lines) -> str:
-    """Comment lines ``C text``, wrapped within 72 columns."""
-    out = []
-    for text in lines:
-        text = text.rstrip()
-        while len(text) > 70:
-            cut = text.rfind(" ", 0, 70)
-            cut = cut if cut > 20 else 70
-            out.append("C " + text[:cut])
-            text = "   " + text[cut:].lstrip()
-        out.append("C " + text if text else "C")
-    return "".join(x + "\n" for x in out)
-
-
 def explicit_source(routine: str, core: str, header_lines=()) -> str:
     """A self-contained routine file: ``header_lines`` as comments, the wrapper, then the
     law's table and core ``core`` (the text of :func:`asperity.fe.fortran_core.law_source`)."""
-    return _comment(header_lines) + source(routine) + core
+    return comment_block(header_lines) + source(routine) + core

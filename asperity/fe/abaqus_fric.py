@@ -18,7 +18,7 @@ increment, 0 if it stuck.
 """
 from __future__ import annotations
 
-from .fortran_core import law_source
+from .fortran_core import comment_block, law_source
 
 ROUTINES = ("fric", "vfric", "vfriction")
 
@@ -126,19 +126,6 @@ C
 """
 
 
-def _comment_block(lines) -> str:
-    out = []
-    for text in lines:
-        text = text.rstrip()
-        while len(text) > 70:
-            cut = text.rfind(" ", 0, 70)
-            cut = cut if cut > 20 else 70
-            out.append("C " + text[:cut])
-            text = "   " + text[cut:].lstrip()
-        out.append("C " + text if text else "C")
-    return "\n".join(out) + "\n"
-
-
 def law_table_of(gauge, tol: float = 1e-4):
     """LawTable of a GaugeLaw, FamilyTable of a GaugeFamily."""
     from ..laws.family import GaugeFamily
@@ -154,6 +141,6 @@ def routine_source(gauge, routine: str = "fric", header=(), table=None) -> str:
     routine = check_choice("routine", routine, ROUTINES)
     table = table if table is not None else law_table_of(gauge)
     if routine == "fric":
-        return _comment_block(header) + FRIC + law_source(table)
+        return comment_block(header) + FRIC + law_source(table)
     from .abaqus_explicit import explicit_source
     return explicit_source(routine, law_source(table), header)

@@ -43,6 +43,20 @@ BLOCK = 32
 
 
 
+def comment_block(lines) -> str:
+    """Fixed-form comment lines ``C text``, wrapped within 72 columns."""
+    out = []
+    for text in lines:
+        text = text.rstrip()
+        while len(text) > 70:
+            cut = text.rfind(" ", 0, 70)
+            cut = cut if cut > 20 else 70
+            out.append("C " + text[:cut])
+            text = "   " + text[cut:].lstrip()
+        out.append("C " + text if text else "C")
+    return "".join(x + "\n" for x in out)
+
+
 def _num(v: float) -> str:
     """A double in at most 21 characters: 15 significant digits, D exponent."""
     m, e = f"{v:.14e}".split("e")
