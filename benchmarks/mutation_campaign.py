@@ -62,7 +62,7 @@ COSMIC_RAY = "cosmic-ray==8.7.0"
 VENV = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "asperity-mutation" / "venv"
 SCOPE = ("contact/*.py", "bodies/*.py", "dynamics/body*.py", "dynamics/_body*_kernels.py",
          "laws/family*.py", "friction/elastic*.py", "surface/contact_facets.py",
-         "surface/mesh_grid.py", "crawling/*.py")
+         "surface/mesh_grid.py", "crawling/*.py", "fe/*.py", "cli/law_fe.py")
 #: test files per module glob, the first match wins: globs in tests/ (missing ones ignored),
 #: "file::test_name" for one test function (all its cases), and an optional third item, a
 #: pytest -k expression over the whole selection (it sees file names too: "not (convergence
@@ -112,6 +112,16 @@ TESTS = (
     ("crawling/design*.py", ("test_crawl_design.py",)),
     ("crawling/output.py", ("test_crawl.py", "test_crawl_cli.py")),
     ("crawling/*.py", ("test_crawl.py",)),
+    ("fe/getfem*.py", ("test_fe_getfem.py",)),
+    ("fe/strip.py", ("test_fe_getfem.py",)),
+    ("fe/gwfl.py", ("test_fe_getfem.py",)),
+    ("fe/checks.py", ("test_fe_getfem.py",)),
+    ("fe/table.py", ("test_fe_table.py", "test_fe_fric.py", "test_fe_fric_family.py")),
+    ("fe/abaqus_deck.py", ("test_fe_law_cli.py",)),
+    ("fe/conventions_figure.py", ("test_fe_law_cli.py",)),
+    ("cli/law_fe.py", ("test_fe_law_cli.py",)),
+    ("fe/*.py", ("test_fe_fric.py", "test_fe_fric_family.py", "test_fe_vfric_law.py",
+                 "test_fe_explicit.py", "test_fe_fric_driver.py", "test_fe_law_cli.py")),
 )
 #: seconds a kernel module's mutant may spend compiling its kernels and their dependents again
 COMPILE_ALLOWANCE = 150.0
