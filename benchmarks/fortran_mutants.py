@@ -133,8 +133,12 @@ def pytest_configure(config):                      # the plugin side
     m = json.loads(raw)
     mod = importlib.import_module(m["module"])
     lines = getattr(mod, m["name"]).split("\n")
-    assert lines[m["line"]] == m["old"], "the template changed since the plan"
-    lines[m["line"]] = m["new"]
+    # the line is found by its text (the nearest copy to where the plan saw it), so a plan
+    # survives edits elsewhere in the template
+    at = [i for i, line in enumerate(lines) if line == m["old"]]
+    assert at, "the template changed since the plan"
+    k = min(at, key=lambda i: abs(i - m["line"]))
+    lines[k] = m["new"]
     setattr(mod, m["name"], "\n".join(lines))
 
 
@@ -146,6 +150,8 @@ def main(argv=None) -> int:
     ap.add_argument("--plan", action="store_true", help="the population only")
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per mutant")
     ap.add_argument("--json", action="store_true", help="print the results as JSON")
+    ap.add_argument("--ids", nargs="+", default=(), metavar="ID",
+                    help="run only these mutants (ids from a run's JSON), in the sample or not")
     args = ap.parse_args(argv)
     pop = mutants()
     per = {}
@@ -155,7 +161,8 @@ def main(argv=None) -> int:
         for k, v in per.items():
             print(f"{k}: {len(v)} mutants")
         return 0
-    sample = _pick(pop, args.n, args.seed)
+    sample = ([m for m in pop if m["id"] in set(args.ids)] if args.ids
+              else _pick(pop, args.n, args.seed))
     results = []
     for i, m in enumerate(sample):
         status, dt, why = run_one(m, args.timeout)
