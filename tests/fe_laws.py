@@ -19,16 +19,17 @@ def law(name: str):
     if name == "componentwise":
         from asperity.laws.componentwise import componentwise_gauge
         return componentwise_gauge(mu_f=0.1, mu_b=0.15, mu_t=0.2)
-    if name == "skewed":
+    if name in ("skewed", "skewed-mirrored"):
         # strongly non-associated: D turned 29 deg against an asymmetric C, so that a trial
         # stress can have several returns on the boundary of C, far apart
         from types import SimpleNamespace
 
         from asperity.laws.sets import TruncatedEllipse
         from asperity.laws.walker_leine import WalkerLeineLaw
-        wl = WalkerLeineLaw(TruncatedEllipse(0.5, 0.3, 0.2, 0.2),
-                            TruncatedEllipse(0.1, 0.1, 0.6, 0.6, theta=0.5))
-        return SimpleNamespace(force=wl.force, law=wl, kind="skewed")
+        turn = 0.5 if name == "skewed" else -0.5      # its mirror image: roots met in the
+        wl = WalkerLeineLaw(TruncatedEllipse(0.5, 0.3, 0.2, 0.2),   # other order
+                            TruncatedEllipse(0.1, 0.1, 0.6, 0.6, theta=turn))
+        return SimpleNamespace(force=wl.force, law=wl, kind=name)
     contact = "windward" if name == "windward" else "all-faces"
     kind = "truncated-ellipse" if name == "ellipse" else "star"
     return fit_derivation(derive(WedgeTexture(20, 40, 0.15, 0.1), contact, "closed-form", 72),

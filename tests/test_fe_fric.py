@@ -239,12 +239,14 @@ def _returns(tab, q):
     return np.array(out)
 
 
-def test_of_several_returns_the_one_nearest_where_the_path_leaves_c():
+@pytest.mark.parametrize("name", ["skewed", "skewed-mirrored"])
+def test_of_several_returns_the_one_nearest_where_the_path_leaves_c(name):
     """A strongly non-associated law (D turned against C) has trial stresses with several
     returns far apart: FRIC takes the one nearest the point where the elastic path from
-    the start stress leaves C (the start itself on the boundary)."""
+    the start stress leaves C (the start itself on the boundary), whichever it meets
+    first (the law and its mirror image meet them in opposite orders)."""
     from asperity.fe.table import law_table
-    gl = law("skewed")
+    gl = law(name)
     tab = law_table(gl)
     rng = np.random.default_rng(4)
     seen = 0
@@ -274,7 +276,54 @@ def test_of_several_returns_the_one_nearest_where_the_path_leaves_c():
         want = roots[np.argmin(np.linalg.norm(roots - x, axis=1))]
         th_deg, side = rng.uniform(-180, 180), rng.choice([-1.0, 1.0])
         R = rot(math.radians(th_deg) + (math.pi if side < 0 else 0.0))   # law -> local
-        out = fric("skewed", P * R @ start, R @ (q - start) * P / K, (K, th_deg, side))
+        out = fric(name, P * R @ start, R @ (q - start) * P / K, (K, th_deg, side))
         assert np.abs(out.tau / P - R @ want).max() < 1e-6, (start, q, roots)
         seen += 1
-    assert seen >= 30
+    assert seen >= 12
+
+
+@pytest.mark.parametrize("name", ["windward", "ellipse"])
+def test_the_routines_law_is_exactly_its_table(name):
+    """ASPFRC (force for a sliding direction) and ASPRAD (the boundary of C along a ray),
+    which the explicit routines and the 1D return call, against the table's own
+    interpolation to rounding: every interval, the last one (back to 360 deg) included."""
+    import ctypes as C
+
+    from asperity.fe.table import law_table
+    tab = law_table(law(name))
+    lib = fric_library(name)
+    rng = np.random.default_rng(6)
+    last = np.linspace(tab.psi[-1], tab.psi[0] + 2 * math.pi, 7)[1:-1]
+    psi = np.concatenate([rng.uniform(-20, 20, 2000), last, last - 2 * math.pi])
+    r, n, px, py = C.c_double(), C.c_int(), C.c_double(), C.c_double()
+    for x in psi:
+        lib.aspfrc_(C.byref(C.c_double(P)), C.byref(C.c_double(x)), C.byref(px),
+                    C.byref(py), C.byref(n))
+        assert np.abs([px.value, py.value] - tab.force([x])[0]).max() < 1e-12, x
+    for phi in rng.uniform(-20, 20, 2000):
+        lib.asprad_(C.byref(C.c_double(P)), C.byref(C.c_double(phi)), C.byref(r), C.byref(n))
+        assert abs(r.value - tab.radial([phi])[0]) < 1e-12, phi
+
+
+@pytest.mark.parametrize("name", ["windward", "componentwise"])
+def test_nfdir_1_energies_and_every_angle(name):
+    """NFDIR = 1 along every law angle PROPS(2) in steps of 0.5 deg: the limits are the
+    law's tangential forces along +-direction 1; SFD = TAU DSLIP >= 0, SED = TAU^2/2K."""
+    gl = law(name)
+    for th_deg in np.arange(-180.0, 180.0, 0.5) + 0.25:
+        th = math.radians(th_deg)
+        s = np.array([math.cos(-th), math.sin(-th)])
+        for sign, psi in ((1.0, -th), (-1.0, math.pi - th)):
+            out = fric(name, [0.3 * sign * P * 0.1], [sign * 1e-3], (K, th_deg, 1.0), nfdir=1)
+            assert out.tau[0] == pytest.approx(P * gl.force(np.array([psi])).p[0] @ s,
+                                               abs=1e-4 * P)
+            assert out.sfd == pytest.approx(out.tau[0] * out.dslip[0], rel=1e-12)
+            assert out.sfd > 0 and out.sed == pytest.approx(out.tau[0] ** 2 / (2 * K), rel=1e-12)
+
+
+def test_no_or_negative_pressure_frees_the_point():
+    for press in (0.0, -5e5):
+        out = fric("star", [3e4, -2e4], [1e-6, 2e-6], press=press)
+        assert out.lm == 0 and np.all(out.tau == 0.0) and out.sed == 0.0 and out.sfd == 0.0
+        one = fric("star", [3e4], [1e-6], press=press, nfdir=1)
+        assert np.all(one.tau == 0.0) and one.dslip[0] == pytest.approx(3e4 / K + 1e-6)

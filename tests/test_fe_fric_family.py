@@ -125,3 +125,28 @@ def test_ddtddp_holds_the_change_of_the_law_with_pressure(name):
         h = 1e-6 * press
         num = (tau(press + h) - tau(press - h)) / (2 * h)
         assert np.abs(out.ddtddp - num).max() < 1e-5, (out.ddtddp, num)
+
+
+@pytest.mark.parametrize("name", ["star", "ellipse"])
+def test_the_routines_law_is_exactly_the_blended_table(name):
+    """ASPFRC and ASPRAD at any pressure against the family table blended at it, to
+    rounding (the boundary's search on blended polar angles may land one interval off:
+    the neighbours are tried)."""
+    import ctypes as C
+
+    from asperity.fe.table import family_table
+    ft = family_table(families()[name])
+    lo, hi = ft.pressures[0], ft.pressures[-1]
+    rng = np.random.default_rng(12)
+    r, n, px, py = C.c_double(), C.c_int(), C.c_double(), C.c_double()
+    for _ in range(150):
+        press = lo * (hi / lo) ** rng.uniform(-0.05, 1.05)
+        tab = ft.level(press)
+        for x in rng.uniform(-math.pi, 3 * math.pi, 20):
+            lib(name).aspfrc_(C.byref(C.c_double(press)), C.byref(C.c_double(x)),
+                              C.byref(px), C.byref(py), C.byref(n))
+            assert np.abs([px.value, py.value] - tab.force([x])[0]).max() < 1e-12
+            assert n.value == int(press < lo or press > hi)
+            lib(name).asprad_(C.byref(C.c_double(press)), C.byref(C.c_double(x)),
+                              C.byref(r), C.byref(n))
+            assert abs(r.value - tab.radial([x])[0]) < 1e-12, (press, x)
