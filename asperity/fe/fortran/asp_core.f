@@ -13,7 +13,7 @@ C     core of the generated friction routines (asperity): see ASPLAW
       DOUBLE PRECISION W,DWDP,PL,PI,TWOPI,BX,BY,BL,DX,DY,T,QX,QY,QN,
      1 PHQ,R,GA,GB,G,GT,TL,TH,TN,PS,PSA,DPS,C,S,PX,PY,DPX,DPY,
      2 XLAM,BEST,BT,BPS,BPX,BPY,BDPX,BDPY,BGT,WX,WY,DTP,
-     3 GLO,GHI,AMUP,AMUM,DMUP,DMUM,EPS,SX0,SY0,XX,XY,D2,BD2,CPQ,SPQ,
+     3 GLO,AMUP,AMUM,DMUP,DMUM,EPS,SX0,SY0,XX,XY,D2,BD2,CPQ,SPQ,
      4 SPAN,SA,SB,CA,CB,SMN,SMX
       PARAMETER (PI=3.141592653589793D0,TWOPI=6.283185307179586D0)
       BX(J) = (1.0D0-W)*TPX(J,K) + W*TPX(J,K2)
@@ -164,7 +164,6 @@ C       block lies behind q, where lam < 0
           TL = 0.0D0
           TH = 1.0D0
           GLO = GA
-          GHI = GB
           T = 0.5D0
           IF (GA .NE. GB) T = GA/(GA-GB)
           DO 40 IT = 1, 60
@@ -182,7 +181,6 @@ C       block lies behind q, where lam < 0
               GLO = G
             ELSE
               TH = T
-              GHI = G
             END IF
             TN = 0.5D0*(TL+TH)
             IF (GT .NE. 0.0D0) TN = T - G/GT
@@ -350,7 +348,7 @@ C     blended nodes) along the ray PHI
       INTEGER N,L,K,K2,J,J1,JA,JB,JM,ITRY,JT
       DOUBLE PRECISION TPX(N,L),TPY(N,L),TPHI(N,L),W,PHI,R,BX,BY,BF,
      1 F1,Q,TWOPI,UX,UY,AX,AY,DX,DY,DEN,RR,TT,DD,VM
-      PARAMETER (TWOPI=6.283185307179586D0)
+      PARAMETER (TWOPI=6.283185307179586D0,VM=1.0D-9)
       BX(J) = (1.0D0-W)*TPX(J,K) + W*TPX(J,K2)
       BY(J) = (1.0D0-W)*TPY(J,K) + W*TPY(J,K2)
       BF(J) = (1.0D0-W)*TPHI(J,K) + W*TPHI(J,K2)
@@ -391,7 +389,6 @@ C     blended nodes) along the ray PHI
           RR = (AX*DY - AY*DX)/DEN
           TT = ((RR*UX-AX)*DX + (RR*UY-AY)*DY)/DD
         END IF
-        VM = 1.0D-9
         IF (R .LT. 0.0D0) R = RR
         IF (TT .GE. -VM .AND. TT .LE. 1.0D0+VM .AND. RR .GT. 0.0D0) THEN
           R = RR
