@@ -116,6 +116,23 @@ def test_getfem_missing_from_an_existing_interpreter_says_how_to_install(tmp_pat
     assert not ok and "apt-get install python3-getfem" in why and "\n" not in why
 
 
+@pytest.mark.parametrize("status", [3, 1])
+def test_a_getfem_child_that_fails_is_a_failure_whatever_it_printed(status, tmp_path, capsys,
+                                                                     monkeypatch):
+    """A child that exits non-zero (a crash after its output) is not believed, even when its
+    last line looks like a result: one line with the exit status, exit 1, nothing written."""
+    exe = _fake_python(tmp_path, f"cat > /dev/null\necho '{{\"getfem\": \"9.9\", "
+                                 f"\"drift_per_cycle_m\": 0.0}}'\nexit {status}")
+    monkeypatch.setenv("ASPERITY_GETFEM_PYTHON", str(exe))
+    ok, why = getfem_status()
+    assert not ok and f"exit status {status}" in why and "\n" not in why
+    plot = tmp_path / "r.png"
+    code, out, err = run(capsys, "risk", _strip(tmp_path, "s"), "--fe", "getfem", "--plot", plot,
+                         "--json")
+    assert code == 1 and len(err.strip().splitlines()) == 1 and f"exit status {status}" in err
+    assert out == "" and not plot.exists()
+
+
 def test_a_getfem_run_past_its_timeout_is_stopped_in_one_line(tmp_path, monkeypatch):
     """A run that takes longer than its timeout: GetfemFailed in one line (how long, what to
     do), soon after the timeout, and the child process is gone."""
