@@ -51,6 +51,7 @@ def piecewise_linear(psi, f, var: str = "t") -> tuple[str, str]:
     psi = np.asarray(psi, float)
     f = np.asarray(f, float)
     t = np.mod(psi + math.pi, 2.0 * math.pi) - math.pi          # knots in [-pi, pi)
+    t = np.where(t >= math.pi, t - 2.0 * math.pi, t)    # a knot a rounding below -pi
     order = np.argsort(t)
     t, f = t[order], f[order]
     # close the period: the value at -pi (and pi) interpolated between the last and first
