@@ -165,3 +165,63 @@ def test_deck_lines_carry_the_models_properties(star_gauge, tmp_path, capsys):
                         (("--law-axis", "0", "0", "0"), "--law-axis")):
         err = bad(capsys, tmp_path, star_gauge, "--fric", tmp_path / "x.f", *flags)
         assert name in err
+
+
+@pytest.mark.parametrize("outputs", [("fric",), ("vfric", "vfriction"), ("deck",),
+                                     ("vfriction", "deck"), ("fric", "vfric", "vfriction",
+                                                             "deck")])
+def test_the_terminal_names_exactly_the_files_written(star_gauge, tmp_path, capsys, outputs):
+    """Every "... written to PATH" line names a file now on disk holding what the line
+    says, and every file written has its line: routines alone, the deck alone (FRIC's
+    lines), and both."""
+    argv = []
+    for o in outputs:
+        argv += (["--abaqus-user", tmp_path / "deck.inp"] if o == "deck"
+                 else [f"--{o}", tmp_path / f"{o}.f"])
+    code, out, err = run(capsys, "law", star_gauge, *argv)
+    assert code == 0, err
+    named = re.findall(r"^(.*) written to (.*)$", out, re.MULTILINE)
+    assert sorted(p for _, p in named) == sorted(str(p) for p in tmp_path.iterdir())
+    for what, path in named:
+        text = Path(path).read_text()
+        if what == "Abaqus input-deck lines":
+            assert "*FRICTION, USER" in text
+            routines = [o.upper() for o in outputs if o != "deck"] or ["FRIC"]
+            assert re.findall(r"user subroutine (\w+)", text) == routines
+        else:
+            name = re.fullmatch(r"Abaqus (\w+) routine", what).group(1)
+            assert re.search(rf"^      SUBROUTINE {name}\(", text,
+                             re.IGNORECASE | re.MULTILINE), what
+
+
+def _arguments(source: str) -> set:
+    """The dummy arguments of the SUBROUTINE statement of a fixed-form source (lower case)."""
+    lines = source.splitlines()
+    i = next(k for k, x in enumerate(lines) 
+             if re.match(r"^      subroutine ", x, re.IGNORECASE))
+    text = lines[i][6:]
+    for x in lines[i + 1:]:
+        if x[:1] in "Cc*!":
+            continue
+        if len(x) < 6 or x[5] == " ":
+            break
+        text += x[6:]
+    inner = text[text.index("(") + 1:text.rindex(")")]
+    return {a.strip().lower() for a in inner.split(",")}
+
+
+def test_each_header_speaks_of_its_own_routines_arguments(star_gauge, tmp_path, capsys):
+    """The Assumptions of each routine's header name arguments of that routine only:
+    FRIC's (TAU, DGAM, LM, DDTDDG ...) in FRIC, the explicit ones (fStickForce, dirCosSl
+    ...) in VFRIC and VFRICTION."""
+    files = routine_files(tmp_path)
+    run_json(capsys, "law", star_gauge, *(x for r in ROUTINES for x in (f"--{r}", files[r])))
+    texts = {r: files[r].read_text() for r in ROUTINES}
+    args = {r: _arguments(texts[r]) for r in ROUTINES}
+    every = set().union(*args.values())
+    for r, text in texts.items():
+        block = text.split("C Assumptions:\n")[1].split("\n      ")[0]
+        words = set(re.findall(r"\b(?:[A-Z][A-Z0-9]+|[a-z]+[A-Z]\w*)\b", block))
+        named = {w for w in words if w.lower() in every}
+        assert len(named) >= 4, (r, named)
+        assert {w for w in named if w.lower() not in args[r]} == set(), r
