@@ -292,14 +292,21 @@ def test_conventions_plan_view_draws_the_laws_force_on_c(conventions):
 
 def test_conventions_side_views_label_the_bodies_and_oppose_the_slip(conventions):
     """Each side view names the body it labels (the label lies on it), the slip of the
-    secondary points along +t1 and the force on it against; the three panels all show."""
+    secondary points along +t1 and the force on it against; the two views draw the bodies
+    alike (the same outer faces: only the texture changes side); the three panels all
+    show."""
+    extents = []
     for ax in conventions.axes[:2]:
+        top = max(q.get_extents().y1 for q in _filled(ax, "#9ecae1"))
+        bottom = min(q.get_extents().y0 for q in _filled(ax, "#c9c9c9"))
+        extents.append((top, bottom))         # the outer faces, away from the texture
         labels = {t.get_text(): t.get_position() for t in ax.texts}
         for label, colour in (("secondary (slave)", "#9ecae1"), ("main (master)", "#c9c9c9")):
             assert any(q.contains_point(labels[label]) for q in _filled(ax, colour)), label
         arrows = _arrows(ax)
         slip, force = (arrows[c][1] - arrows[c][0] for c in ("#1f77b4", "#d62728"))
         assert slip[0] > 0 and force[0] < 0 and slip[1] == force[1] == 0
+    assert extents[0] == extents[1]
     boxes = [ax.get_position() for ax in conventions.axes]
     assert all(b.width > 0.2 and b.height > 0.5 for b in boxes)
     assert boxes[0].x1 <= boxes[1].x0 and boxes[1].x1 <= boxes[2].x0
