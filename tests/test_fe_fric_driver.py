@@ -161,3 +161,20 @@ def test_lagrange_stick_is_refused_by_the_driver():
                 press=40.0).lm == 1
     with pytest.raises(NotConverged, match="LM = 1"):
         _pulled(fric, 0, np.array([3e-5, -1e-5]))
+
+
+def test_two_node_drift_does_not_depend_on_the_increments(fric_lib):
+    """The law is rate-independent and the thermal load moves monotonically between the
+    turning points, so the drift per cycle is the same in 4 or 9 increments each way (to
+    1e-9 of alpha_T l0 dT); each cycle is 2 x steps increments."""
+    bar = {"k": 1e6, "l0": 0.1, "alpha_T": 1.2e-5, "k_t": 5e5, "N": 100.0, "dT_min": 0.0,
+           "dT_max": 125.0}                               # surfaces/two-node-spec.toml
+    fric = fric_of(fric_lib, np.array([bar["k_t"], 0.0, 1.0]), 1)
+    drifts = []
+    for steps in (4, 9):
+        ends, iters = two_node_cycles(fric, cycles=3, steps=steps, **bar)
+        assert len(iters) == 3 * 2 * steps
+        drifts.append(np.diff(ends)[1:])
+    scale = 1.2e-5 * 0.1 * 125.0
+    assert abs(drifts[0][0]) > 0.05 * scale
+    assert drifts[1] == pytest.approx(drifts[0], abs=1e-9 * scale)
