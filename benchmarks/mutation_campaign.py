@@ -76,6 +76,9 @@ _BODY = ("test_body_invariants.py", "test_body_convergence.py", "test_body_limit
 #: test_body_convergence without what cannot see a kernel's or body.py's mutant (the slip
 #: ratio: body_horizon's own NumPy) and a third of the pivot cases (those launched along x)
 _BODY_K = "not (convergence and (slip_ratio or u02))"
+#: the FE routines' tests (every module of the fe room that has no entry of its own)
+_FE = ("test_fe_fric.py", "test_fe_fric_family.py", "test_fe_vfric_law.py", "test_fe_explicit.py",
+       "test_fe_fric_driver.py", "test_fe_law_cli.py")
 TESTS = (
     ("contact/bench.py", ("test_contact_bench_limits.py", "test_contact_oracle.py")),
     ("contact/plot.py", ("test_contact_plot.py", "test_contact_cli.py")),
@@ -120,8 +123,8 @@ TESTS = (
     ("fe/abaqus_deck.py", ("test_fe_law_cli.py",)),
     ("fe/conventions_figure.py", ("test_fe_law_cli.py",)),
     ("cli/law_fe.py", ("test_fe_law_cli.py",)),
-    ("fe/*.py", ("test_fe_fric.py", "test_fe_fric_family.py", "test_fe_vfric_law.py",
-                 "test_fe_explicit.py", "test_fe_fric_driver.py", "test_fe_law_cli.py")),
+    ("fe/fortran_harness.py", ("test_fe_harness.py",) + _FE),
+    ("fe/*.py", _FE),
 )
 #: seconds a kernel module's mutant may spend compiling its kernels and their dependents again
 COMPILE_ALLOWANCE = 150.0

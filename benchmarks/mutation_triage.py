@@ -9,6 +9,28 @@ iteration whose answers stay the same: only a test pinning an iteration count co
 """
 
 EQUIVALENT: dict[str, str] = {
+    "fe/table.py:ReplaceBinaryOperator_Mul_Mod:97892b3468":
+        "the final check skips directions within 2.0 % ARC_HALF (3.99e-9 rad) of a flat edge "
+        "instead of 2 ARC_HALF (8e-9): outside the arc's run (ARC_HALF) the table holds the "
+        "law's one-sided limit p_plus / p_minus, within 1e-9 of gl.force at 1-2 ARC_HALF "
+        "from the edge (windward law), so the added directions pass the 1e-4 check either way",
+    "fe/fortran_harness.py:ReplaceUnaryOperator_USub_UAdd:787197bfb8":
+        "GUARD_VALUE +7.25 for -7.25: any sentinel works unless a routine writes exactly it "
+        "past its state; test_fe_harness's overflowing echo routine is caught with both",
+    "fe/fortran_harness.py:NumberReplacer:87ff609c58":
+        "FRIC's DDPDDH passed as 1e12 + 1 instead of 1e12: information the routines never "
+        "read (the contact stiffness of the normal behaviour), moved by 1e-12 relative",
+    "cli/law_fe.py:NumberReplacer:f7ecae0c0e":
+        "the bound 1e+20 for 1e20: the same float",
+    "fe/abaqus_deck.py:ReplaceComparisonOperator_Eq_LtE:d04d9f9a9c":
+        "routine <= 'fric' for == 'fric' in header_lines: only fric, vfric and vfriction "
+        "reach it (the flags' routines), and of these only 'fric' is <= 'fric'",
+    "fe/conventions_figure.py:NumberReplacer:f0381cd587":
+        "the t2 label's font size 8 instead of 9: a label's size, no convention or number moves",
+    "fe/fortran_harness.py:NumberReplacer:cd0842321e":
+        "FRIC's NPATCH passed as 2 instead of 1: an identifier passed for information, which "
+        "neither the generated FRIC nor the stand-in reads (the echo routine of test_fe_harness "
+        "checks every argument they read); any patch number is one Abaqus could pass",
     "crawling/gait_crossing.py:ReplaceComparisonOperator_LtE_Lt:94d0f4ca5e":
         "chunk pruning <= -> <: the bound (half-lengths + tol) is conservative; the chunks "
         "differ only when their centres' distance equals it exactly, a float coincidence",

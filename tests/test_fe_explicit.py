@@ -209,3 +209,18 @@ def test_single_precision_build_agrees(routine):
     assert np.abs(out["single"] - out["double"]).max(axis=0) == pytest.approx(
         0.0, abs=1e-5 * fn.max())
     assert np.all(np.abs(out["single"] - out["double"]) <= 1e-5 * fn)
+
+
+@pytest.mark.parametrize("name", ["fric", "VFRICTION", "vfric ", "vfrictio", ""])
+def test_a_name_other_than_the_two_routines_is_refused(name):
+    """No wrapper comes out under a name that is not its routine's (a FRIC file holding
+    VFRICTION would compile and be called by no solver): the library's writer refuses
+    the name in one line, and so does the explicit wrapper itself."""
+    from asperity.errors import InputError
+    from asperity.fe.abaqus_fric import routine_source
+    with pytest.raises(ValueError, match="vfric or vfriction"):
+        source(name)
+    if name != "fric":
+        with pytest.raises(InputError) as err:
+            routine_source(ELL, name)
+        assert "routine" in str(err.value) and "\n" not in str(err.value)

@@ -122,3 +122,59 @@ def test_two_node_assembly_drifts_as_asperity_risk(fric_lib, capsys):
                                   abs=1e-6 * scale)
     assert risk["drift_per_cycle_m"] < -0.1 * scale
     assert max(iters) <= 6
+
+
+def _pulled(fric, lm0: int, w, ks: float = 2e5, press: float = 40.0):
+    """One increment of a point pulled by a spring to w, its committed LM being lm0."""
+    from asperity.fe.implicit_driver import ContactState, newton_increment
+    state = ContactState.fresh(1, 2, 4)
+    state.lm[:] = lm0
+    return newton_increment(fric, state, np.zeros(2), np.eye(2)[None], [press],
+                            lambda x: (ks * (x - w), ks * np.eye(2)))
+
+
+def test_an_open_point_is_frictionless_and_a_closed_one_is_not(fric_lib):
+    """A point open at the previous increment (LM = 2 committed): FRIC returns at once and
+    the driver takes the point as frictionless, so the spring alone sets u = w, TAU stays 0
+    and LM 2. The same point closed (LM = 0) holds the spring back by TAU / ks."""
+    fric = fric_of(fric_lib, PROPS, 2)
+    w = np.array([3e-5, -1e-5])
+    res = _pulled(fric, 2, w)
+    assert res.u == pytest.approx(w, abs=1e-18)
+    assert res.state.tau[0].tolist() == [0.0, 0.0] and res.state.lm.tolist() == [2]
+    assert [x.tolist() for x in res.lm_seen] == [[2]] * len(res.residuals)
+    closed = _pulled(fric, 0, w)
+    tau = closed.state.tau[0]
+    assert closed.state.lm.tolist() == [0] and np.linalg.norm(tau) > 1.0
+    assert closed.u == pytest.approx(w - tau / 2e5, abs=1e-12)
+
+
+def test_lagrange_stick_is_refused_by_the_driver():
+    """PROPS(1) = 0 makes the generated FRIC ask for Lagrange-multiplier stick (LM = 1),
+    which the driver does not model: it says so instead of using the outputs."""
+    from asperity.fe.abaqus_fric import routine_source
+    from asperity.fe.implicit_driver import NotConverged
+    from asperity.laws.componentwise import componentwise_gauge
+    gl = componentwise_gauge(mu_f=MU_PLUS, mu_b=MU_MINUS, mu_t=0.15)
+    fric = fric_of(library(routine_source(gl, "fric")), np.array([0.0, 0.0, 1.0]), 2)
+    assert fric(lm=0, tau=np.zeros(2), statev=np.zeros(4), dgam=np.array([1e-6, 0.0]),
+                press=40.0).lm == 1
+    with pytest.raises(NotConverged, match="LM = 1"):
+        _pulled(fric, 0, np.array([3e-5, -1e-5]))
+
+
+def test_two_node_drift_does_not_depend_on_the_increments(fric_lib):
+    """The law is rate-independent and the thermal load moves monotonically between the
+    turning points, so the drift per cycle is the same in 4 or 9 increments each way (to
+    1e-9 of alpha_T l0 dT); each cycle is 2 x steps increments."""
+    bar = {"k": 1e6, "l0": 0.1, "alpha_T": 1.2e-5, "k_t": 5e5, "N": 100.0, "dT_min": 0.0,
+           "dT_max": 125.0}                               # surfaces/two-node-spec.toml
+    fric = fric_of(fric_lib, np.array([bar["k_t"], 0.0, 1.0]), 1)
+    drifts = []
+    for steps in (4, 9):
+        ends, iters = two_node_cycles(fric, cycles=3, steps=steps, **bar)
+        assert len(iters) == 3 * 2 * steps
+        drifts.append(np.diff(ends)[1:])
+    scale = 1.2e-5 * 0.1 * 125.0
+    assert abs(drifts[0][0]) > 0.05 * scale
+    assert drifts[1] == pytest.approx(drifts[0], abs=1e-9 * scale)

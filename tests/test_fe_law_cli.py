@@ -6,6 +6,7 @@ with nothing written."""
 from __future__ import annotations
 
 import json
+import math
 import re
 from pathlib import Path
 
@@ -165,3 +166,147 @@ def test_deck_lines_carry_the_models_properties(star_gauge, tmp_path, capsys):
                         (("--law-axis", "0", "0", "0"), "--law-axis")):
         err = bad(capsys, tmp_path, star_gauge, "--fric", tmp_path / "x.f", *flags)
         assert name in err
+
+
+@pytest.mark.parametrize("outputs", [("fric",), ("vfric", "vfriction"), ("deck",),
+                                     ("vfriction", "deck"), ("fric", "vfric", "vfriction",
+                                                             "deck")])
+def test_the_terminal_names_exactly_the_files_written(star_gauge, tmp_path, capsys, outputs):
+    """Every "... written to PATH" line names a file now on disk holding what the line
+    says, and every file written has its line: routines alone, the deck alone (FRIC's
+    lines), and both."""
+    argv = []
+    for o in outputs:
+        argv += (["--abaqus-user", tmp_path / "deck.inp"] if o == "deck"
+                 else [f"--{o}", tmp_path / f"{o}.f"])
+    code, out, err = run(capsys, "law", star_gauge, *argv)
+    assert code == 0, err
+    named = re.findall(r"^(.*) written to (.*)$", out, re.MULTILINE)
+    assert sorted(p for _, p in named) == sorted(str(p) for p in tmp_path.iterdir())
+    for what, path in named:
+        text = Path(path).read_text()
+        if what == "Abaqus input-deck lines":
+            assert "*FRICTION, USER" in text
+            routines = [o.upper() for o in outputs if o != "deck"] or ["FRIC"]
+            assert re.findall(r"user subroutine (\w+)", text) == routines
+        else:
+            name = re.fullmatch(r"Abaqus (\w+) routine", what).group(1)
+            assert re.search(rf"^      SUBROUTINE {name}\(", text,
+                             re.IGNORECASE | re.MULTILINE), what
+
+
+def _arguments(source: str) -> set:
+    """The dummy arguments of the SUBROUTINE statement of a fixed-form source (lower case)."""
+    lines = source.splitlines()
+    i = next(k for k, x in enumerate(lines) 
+             if re.match(r"^      subroutine ", x, re.IGNORECASE))
+    text = lines[i][6:]
+    for x in lines[i + 1:]:
+        if x[:1] in "Cc*!":
+            continue
+        if len(x) < 6 or x[5] == " ":
+            break
+        text += x[6:]
+    inner = text[text.index("(") + 1:text.rindex(")")]
+    return {a.strip().lower() for a in inner.split(",")}
+
+
+def test_each_header_speaks_of_its_own_routines_arguments(star_gauge, tmp_path, capsys):
+    """The Assumptions of each routine's header name arguments of that routine only:
+    FRIC's (TAU, DGAM, LM, DDTDDG ...) in FRIC, the explicit ones (fStickForce, dirCosSl
+    ...) in VFRIC and VFRICTION."""
+    files = routine_files(tmp_path)
+    run_json(capsys, "law", star_gauge, *(x for r in ROUTINES for x in (f"--{r}", files[r])))
+    texts = {r: files[r].read_text() for r in ROUTINES}
+    args = {r: _arguments(texts[r]) for r in ROUTINES}
+    every = set().union(*args.values())
+    for r, text in texts.items():
+        block = text.split("C Assumptions:\n")[1].split("\n      ")[0]
+        words = set(re.findall(r"\b(?:[A-Z][A-Z0-9]+|[a-z]+[A-Z]\w*)\b", block))
+        named = {w for w in words if w.lower() in every}
+        assert len(named) >= 4, (r, named)
+        assert {w for w in named if w.lower() not in args[r]} == set(), r
+
+
+@pytest.fixture(scope="module")
+def conventions():
+    from asperity.fe.conventions_figure import figure
+    from asperity.io import pyplot
+    fig = figure()
+    yield fig
+    pyplot().close(fig)
+
+
+def _arrows(ax):
+    """{colour (hex): (tail, head)} of the annotation arrows of ``ax``."""
+    from matplotlib.colors import to_hex
+    from matplotlib.text import Annotation
+    return {to_hex(a.arrow_patch.get_edgecolor()): (np.array(a.xyann), np.array(a.xy))
+            for a in ax.texts if isinstance(a, Annotation) and a.arrow_patch is not None}
+
+
+def _filled(ax, colour):
+    """The paths (data coordinates) of the patches and fills of ``colour`` in ``ax``."""
+    from matplotlib.colors import to_hex
+    out = [p.get_patch_transform().transform_path(p.get_path()) for p in ax.patches
+           if to_hex(p.get_facecolor()) == colour]
+    return out + [q for c in ax.collections if len(c.get_facecolor())
+                  and to_hex(c.get_facecolor()[0]) == colour for q in c.get_paths()]
+
+
+def _radius(poly, phi):
+    """Distance from the origin to the closed polygon ``poly`` (dense, star-shaped) along phi."""
+    ang = np.unwrap(np.arctan2(poly[:, 1], poly[:, 0]))
+    r = np.hypot(poly[:, 0], poly[:, 1])
+    return np.interp(np.mod(phi - ang[0], 2 * np.pi) + ang[0], ang, r)
+
+
+def test_conventions_plan_view_draws_the_laws_force_on_c(conventions):
+    """The plan view: C of the law turned to its +x axis (the green arrow: C reaches
+    mu_a+ along it, mu_a- against it, mu_b+- across), and the force for sliding along t1
+    (blue) on the boundary of C, where the dissipation p.t1 is largest (associated law),
+    equal to R(theta) p(-theta) of the law as `law --psi` gives it."""
+    from matplotlib.colors import to_hex
+
+    from asperity.fe.conventions_figure import AXES
+    from asperity.laws.sets import TruncatedEllipse
+    from asperity.laws.walker_leine import associated
+    ax = conventions.axes[2]
+    arrows = _arrows(ax)
+    (t0, t1), (g0, g1), (p0, p) = (arrows[to_hex(c)] for c in
+                                    ("tab:blue", "tab:green", "tab:purple"))
+    assert t0.tolist() == [0, 0] and g0.tolist() == [0, 0] and p0.tolist() == [0, 0]
+    assert t1[1] == 0 and t1[0] > 0
+    (path,) = _filled(ax, "#fdd0a2")
+    poly = path.vertices
+    th = math.atan2(g1[1], g1[0])
+    for k, mu in enumerate(AXES):
+        assert _radius(poly, th + (0, math.pi, math.pi / 2, -math.pi / 2)[k]) == \
+            pytest.approx(mu, rel=1e-3)
+    assert np.hypot(*p) == pytest.approx(_radius(poly, math.atan2(p[1], p[0])), rel=1e-3)
+    assert p[0] >= (poly @ [1.0, 0.0]).max() * (1 - 1e-4)
+    ref = associated(TruncatedEllipse(*AXES)).force(np.array([-th])).p[0]
+    c, s = math.cos(th), math.sin(th)
+    assert p == pytest.approx([c * ref[0] - s * ref[1], s * ref[0] + c * ref[1]], abs=1e-12)
+
+
+def test_conventions_side_views_label_the_bodies_and_oppose_the_slip(conventions):
+    """Each side view names the body it labels (the label lies on it), the slip of the
+    secondary points along +t1 and the force on it against; the two views draw the bodies
+    alike (the same outer faces: only the texture changes side); the three panels all
+    show."""
+    extents = []
+    for ax in conventions.axes[:2]:
+        top = max(q.get_extents().y1 for q in _filled(ax, "#9ecae1"))
+        bottom = min(q.get_extents().y0 for q in _filled(ax, "#c9c9c9"))
+        extents.append((top, bottom))         # the outer faces, away from the texture
+        labels = {t.get_text(): t.get_position() for t in ax.texts}
+        for label, colour in (("secondary (slave)", "#9ecae1"), ("main (master)", "#c9c9c9")):
+            assert any(q.contains_point(labels[label]) for q in _filled(ax, colour)), label
+        arrows = _arrows(ax)
+        slip, force = (arrows[c][1] - arrows[c][0] for c in ("#1f77b4", "#d62728"))
+        assert slip[0] > 0 and force[0] < 0 and slip[1] == force[1] == 0
+    assert extents[0] == extents[1]
+    boxes = [ax.get_position() for ax in conventions.axes]
+    assert all(b.width > 0.2 and b.height > 0.5 for b in boxes)
+    assert boxes[0].x1 <= boxes[1].x0 and boxes[1].x1 <= boxes[2].x0

@@ -66,3 +66,69 @@ def test_the_table_of_a_turned_law_is_the_turned_table():
     b = law_table(componentwise_gauge(mu_f=0.2, mu_b=0.3, mu_t=0.4))
     psi = np.linspace(0, TWO_PI, 997)
     assert np.abs(b.force(psi) - 2 * a.force(psi)).max() < 2e-4
+
+
+def test_family_table_holds_the_family_at_every_pressure_clamped_outside():
+    """FamilyTable.level(p) is ``law --pressure p``'s law within 1e-4 in every direction
+    (away from flat edges): at the members, between them (blended in ln p), and clamped
+    to the end members below and above the family's pressures (flagged as clamped)."""
+    from law_families import four_members
+
+    from asperity.fe.table import _near_edges, family_table
+    fam = four_members()
+    ft = family_table(fam)
+    lo, hi = fam.pressures[0], fam.pressures[-1]
+    psi = np.linspace(0.0, TWO_PI, 1441)
+    for p in np.concatenate([np.geomspace(0.2 * lo, 5.0 * hi, 23), fam.pressures]):
+        ref = fam.at(min(max(p, lo), hi))
+        err = np.hypot(*(ft.level(p).force(psi) - ref.force(psi).p).T)
+        err[_near_edges(psi, ref)] = 0.0
+        assert err.max() < 1e-4, p
+        assert ft.weights(p)[2] == (p < lo or p > hi)
+    assert np.array_equal(ft.level(0.5 * lo).p, ft.level(lo).p)
+    assert np.array_equal(ft.level(2.0 * hi).p, ft.level(hi).p)
+
+
+@pytest.fixture(scope="module")
+def ellipse_members():
+    """Two truncated ellipses of different asymmetry: the family's laws between them
+    (semi-axes interpolated) are not the blend of their forces."""
+    from asperity.friction.derive import derive
+    from asperity.laws.fitting import fit_derivation
+    from asperity.texture.wedges import WedgeTexture
+    return [fit_derivation(derive(WedgeTexture(a, b, 0.3, 0.05), "windward", "closed-form",
+                                  72), "truncated-ellipse") for a, b in ((10, 40), (35, 15))]
+
+
+def _family(members, pressures):
+    from dataclasses import replace
+
+    from law_families import contact
+
+    from asperity.laws.family import GaugeFamily
+    src = members[0].source
+    return GaugeFamily(pressures, tuple(replace(g, source={**src, "elastic_contact": contact(p)})
+                                        for g, p in zip(members, pressures)))
+
+
+def test_a_family_that_jumps_between_close_pressures_is_refused(ellipse_members):
+    """Laws that change by 0.07 between pressures 1e-7 apart cannot be blended within 1e-4
+    by adding levels: refused at once in one line naming the pressures (not bisected down
+    to the level limit)."""
+    from asperity.fe.table import TableError, family_table
+    fam = _family(ellipse_members, (1e6, 1e6 * (1.0 + 1e-7)))
+    with pytest.raises(TableError) as err:
+        family_table(fam)
+    msg = str(err.value)
+    assert "\n" not in msg and "between 1e+06 and 1e+06 Pa" in msg and "2 pressure levels" in msg
+
+
+def test_a_family_needing_more_levels_than_allowed_is_refused(ellipse_members, monkeypatch):
+    """With the level limit at the members' count, a family that needs levels between its
+    members is refused in one line (the limit holds, whatever the pressure ratio)."""
+    from asperity.fe import table
+    monkeypatch.setattr(table, "MAX_LEVELS", 2)
+    with pytest.raises(table.TableError) as err:
+        table.family_table(_family(ellipse_members, (1e6, 1e8)))
+    msg = str(err.value)
+    assert "\n" not in msg and "between 1e+06 and 1e+08 Pa" in msg

@@ -63,23 +63,24 @@ def _rect(x, y, w, h, color):
     return Rectangle((x, y), w, h, color=color, lw=1, ec="k")
 
 
+def plan_law():
+    """The law of the plan view in the local frame (t1, t2): the associated law of the
+    truncated ellipse AXES turned by THETA, so its force for sliding along t1 is
+    R(THETA) p(-THETA) of the unturned law (what FRIC returns per unit pressure)."""
+    from ..laws.sets import TruncatedEllipse
+    from ..laws.walker_leine import associated
+    return associated(TruncatedEllipse(*AXES, theta=THETA))
+
+
 def _plan(ax) -> None:
     """Plan view of the tangent plane: t1, t2 = n x t1, the law's +x at theta, C and the
     force p for sliding along t1 (law angle -theta)."""
-    ap, am, bp, bm = AXES
+    law = plan_law()
     u = np.linspace(0, 2 * math.pi, 721)
-    c, s = np.cos(u), np.sin(u)
-    a, b = np.where(c >= 0, ap, am), np.where(s >= 0, bp, bm)
-    r = 1.0 / np.sqrt((c / a) ** 2 + (s / b) ** 2)
+    r = law.C.radial(u)
+    ax.fill(r * np.cos(u), r * np.sin(u), color="#fdd0a2", alpha=0.7, lw=1, ec="tab:orange")
     ct, st = math.cos(THETA), math.sin(THETA)
-    x, y = r * c, r * s
-    ax.fill(ct * x - st * y, st * x + ct * y, color="#fdd0a2", alpha=0.7, lw=1, ec="tab:orange")
-    psi = -THETA                                  # t1 in the law frame
-    sc, ss = math.cos(psi - 0.0), math.sin(psi)
-    aa, bb = (ap if sc >= 0 else am), (bp if ss >= 0 else bm)
-    q = math.hypot(aa * sc, bb * ss)
-    px, py = aa * aa * sc / q, bb * bb * ss / q    # associated: normal along the slip
-    gx, gy = ct * px - st * py, st * px + ct * py
+    gx, gy = law.force(np.array([0.0])).p[0]       # sliding along t1: psi = 0 here
     kw = {"arrowprops": {"arrowstyle": "-|>", "lw": 1.8}}
     ax.annotate("", xy=(0.27, 0), xytext=(0, 0), **{**kw, "arrowprops": {
         **kw["arrowprops"], "color": "tab:blue"}})
@@ -114,9 +115,9 @@ def _plan(ax) -> None:
                  fontsize=9)
 
 
-def draw(path: str = DEFAULT) -> str:
-    """Draw the figure into ``path`` (written atomically) and return the path."""
-    from ..io import pyplot, save_figure_atomic
+def figure():
+    """The figure (side views with the texture on either surface, the plan view)."""
+    from ..io import pyplot
     plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.6), gridspec_kw={"width_ratios": [1, 1, 1.05]})
     _side(axes[0], True)
@@ -125,6 +126,13 @@ def draw(path: str = DEFAULT) -> str:
     fig.suptitle("Abaqus FRIC / VFRIC / VFRICTION written by asperity: sides and signs",
                  fontsize=11)
     fig.tight_layout()
+    return fig
+
+
+def draw(path: str = DEFAULT) -> str:
+    """Draw the figure into ``path`` (written atomically) and return the path."""
+    from ..io import pyplot, save_figure_atomic
+    fig = figure()
     save_figure_atomic(fig, path, dpi=110)
-    plt.close(fig)
+    pyplot().close(fig)
     return path
