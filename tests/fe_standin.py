@@ -15,7 +15,9 @@ def _d(x: float) -> str:
     return f"{float(x):.17E}".replace("E", "D")
 
 
-HEAD = """      SUBROUTINE FRIC(LM,TAU,DDTDDG,DDTDDP,DSLIP,SED,SFD,
+#: FRIC's interface as the User Subroutines Reference gives it (written here, not taken from
+#: the package, so that the stand-ins and the harness's echo check the package's own copy)
+FRIC_INTERFACE = """      SUBROUTINE FRIC(LM,TAU,DDTDDG,DDTDDP,DSLIP,SED,SFD,
      1 DDTDDT,PNEWDT,STATEV,DGAM,TAULM,PRESS,DPRESS,DDPDDH,SLIP,
      2 KSTEP,KINC,TIME,DTIME,NOEL,CINAME,SLNAME,MSNAME,NPT,NODE,
      3 NPATCH,COORDS,RCOORD,DROT,TEMP,PREDEF,NFDIR,MCRD,NPRED,
@@ -28,7 +30,8 @@ C
      1 DSLIP(NFDIR),DDTDDT(NFDIR,2),STATEV(*),DGAM(NFDIR),
      2 TAULM(NFDIR),SLIP(NFDIR),TIME(2),COORDS(MCRD),
      3 RCOORD(MCRD),DROT(2,2),TEMP(2),PREDEF(2,*),PROPS(NPROPS)
-      DIMENSION TTR(2)
+"""
+HEAD = FRIC_INTERFACE + """      DIMENSION TTR(2)
 """
 
 

@@ -8,24 +8,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from fe_builds import library, needs_gfortran
+from fe_standin import FRIC_INTERFACE as FRIC_HEAD
 
 from asperity.fe.abaqus_explicit import VFRIC_HEAD, VFRICTION_HEAD
 from asperity.fe.fortran_harness import FortranError, call_fric, call_vfric, call_vfriction
 
 pytestmark = needs_gfortran
 
-FRIC_HEAD = """      SUBROUTINE FRIC(LM,TAU,DDTDDG,DDTDDP,DSLIP,SED,SFD,
-     1 DDTDDT,PNEWDT,STATEV,DGAM,TAULM,PRESS,DPRESS,DDPDDH,SLIP,
-     2 KSTEP,KINC,TIME,DTIME,NOEL,CINAME,SLNAME,MSNAME,NPT,NODE,
-     3 NPATCH,COORDS,RCOORD,DROT,TEMP,PREDEF,NFDIR,MCRD,NPRED,
-     4 NSTATV,CHRLNGTH,PROPS,NPROPS)
-      INCLUDE 'ABA_PARAM.INC'
-      CHARACTER*80 CINAME,SLNAME,MSNAME
-      DIMENSION TAU(NFDIR),DDTDDG(NFDIR,NFDIR),DDTDDP(NFDIR),
-     1 DSLIP(NFDIR),DDTDDT(NFDIR,2),STATEV(*),DGAM(NFDIR),
-     2 TAULM(NFDIR),SLIP(NFDIR),TIME(2),COORDS(MCRD),
-     3 RCOORD(MCRD),DROT(2,2),TEMP(2),PREDEF(2,*),PROPS(NPROPS)
-"""
 
 #: STATEV(1..22) of the FRIC echo
 FRIC_ECHO = FRIC_HEAD + """\
