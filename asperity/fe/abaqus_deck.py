@@ -35,7 +35,9 @@ EXPLICIT_PROPS = ("** props(1:3) the law's +x axis in global coordinates",
 
 
 def _g(x: float) -> str:
-    return f"{x:.6G}" if "." in f"{x:.6G}" or "E" in f"{x:.6G}" else f"{x:.6G}.0"
+    """A deck number: 6 significant digits, a decimal point when it has no exponent."""
+    s = f"{x:.6G}"
+    return s if "." in s or "E" in s else s + ".0"
 
 
 def deck_lines(routine: str, name: str = "TEXTURED", props=None) -> list[str]:

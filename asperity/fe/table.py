@@ -99,6 +99,14 @@ def _polygon_radial(pts, phi):
     return r
 
 
+def _edge_distance(psi, edges) -> np.ndarray:
+    """(m,) the angle (rad) from each direction psi to the nearest edge (inf without one)."""
+    if not edges.size:
+        return np.full(np.shape(psi), np.inf)
+    d = np.abs(np.remainder(np.asarray(psi)[:, None] - edges[None, :] + math.pi, TWO_PI) - math.pi)
+    return d.min(axis=1)
+
+
 def _edges(gl) -> np.ndarray:
     return np.mod(np.asarray(getattr(gl.law.D, "edges", np.empty(0)), dtype=float), TWO_PI)
 
@@ -139,9 +147,7 @@ def law_table(gl, tol: float = TOL, start: int = 360) -> LawTable:
     build = min(BUILD_TOL, 0.25 * tol)
     edges = _edges(gl)
     psi = TWO_PI * np.arange(start) / start
-    if edges.size:
-        d = np.abs(np.remainder(psi[:, None] - edges[None, :] + math.pi, TWO_PI) - math.pi)
-        psi = psi[np.all(d > 3.0 * ARC_HALF, axis=1)]
+    psi = psi[_edge_distance(psi, edges) > 3.0 * ARC_HALF]
     p = gl.force(psi).p
     arc = np.full(psi.size, -1)
     for k, e in enumerate(edges):
@@ -193,8 +199,7 @@ def _checked(gl, psi, p, tol, edges) -> LawTable:
                          "deg (C is not star-shaped about the origin along the sliding rule)")
     chk = TWO_PI * (np.arange(CHECK_DIRECTIONS) + 0.5) / CHECK_DIRECTIONS
     if edges.size:
-        d = np.abs(np.remainder(chk[:, None] - edges[None, :] + math.pi, TWO_PI) - math.pi)
-        chk = np.concatenate([chk[np.all(d > 2.0 * ARC_HALF, axis=1)], edges])
+        chk = np.concatenate([chk[_edge_distance(chk, edges) > 2.0 * ARC_HALF], edges])
     err = np.hypot(*(_interp(psi, p, chk) - gl.force(chk).p).T)
     phi = TWO_PI * np.arange(CHECK_DIRECTIONS) / CHECK_DIRECTIONS
     rerr = np.abs(_polygon_radial(p, phi) - gl.law.C.radial(phi))
@@ -256,12 +261,10 @@ def family_table(fam, tol: float = TOL) -> FamilyTable:
     todo = list(zip(fam.pressures[:-1], fam.pressures[1:]))
     while todo:
         a, b = todo.pop()
-        pm = math.sqrt(a * b)
         ta, tb = levels[a], levels[b]
-        errs = []
+        errs, refs = [], {}
         for w in (0.25, 0.5, 0.75):
-            pw = a * (b / a) ** w
-            ref = fam.at(pw)
+            refs[w] = ref = fam.at(a * (b / a) ** w)
             f = (1.0 - w) * ta.force(check) + w * tb.force(check)
             e = np.hypot(*(f - ref.force(check).p).T)
             e[_near_edges(check, ref)] = 0.0
@@ -273,7 +276,8 @@ def family_table(fam, tol: float = TOL) -> FamilyTable:
             raise TableError(f"law family table: the laws between {a:g} and {b:g} Pa change "
                              f"too fast to blend within {tol:g} (error {max(errs):.3g} with "
                              f"{len(levels)} pressure levels)")
-        levels[pm] = law_table(fam.at(pm), tol)
+        pm = a * (b / a) ** 0.5                   # the middle level: the w = 0.5 law
+        levels[pm] = law_table(refs[0.5], tol)
         todo += [(a, pm), (pm, b)]
     ps = np.array(sorted(levels))
     grid = np.unique(np.concatenate([levels[k].psi for k in ps]))
@@ -283,8 +287,6 @@ def family_table(fam, tol: float = TOL) -> FamilyTable:
 
 
 def _near_edges(psi, gl) -> np.ndarray:
-    edges = _edges(gl)
-    if not edges.size:
-        return np.zeros(psi.size, bool)
-    d = np.abs(np.remainder(psi[:, None] - edges[None, :] + math.pi, TWO_PI) - math.pi)
-    return np.any(d <= 2.0 * ARC_HALF + 1e-3, axis=1)
+    """Directions within 1e-3 rad of a flat edge of the law's D (where a family's members'
+    edges move with the pressure, so a blend carries two half-jumps)."""
+    return _edge_distance(psi, _edges(gl)) <= 2.0 * ARC_HALF + 1e-3

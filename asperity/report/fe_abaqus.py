@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import time
+from functools import cache
 from pathlib import Path
 
 import numpy as np
@@ -22,8 +23,9 @@ WORDS = {"ellipse": "truncated ellipse, wedge 20/40 deg (all faces)",
          "componentwise": "componentwise, mu_f 0.1, mu_b 0.15, mu_t 0.2"}
 
 
+@cache
 def law(name: str):
-    """The four laws of the section (the FE tests' own)."""
+    """The four laws of the section (the FE tests use them too)."""
     from ..friction.derive import derive
     from ..laws.fitting import fit_derivation
     from ..texture.wedges import WedgeTexture
@@ -36,8 +38,16 @@ def law(name: str):
                           kind)
 
 
-def _rot(th: float) -> np.ndarray:
+def rot(th: float) -> np.ndarray:
+    """The rotation by th (rad)."""
     return np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
+
+
+def steady_tau(gl, phi: float, th: float, side: int, press: float) -> np.ndarray:
+    """TAU of steady sliding along local angle phi (SPEC.md section 10): texture on the
+    main surface PRESS R(th) p(phi - th), on the secondary -PRESS R(th) p(phi + 180 - th)."""
+    psi = phi - th if side > 0 else phi + math.pi - th
+    return (1.0 if side > 0 else -1.0) * press * rot(th) @ gl.force(np.array([psi])).p[0]
 
 
 def steady_error(lib, gl, th_deg: float, side: int, n: int = 360) -> float:
@@ -46,8 +56,7 @@ def steady_error(lib, gl, th_deg: float, side: int, n: int = 360) -> float:
     th = math.radians(th_deg)
     worst = 0.0
     for phi in 2 * math.pi * (np.arange(n) + 0.5) / n:
-        psi = phi - th if side > 0 else phi + math.pi - th
-        ref = (1.0 if side > 0 else -1.0) * P * _rot(th) @ gl.force(np.array([psi])).p[0]
+        ref = steady_tau(gl, phi, th, side, P)
         u = np.array([math.cos(phi), math.sin(phi)])
         out = call_fric(lib, lm=0, tau=ref, statev=np.zeros(3), dgam=1e-6 * u, press=P,
                         props=np.array([K, th_deg, float(side)]))
