@@ -103,19 +103,13 @@ def strip_job(asm, mu_plus: float, mu_minus: float, nx: int, ny: int, *,
 
 def chain_drift(asm, mu_plus, mu_minus, k_t=None, max_marched: int = 200) -> float:
     """Drift per cycle of the assembly's slider chain (k_t replaced when given)."""
-    from ..microslip.chains import strip_chain
-    from ..microslip.quasi_static import simulate
-    p = asm.params
-    c = strip_chain(p["h"], p["E"], p["p"], p["l"], p["k_t"] if k_t is None else k_t,
-                    p["alpha_T"], p["n"], mu_plus, mu_minus)
-    if asm.force_at != "uniform":
-        from dataclasses import replace
+    from dataclasses import replace
 
-        import numpy as np
-        fw = np.zeros(c.n)
-        fw[0 if asm.force_at == "start" else -1] = 1.0
-        c = replace(c, fw=fw)
-    return float(simulate(c, asm.loading, max_marched).drift_per_cycle)
+    from ..microslip.quasi_static import simulate
+    if k_t is not None:
+        asm = replace(asm, params={**asm.params, "k_t": k_t})
+    return float(simulate(asm.chain(mu_plus, mu_minus), asm.loading,
+                          max_marched).drift_per_cycle)
 
 
 def run_strip_fe(asm, mu_plus: float, mu_minus: float, *, mesh: int = MESH_DEFAULT,
