@@ -26,9 +26,7 @@ import math
 import numpy as np
 
 from ..errors import InputError
-
-#: default accuracy of the table against the law, per unit normal load
-TABLE_TOL = 1e-4
+from .table import TOL as TABLE_TOL  # the table's accuracy: the Abaqus routines' own
 
 
 def law_table(gl, tol: float = TABLE_TOL):
