@@ -26,7 +26,7 @@ httpx = pytest.importorskip("httpx")
 with warnings.catch_warnings():
     warnings.filterwarnings("ignore", message=".*httpx2.*")
     from web_forms import Page
-from web_server import Server, job_done
+from web_server import job_done, served
 
 from asperity import ellipse_law, star_law
 from asperity.bodies.body_file import read_body
@@ -53,12 +53,7 @@ contact_points = 12
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    srv = Server(tmp_path_factory.mktemp("web-body") / "data", "--workers", "1")
-    try:
-        yield srv
-    finally:
-        assert srv.stop() == 0
-    assert "Traceback" not in "".join(srv.err), "".join(srv.err)
+    yield from served(tmp_path_factory.mktemp("web-body") / "data", "--workers", "1")
 
 
 def post(server, data, files=None):

@@ -20,7 +20,7 @@ httpx = pytest.importorskip("httpx")
 with warnings.catch_warnings():
     warnings.filterwarnings("ignore", message=".*httpx2.*")
     from web_forms import Page
-from web_server import Server, job_done
+from web_server import job_done, served
 
 from asperity.crawling.gait import CurvatureWave
 from asperity.crawling.output import csv_text, summary, world_shapes
@@ -35,12 +35,7 @@ BASE = {"c_law": "coefficients", "c_mu_f": "0.1", "c_mu_b": "0.15", "c_mu_t": "0
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    srv = Server(tmp_path_factory.mktemp("web-crawl") / "data", "--workers", "1")
-    try:
-        yield srv
-    finally:
-        assert srv.stop() == 0
-    assert "Traceback" not in "".join(srv.err), "".join(srv.err)
+    yield from served(tmp_path_factory.mktemp("web-crawl") / "data", "--workers", "1")
 
 
 def post(server, data, files=None):

@@ -26,7 +26,7 @@ httpx = pytest.importorskip("httpx")
 with warnings.catch_warnings():      # starlette 1.x would rather have httpx2; httpx works
     warnings.filterwarnings("ignore", message=".*httpx2.*")
     from fastapi.testclient import TestClient  # noqa: E402
-from web_server import ROOT, Server  # noqa: E402
+from web_server import ROOT, served  # noqa: E402
 
 from asperity.web.app import create_app  # noqa: E402
 from asperity.web.settings import make_settings, prepare_data_dir  # noqa: E402
@@ -39,13 +39,8 @@ LIMIT_MB = 0.25
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    srv = Server(tmp_path_factory.mktemp("web-security") / "data", "--workers", "1",
-                 "--max-upload", str(LIMIT_MB))
-    try:
-        yield srv
-    finally:
-        assert srv.stop() == 0
-    assert "Traceback" not in "".join(srv.err), "".join(srv.err)
+    yield from served(tmp_path_factory.mktemp("web-security") / "data", "--workers", "1",
+                      "--max-upload", str(LIMIT_MB))
 
 
 @pytest.fixture(scope="module")

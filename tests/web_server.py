@@ -67,6 +67,17 @@ class Server:
         return self.proc.returncode
 
 
+def served(data_dir, *args):
+    """A module fixture's body: a Server on ``data_dir``, stopped cleanly (exit 0) with no
+    traceback on its stderr."""
+    srv = Server(data_dir, *args)
+    try:
+        yield srv
+    finally:
+        assert srv.stop() == 0
+    assert "Traceback" not in "".join(srv.err), "".join(srv.err)
+
+
 def wait_for(pred, timeout: float = 60.0, step: float = 0.2):
     t0 = time.monotonic()
     while time.monotonic() - t0 < timeout:
