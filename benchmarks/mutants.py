@@ -91,6 +91,7 @@ REPORT_BODIES = ("test_report_bodies.py",)
 BODY = ("test_dynamics_body.py", "test_body_convergence.py")
 CRAWL = ("test_crawl.py",)
 CRAWL_CLI = ("test_crawl_cli.py",)
+FE_FRIC = ("test_fe_fric.py", "test_fe_fric_family.py")
 METAMORPHIC_CONTACT = ("test_metamorphic_contact.py",)
 METAMORPHIC_LAWS = ("test_metamorphic_laws.py",)
 METAMORPHIC_BODIES = ("test_metamorphic_bodies.py", "test_option_pairs.py")
@@ -363,8 +364,8 @@ MUTANTS = [
            "out[j] = a0 + t * (a1 - a0)", "out[j] = a0", BODY,
            "body solver: law tables read at the grid point below, not interpolated"),
     Mutant("body-kink-outside-C", "dynamics/_body_step_kernels.py",
-           "if _gauge(kind, par, tab, cx, cy) > 1.0 + 1e-12:",
-           "if _gauge(kind, par, tab, cx, cy) > 1.1:", BODY,
+           "if _gauge(kind, par, tab, lx, ly) > 1.0 + 1e-12:",
+           "if _gauge(kind, par, tab, lx, ly) > 1.1:", BODY,
            "body solver: a point held sticking with a force outside its friction set"),
     Mutant("stop-distance-factor-2", "dynamics/references.py",
            "return u0 * u0 / (2.0 * mu * g)", "return u0 * u0 / (mu * g)", DYNAMICS,
@@ -1138,6 +1139,35 @@ MUTANTS = [
     Mutant("crawl-fit-law-ignored", "cli/crawl.py",
            "fitted_law(texture, args.fit_law,", 'fitted_law(texture, "star",', CRAWL_CLI,
            "--fit-law ellipse fits the star law"),
+    # ---- issue 27: the FE hand-off (the Fortran text is also mutated by
+    # benchmarks/fortran_mutants.py; these are bugs its operators cannot make)
+    Mutant("fe-fric-side-ignored", "fe/abaqus_fric.py", "THD = THD + PID", "THD = THD",
+           FE_FRIC, "PROPS(3) = -1 (texture on the secondary surface) ignored"),
+    Mutant("fe-fric-angle-in-radians", "fe/abaqus_fric.py", "THD = PROPS(2)*PID/180.0D0",
+           "THD = PROPS(2)", FE_FRIC, "PROPS(2) read as radians, not degrees"),
+    Mutant("fe-fric-ddtddg-transposed", "fe/abaqus_fric.py",
+           "        DDTDDG(1,2) = AKD*(B11*ST + B12*CT)\n        DDTDDG(2,1) = AKD*(B21*CT - B22*ST)",
+           "        DDTDDG(2,1) = AKD*(B11*ST + B12*CT)\n        DDTDDG(1,2) = AKD*(B21*CT - B22*ST)",
+           FE_FRIC, "DDTDDG written transposed (row-major thinking)"),
+    Mutant("fe-fric-start-stress-unturned", "fe/abaqus_fric.py",
+           "        OUT(1) = CT*TAU(1) + ST*TAU(2)\n        OUT(2) = -ST*TAU(1) + CT*TAU(2)",
+           "        OUT(1) = TAU(1)\n        OUT(2) = TAU(2)", FE_FRIC,
+           "the start stress handed to the core in local, not law, axes"),
+    Mutant("fe-vfric-state-by-contact-point", "fe/abaqus_explicit.py",
+           'jn="jConSlvid(k)"', 'jn="k"', ("test_fe_vfric_law.py", "test_fe_explicit.py"),
+           "VFRIC's statev indexed by contact point instead of surface node"),
+    Mutant("fe-deck-props-order", "fe/abaqus_deck.py",
+           "f\"{k}, {_g(pr['angle_deg'])}, {side}\",", "f\"{_g(pr['angle_deg'])}, {k}, {side}\",",
+           ("test_fe_law_cli.py",), "FRIC's data line with PROPS(1) and PROPS(2) swapped"),
+    Mutant("fe-family-low-clamp-uncounted", "fe/fortran/asp_core.f",
+           "          IF (PL .LT. TLNP(1)-1.0D-12) NCLAMP = 1\n", "", FE_FRIC,
+           "a pressure below a family's members clamped without being counted"),
+    Mutant("fe-table-edges-ignored", "fe/table.py", "    edges = _edges(gl)\n    psi = TWO_PI",
+           "    edges = np.empty(0)\n    psi = TWO_PI", ("test_fe_table.py",),
+           "a star law's flat edges of D tabulated as if its force were continuous"),
+    Mutant("fe-getfem-thermal-strain-sign", "fe/getfem_script.py",
+           '"Sym(Grad_u) - alphaT*dT*Id(2)"', '"Sym(Grad_u) + alphaT*dT*Id(2)"',
+           ("test_fe_getfem.py",), "the FE strip expands when it cools"),
     # ---- command-line names of library fields
     Mutant("cli-spring-ratio-flags-dropped", "cli/sources.py",
            '{"springs.k_f / k_n ": "--k-f / --k-n ", **fields}', "{**fields}",
