@@ -262,3 +262,22 @@ def test_the_study_path_the_block_stands_in_for():
         assert abs(mm[i] - f.mu_minus) <= 1e-12 * f.mu_minus
     assert resolve_slip_rules(asm.friction_table, -30.0, "part") == (-30.0, "part")
     assert resolve_slip_rules({}, None, None) == (None, "support")
+
+
+@pytest.mark.parametrize("face", ["support", "part"])
+def test_windward_along_the_ridges(face):
+    """Sliding along the ridges (psi = 90 deg) in the windward regime: a face is climbed
+    only through cos(90 deg) = 6e-17 times its steep gradient (alpha, beta near 90 deg),
+    else the level faces carry the load (set-valued); the same branch and number as per
+    case on both sides of the level tolerance."""
+    from asperity.friction.faces import compute_face_reservoir
+    steep = 90.0 - np.geomspace(1e-1, 1e-6, 40)
+    varied = {"alpha_deg": np.tile(steep, 3), "beta_deg": np.repeat([30.0, 89.9999, 89.99999], 40)}
+    table = table_of("wedge-symmetric-30.toml")
+    check_block(table, varied, "windward", 90.0, face)
+    ta = np.tan(np.radians(steep))
+    slope = ta * np.cos(np.radians(90.0))
+    assert (slope > 1e-12).any() and (slope <= 1e-12).any(), "the sweep must cross the tolerance"
+    res = compute_face_reservoir([[ta[-1], 0.0], [-1.0, 0.0]], [0.3, 0.3], [0.5, 0.5],
+                                 np.radians([90.0]), "windward")
+    assert not res.set_valued[0], "a climbed face by rounding: not the set-valued branch"
