@@ -125,7 +125,7 @@ def _block_size(varied: dict, slip_axis_deg) -> int:
 def _columns(table: dict, varied: dict, m: int):
     """({field: (m,) float}, (m,) ok) of the fields the friction and the checks read, or
     (None, None) when some case cannot be built whatever its values (unknown kind or key,
-    missing key, a fixed value outside its range)."""
+    missing key, a field this path does not know, a fixed value outside its range)."""
     kind = table.get("kind", "wedge")
     if not isinstance(kind, str) or kind not in KINDS or "kind" in varied:
         return None, None
@@ -134,6 +134,8 @@ def _columns(table: dict, varied: dict, m: int):
     if keys - allowed or required - keys:
         return None, None
     checks = _scalar_checks()
+    if keys - {"kind"} - set(checks):            # a field this path does not know yet
+        return None, None
     cols, ok = {}, np.ones(m, dtype=bool)
     for k in sorted(keys - {"kind"}):
         scalar, vector = checks[k]
