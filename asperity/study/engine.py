@@ -126,6 +126,8 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
 
     def finished(results):
         nonlocal stored
+        if hasattr(results, "outputs") and names and files is None:
+            results.inputs = matrix[np.asarray(results.ids, np.int64)].tolist()   # a block
         store.write(results, inputs_of)
         stored += len(results)
         progress.report((stored - done.size) / todo.size, label)   # of this run: a true ETA
@@ -133,7 +135,7 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
     def task_args(ids):
         rows = matrix[ids] if names else None
         fl = [files[i] for i in ids] if files is not None else None
-        return (study.spec, names, ids.tolist(), rows, fl)
+        return (study.spec, names, ids, rows, fl)    # an array: dask does not walk it
 
     timing = {"startup": 0.0}
     try:
@@ -142,7 +144,7 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
             where, nw = "in-process", 1
             while (ids := batcher.next()) is not None:
                 res = task(*task_args(ids))
-                batcher.learn(len(res), sum(r[3] for r in res))
+                batcher.learn(len(res), case_seconds(res))
                 finished(res)
         else:
             where, nw = _run_dask(todo, task_args, finished, scheduler, workers, batch_size,
@@ -152,6 +154,12 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
                                f"command again to resume") from None
     return RunReport(n, stored - done.size, stored, time.perf_counter() - t0, where, nw,
                      timing["startup"])
+
+
+def case_seconds(results) -> float:
+    """The summed case seconds of a task's results (a block's by column)."""
+    total = getattr(results, "total_seconds", None)
+    return float(total) if total is not None else float(sum(r[3] for r in results))
 
 
 def worker_bytes(study) -> float:
@@ -221,7 +229,7 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
             except (ImportError, AttributeError) as exc:
                 raise EngineError(f"the workers cannot run asperity ({type(exc).__name__}: "
                                   f"{exc}); install the same asperity on every worker") from None
-            batcher.learn(len(res), sum(r[3] for r in res))
+            batcher.learn(len(res), case_seconds(res))
             finished(res)
             fut.release()
             refill()

@@ -79,8 +79,17 @@ class Store:
         names = [c for c, _ in self.outputs]
         sql = (f"INSERT OR IGNORE INTO cases ({', '.join(map(_q, cols))}) VALUES "
                f"({', '.join('?' * len(cols))})")
-        rows = [(cid, *inputs_of(cid), status, msg, float(sec),
-                 *[out.get(n) for n in names]) for cid, status, msg, sec, out in results]
+        if hasattr(results, "outputs"):          # a block, by column: no dict per case
+            ins = getattr(results, "inputs", None)
+            if ins is None:
+                ins = [inputs_of(cid) for cid in results.ids] if self.inputs else []
+            empty = [None] * len(results)
+            rows = zip(results.ids, *(zip(*ins) if ins else ()), results.status,
+                       results.message, results.seconds,
+                       *[results.outputs.get(n, empty) for n in names])
+        else:
+            rows = [(cid, *inputs_of(cid), status, msg, float(sec),
+                     *[out.get(n) for n in names]) for cid, status, msg, sec, out in results]
         try:
             with self.con:
                 self.con.executemany(sql, rows)
@@ -98,7 +107,7 @@ class Store:
         import numpy as np
         cur = self.con.execute(f"SELECT {_q(name)} FROM cases ORDER BY case_id")
         if dtype is float:
-            return np.array([np.nan if r[0] is None else r[0] for r in cur], dtype=float)
+            return np.fromiter((np.nan if r[0] is None else r[0] for r in cur), dtype=float)
         return np.array([r[0] for r in cur], dtype=object)
 
     def rows(self):

@@ -68,6 +68,10 @@ def summarise(store) -> dict:
     status = store.column("status", dtype=object)
     ok = status == "ok"
     out["failures"] = _failures(store)
+    if any(c == "solved_by" for c, _ in store.outputs):     # stores from before: no column
+        cur = store.con.execute("SELECT solved_by, COUNT(*) FROM cases WHERE status = 'ok' "
+                                "GROUP BY solved_by ORDER BY solved_by")
+        out["solved_by"] = {k: n for k, n in cur if k is not None}
     if "risk" in stages:
         verdict = store.column("verdict", dtype=object)[ok]
         out["verdicts"] = {v: int(np.sum(verdict == v)) for v in SEVERITY

@@ -2,6 +2,10 @@
 from __future__ import annotations
 
 
+#: the store's solved_by values, as the summary says them
+SOLVED_BY = {"closed-form": "the closed form", "exact": "the exact event solver"}
+
+
 def _um(x) -> str:
     return "n/a" if x is None else f"{x * 1e6:+.4g} um"
 
@@ -38,6 +42,9 @@ def lines(s: dict) -> list[str]:
         v = s["verdicts"]
         out.append("verdicts: " + (", ".join(f"{k} {n} ({_pct(n, s['completed'])})"
                                               for k, n in v.items()) or "none"))
+        if s.get("solved_by"):
+            out.append("solved by: " + ", ".join(
+                f"{SOLVED_BY.get(k, k)} {n}" for k, n in s["solved_by"].items()))
         p = s["p_ratchet"]
         if p is not None and p["low"] is None:
             out.append(f"share of the grid's cases that ratchet: {p['estimate']:.4f} (a grid "

@@ -1,0 +1,200 @@
+"""The block path of risk studies (asperity.study.blocks) against the per-case path, the
+reference: whole blocks of two-node cases (closed form) and of cases whose texture, friction,
+assembly numbers and loading vary, with every output equal case by case (discrete outputs
+identically, numbers to 1e-12 of their scale); bad values in a block named per case exactly
+as the per-case path names them while the good cases are answered; the store's solved_by
+column; a SIGKILL mid-study loses at most the blocks in flight and the rerun stores every
+case once."""
+from __future__ import annotations
+
+import math
+import signal
+import sqlite3
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hostile import package_env
+
+from asperity.study.blocks import BlockResult, plan
+from asperity.study.cases import run_batch, run_case
+from asperity.study.spec import load_study
+
+ROOT = Path(__file__).resolve().parents[1]
+SURF = ROOT / "surfaces"
+
+TWO_NODE = """
+[study]
+kind = "monte-carlo"
+samples = 400
+seed = 11
+assembly = "SURF/two-node-spec.toml"
+[parameters]
+"loading.dT_max" = { distribution = "uniform", low = 20.0, high = 200.0 }
+"loading.dT_min" = { distribution = "uniform", low = -30.0, high = 10.0 }
+"assembly.N" = { distribution = "lognormal", median = 100.0, sigma = 0.3 }
+"assembly.alpha_T" = { distribution = "uniform", low = -2e-5, high = 3e-5 }
+"friction.mu_plus" = { distribution = "uniform", low = 0.05, high = 0.3 }
+"loading.cycles" = { distribution = "lognormal", median = 1e3, sigma = 3.0 }
+"loading.tolerance" = { distribution = "lognormal", median = 1e-4, sigma = 2.0 }
+"""
+FORCES = """
+[study]
+kind = "latin-hypercube"
+samples = 300
+seed = 12
+assembly = "ASM"
+[parameters]
+"loading.force_min" = { distribution = "uniform", low = -30.0, high = 30.0 }
+"loading.force_max" = { distribution = "uniform", low = -30.0, high = 45.0 }
+"loading.dT_max" = { distribution = "uniform", low = 0.0, high = 150.0 }
+"assembly.k_t" = { distribution = "lognormal", median = 5e5, sigma = 1.0 }
+"""
+TEXTURE = """
+[study]
+kind = "monte-carlo"
+samples = 300
+seed = 13
+texture = "SURF/wedge-asymmetric.toml"
+assembly = "SURF/two-node-spec.toml"
+[parameters]
+"texture.alpha_deg" = { distribution = "normal", mean = 30.0, sd = 8.0 }
+"texture.mu_alpha" = { distribution = "uniform", low = 0.05, high = 0.3 }
+"loading.dT_max" = { distribution = "uniform", low = 20.0, high = 200.0 }
+"""
+BAD = """
+[study]
+kind = "monte-carlo"
+samples = 200
+seed = 14
+assembly = "SURF/two-node-spec.toml"
+[parameters]
+"assembly.N" = { distribution = "normal", mean = 20.0, sd = 40.0 }
+"loading.dT_max" = { distribution = "normal", mean = 3000.0, sd = 1500.0 }
+"friction.mu_plus" = { distribution = "normal", mean = 0.2, sd = 0.1 }
+"""
+
+
+def study(tmp_path: Path, body: str, name: str = "s.toml"):
+    asm = tmp_path / "forces.toml"
+    asm.write_text((SURF / "two-node-spec.toml").read_text().replace(
+        "dT_max = 125.0", "dT_max = 125.0\nforce_min = 0.0\nforce_max = 10.0\n"
+                          "force_at = \"start\""))
+    p = tmp_path / name
+    p.write_text(body.replace("SURF", str(SURF)).replace("ASM", str(asm)))
+    return load_study(p)
+
+
+def per_case(st) -> list:
+    X, names = st.matrix(), st.parameter_names
+    return [run_case(st.spec, {n: float(v) for n, v in zip(names, X[i])})
+            for i in range(st.n_cases)]
+
+
+def assert_same(block, ref, scale_of=lambda out: 1e-9):
+    assert isinstance(block, BlockResult)
+    for (cid, status, msg, _, out), (s2, m2, _, o2) in zip(block, ref):
+        assert (status, msg) == (s2, m2), cid
+        assert set(out) - {"solved_by"} == set(o2) - {"solved_by"}, cid
+        for k, v in o2.items():
+            w = out[k]
+            if k == "solved_by" or not isinstance(v, float) or not isinstance(w, float):
+                assert w == v or k == "solved_by", (cid, k, w, v)
+                continue
+            scale = abs(v) if k in ("mu_plus", "mu_minus", "dT_c_K", "margin") else \
+                max(abs(v), scale_of(o2))
+            assert abs(w - v) <= 1e-12 * scale, (cid, k, w, v)
+
+
+@pytest.mark.parametrize("body", [TWO_NODE, FORCES, TEXTURE], ids=["two-node", "forces",
+                                                                   "texture"])
+def test_a_block_equals_the_per_case_path_case_by_case(tmp_path, body):
+    st = study(tmp_path, body)
+    assert plan(st.spec, st.parameter_names) is None
+    X = st.matrix()
+    block = run_batch(st.spec, st.parameter_names, np.arange(st.n_cases), X)
+    ref = per_case(st)
+    # the displacement scale of a case: alpha_T l0 dT ~ 1e-4 m here
+    assert_same(block, ref, lambda o: 1e-4)
+    by = [o.get("solved_by") for *_, o in block]
+    assert by.count("closed-form") >= 0.9 * st.n_cases
+    assert {o["verdict"] for *_, o in ref if "verdict" in o} >= {"shakedown", "ratchet"}
+
+
+def test_bad_values_in_a_block_are_named_per_case_and_the_others_answered(tmp_path):
+    st = study(tmp_path, BAD)
+    X = st.matrix()
+    block = run_batch(st.spec, st.parameter_names, np.arange(st.n_cases), X)
+    ref = per_case(st)
+    assert_same(block, ref, lambda o: 1e-4)
+    failed = [m for _, s, m, *_ in block if s == "failed"]
+    assert 20 <= len(failed) <= 180                # some of each, one line each
+    assert any("assembly.N must be in" in m for m in failed)
+    assert any("dT_max must be in" in m for m in failed)
+    assert all("\n" not in m for m in failed)
+
+
+def test_studies_the_block_path_does_not_take_run_per_case(tmp_path):
+    st = study(tmp_path, TWO_NODE.replace('"loading.dT_max"', '"assembly.contact_area" = '
+                                         '{ distribution = "uniform", low = 1e-4, high = '
+                                         '2e-4 }\n"loading.dT_max"'))
+    assert plan(st.spec, st.parameter_names) == "assembly.contact_area varies"
+    res = run_batch(st.spec, st.parameter_names, np.arange(20), st.matrix()[:20])
+    assert isinstance(res, list) and {o["solved_by"] for *_, o in res} == {"exact"}
+
+
+def test_a_study_stores_which_path_solved_each_case(tmp_path):
+    from asperity.study.run import run_study_file
+    p = tmp_path / "s.toml"
+    p.write_text(TWO_NODE.replace("SURF", str(SURF)).replace("samples = 400",
+                                                             "samples = 3000"))
+    s = run_study_file(p, tmp_path / "out", workers=0)
+    # loading.cycles below 1 (its lognormal's tail) is refused, one line a case
+    assert s["completed"] + s["failed"] == 3000 and s["failed"] < 100
+    con = sqlite3.connect(tmp_path / "out" / "study.sqlite")
+    by = dict(con.execute("SELECT solved_by, COUNT(*) FROM cases WHERE status = 'ok' "
+                          "GROUP BY solved_by"))
+    msgs = {m for (m,) in con.execute("SELECT message FROM cases WHERE status != 'ok'")}
+    con.close()
+    assert by.get("closed-form", 0) >= 2700 and sum(by.values()) == s["completed"]
+    assert s["solved_by"] == by
+    assert all("loading.cycles must be in [1, 1e+15]" in m for m in msgs), msgs
+
+
+@pytest.mark.slow
+def test_sigkill_during_blocks_then_rerun_stores_every_case_once(tmp_path):
+    p = tmp_path / "s.toml"
+    n = 300_000
+    p.write_text(TWO_NODE.replace("SURF", str(SURF)).replace("samples = 400",
+                                                             f"samples = {n}"))
+    out = tmp_path / "out"
+    argv = [sys.executable, "-m", "asperity", "study", str(p), "-o", str(out), "--workers",
+            "0", "--batch-size", "5000", "-q"]
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            env=package_env())
+    from test_study_engine import count, wait_for
+    wait_for(lambda: count(out) >= 10_000 or proc.poll() is not None, timeout=300)
+    assert proc.poll() is None, proc.communicate()
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    n_killed = count(out)
+    assert 10_000 <= n_killed < n and n_killed % 5000 == 0      # whole blocks only
+    from asperity.study.run import run_study_file
+    s = run_study_file(p, out, workers=0)
+    assert s["run"]["ran"] == n - n_killed and s["completed"] + s["failed"] == n
+    con = sqlite3.connect(out / "study.sqlite")
+    ids = [r[0] for r in con.execute("SELECT case_id FROM cases ORDER BY case_id")]
+    sample = con.execute("SELECT case_id, verdict, drift_per_cycle_m FROM cases WHERE "
+                         "case_id % 997 = 0 ORDER BY case_id").fetchall()
+    con.close()
+    assert ids == list(range(n))
+    st = load_study(p)
+    X, names = st.matrix(), st.parameter_names
+    for cid, verdict, drift in sample:
+        _, _, _, o = run_case(st.spec, {k: float(v) for k, v in zip(names, X[cid])})
+        assert o.get("verdict") == verdict
+        assert (drift is None) == (o.get("drift_per_cycle_m") is None)
+        assert drift is None or math.isclose(drift, o["drift_per_cycle_m"], rel_tol=1e-12,
+                                             abs_tol=1e-16)
