@@ -189,7 +189,15 @@ def strip_block(rng, m, n=11, *, force="none", lead=True, locked=0.1):
 def test_two_node_blocks_equal_the_per_case_path(force):
     rng = np.random.default_rng(["none", "constant", "phase", "off"].index(force))
     b = two_node_block(rng, 60, force=force)
-    seen = set(check_block(b))
+    out = run_block(b)
+    seen = set(check_block(b, out))
+    ok = out["code"] == 0
+    ct, k = out["cycles_to_tolerance"][ok], out["cycles_marched"][ok]
+    if force != "off":     # the block covers what it should
+        assert (ct <= k).any() and (ct > k).any(), "tolerance reached marching and after"
+        assert (out["extrapolated"][ok] == 0).any() and (out["extrapolated"][ok] == 1).any()
+        assert (b["dT"][:, 0] < 0).any() and (b["dT"][:, 0] > 0).any()
+        assert (b["par"]["alpha_T"] < 0).any() and np.isinf(b["mup"]).any()
     want = {"none": {"shakedown", "ratchet", "alternating-slip"}, "off": {"slides-off"},
             "constant": {"shakedown", "ratchet"}, "phase": {"shakedown", "ratchet"}}[force]
     assert want <= seen, seen
@@ -200,6 +208,15 @@ def test_two_node_force_at_an_end(force_at):
     b = two_node_block(np.random.default_rng(7), 40, force="phase")
     b["force_at"] = force_at
     assert {"shakedown", "ratchet"} <= set(check_block(b))
+
+
+def test_self_locking_both_ways_never_slips():
+    """mu+ = mu- = inf: dT_c = inf, margin 0, shakedown, whatever the force."""
+    b = two_node_block(np.random.default_rng(8), 6, force="phase")
+    b["mup"][:] = b["mum"][:] = np.inf
+    out = run_block(b)
+    assert np.isinf(out["dT_c"]).all() and (out["margin"] == 0).all()
+    assert set(check_block(b, out)) == {"shakedown"}
 
 
 def test_two_node_drift_is_the_closed_form():
@@ -250,6 +267,14 @@ def test_bushing_strip_of_201_nodes():
     b = block("strip", par, rng.uniform(0.17, 0.21, m), rng.uniform(0.17, 0.21, m), dT,
               np.zeros((m, 3)), cycles=np.full(m, 1e6), tolerance=np.full(m, 1e-4), n=201)
     assert "ratchet" in check_block(b)
+
+
+def test_a_strip_the_per_case_path_marches_in_pieces():
+    """1200 nodes under a force in phase: a cycle of about 3e6 node-passes, which the
+    per-case path marches in pieces of 1e6 and the block in one call -- the same state."""
+    b = strip_block(np.random.default_rng(77), 3, n=1200, force="phase", locked=0.0)
+    b["cycles"][:] = 1e6
+    assert {"ratchet", "alternating-slip"} == set(check_block(b))
 
 
 # ---------------------------------------------------------------- left to the per-case path

@@ -48,15 +48,15 @@ def _block_sum(a, lo, n):
         for i in range(lo, lo + n):
             res += a[i]
         return res
-    r = np.empty(8)
-    for k in range(8):
-        r[k] = a[lo + k]
+    r0, r1, r2, r3 = a[lo], a[lo + 1], a[lo + 2], a[lo + 3]
+    r4, r5, r6, r7 = a[lo + 4], a[lo + 5], a[lo + 6], a[lo + 7]
     i = 8
     while i < n - (n % 8):
-        for k in range(8):
-            r[k] += a[lo + i + k]
+        b = lo + i
+        r0, r1, r2, r3 = r0 + a[b], r1 + a[b + 1], r2 + a[b + 2], r3 + a[b + 3]
+        r4, r5, r6, r7 = r4 + a[b + 4], r5 + a[b + 5], r6 + a[b + 6], r7 + a[b + 7]
         i += 8
-    res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]))
+    res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
     while i < n:
         res += a[lo + i]
         i += 1
@@ -69,6 +69,8 @@ def np_sum(a, lo, n):
     cut at a multiple of 8 down to blocks of 128), the same additions in the same order.
     Without recursion (numba's cache of a recursive kernel crashes when loaded): a stack
     of tasks (lo, n, 0: sum the part, 1: add the last two partial sums)."""
+    if n <= 128:
+        return _block_sum(a, lo, n)
     t_lo, t_n, t_op = np.empty(256, np.int64), np.empty(256, np.int64), np.empty(256, np.int64)
     vals = np.empty(128)
     t_lo[0], t_n[0], t_op[0] = lo, n, 0
