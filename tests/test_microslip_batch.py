@@ -336,3 +336,40 @@ def test_shapes_and_names_are_checked_in_one_line():
         assess_batch("two-node", b["par"], b["mup"], b["mum"], b["dT"], b["F"][:, :2],
                      substeps=1, force_at="uniform", cycles=b["cycles"],
                      tolerance=b["tolerance"])
+
+
+def test_risk_columns_are_what_the_study_stores():
+    """risk_columns against study.cases.evaluate (the store's row of a case) on cases with
+    explicit finite coefficients (an assembly file's), every verdict but slides-off and a
+    slide-off block."""
+    from asperity.microslip.batch import risk_columns
+    from asperity.study.cases import OUTPUTS, evaluate
+    for force in ("none", "off"):
+        b = two_node_block(np.random.default_rng(31), 25, force=force, locked=0.0)
+        b["par"]["k"][0], b["par"]["k_t"][0] = 1e15, 1e5        # code 2: None
+        cols = risk_columns(run_block(b))
+        assert set(cols) == {c for c, _ in OUTPUTS["risk"]}
+        for j in range(25):
+            a = {"model": "two-node", **{k: float(v[j]) for k, v in b["par"].items()}}
+            lo = {"history": b["dT"][j].tolist(), "force_history": b["F"][j].tolist()}
+            fr = {"mu_plus": float(b["mup"][j]), "mu_minus": float(b["mum"][j])}
+            tol = b["tolerance"][j]
+            spec = {"stages": ["risk"], "texture": None, "assembly_path": "case.toml",
+                    "assembly": {"assembly": a, "friction": fr, "loading": lo},
+                    "cycles": float(b["cycles"][j]), "max_marched": MAX_MARCHED,
+                    "tolerance": None if math.isnan(tol) else float(tol)}
+            row = {k: v[j] for k, v in cols.items()}
+            if j == 0:
+                assert set(row.values()) == {None}
+                with pytest.raises(AsperityError, match="times stiffer"):
+                    evaluate(spec, {})
+                continue
+            want = evaluate(spec, {})
+            dT = b["dT"][j]
+            scale = abs(b["par"]["alpha_T"][j]) * b["par"]["l0"][j] * max(np.ptp(dT),
+                                                                          np.abs(dT).max())
+            for k in ("drift_per_cycle_m", "drift_after_cycles_m"):     # load_scale's
+                if want[k] is not None:
+                    assert abs(row[k] - want[k]) <= 1e-12 * scale, (j, k)
+                    row[k] = want[k]
+            assert row == want, j

@@ -18,6 +18,8 @@ large, a solver failure) comes back with code :data:`NOT_HANDLED`: run that case
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..errors import InputError
@@ -103,6 +105,34 @@ def assess_batch(model: str, params: dict, mu_plus, mu_minus, dT, F, *, substeps
     out = {k: fout[i] for i, k in enumerate(_FLOATS)}
     out.update({k: iout[i] for i, k in enumerate(_INTS)})
     return out
+
+
+def risk_columns(out: dict) -> dict[str, list]:
+    """The risk stage's study outputs (``study.cases.OUTPUTS["risk"]``) of every case of
+    :func:`assess_batch`'s answer, as ``study.cases.evaluate`` stores them: numbers as
+    floats, None for no number (NaN; inf, as ``_finite``), the verdict's word,
+    ``stabilised_at_cycle`` and ``extrapolated`` as ints or None.  A case with code 2 gets
+    None everywhere (its row comes from the per-case path)."""
+    from .verdict import VERDICTS
+    done = (out["code"] != NOT_HANDLED).tolist()
+
+    def floats(a):
+        return [x if ok and math.isfinite(x) else None
+                for x, ok in zip(a.tolist(), done)]
+
+    def ints(a):
+        return [x if ok and x >= 0 else None for x, ok in zip(a.tolist(), done)]
+
+    cols = {k: floats(out[name]) for k, name in (
+        ("mu_plus", "mu_plus"), ("mu_minus", "mu_minus"), ("dT_c_K", "dT_c"),
+        ("margin", "margin"), ("drift_per_cycle_m", "drift_per_cycle"),
+        ("drift_after_cycles_m", "drift_after_cycles"),
+        ("cycles_to_tolerance", "cycles_to_tolerance"))}
+    cols["verdict"] = [VERDICTS[v] if ok else None
+                       for v, ok in zip(out["verdict"].tolist(), done)]
+    cols["stabilised_at_cycle"] = ints(out["stabilised_at"])
+    cols["extrapolated"] = ints(out["extrapolated"])
+    return cols
 
 
 def _column(name: str, value, m: int | None = None) -> np.ndarray:
