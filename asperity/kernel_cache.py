@@ -32,6 +32,8 @@ CALLS = {
     "crawling/_kernels.py": ("dynamics/_body_law_kernels.py", "dynamics/_body_step_kernels.py"),
     "texture/_spring_kernels.py": ("texture/_tip_kernels.py",),
     "microslip/_march_kernels.py": ("microslip/_chain_kernels.py",),
+    "microslip/_batch_kernels.py": ("microslip/_chain_kernels.py",
+                                    "microslip/_march_kernels.py"),
     "microslip/_dynamic_kernels.py": ("microslip/_chain_kernels.py",),
 }
 
