@@ -198,3 +198,21 @@ def test_sigkill_during_blocks_then_rerun_stores_every_case_once(tmp_path):
         assert (drift is None) == (o.get("drift_per_cycle_m") is None)
         assert drift is None or math.isclose(drift, o["drift_per_cycle_m"], rel_tol=1e-12,
                                              abs_tol=1e-16)
+
+
+def test_cases_the_closed_form_leaves_go_to_the_exact_block_solver(tmp_path):
+    """mu+ = mu- under thermal cycles beyond dT_c (the split of the slip between the nodes
+    is the march's choice): the exact block solver answers, as the per-case path does."""
+    body = """
+[study]
+kind = "grid"
+assembly = "SURF/two-node-spec.toml"
+[parameters]
+"friction.mu_plus" = { values = [0.05, 0.1, 0.2] }
+"loading.dT_max" = { values = [20.0, 60.0, 100.0, 160.0] }
+"""
+    st = study(tmp_path, body)
+    block = run_batch(st.spec, st.parameter_names, np.arange(st.n_cases), st.matrix())
+    assert_same(block, per_case(st), lambda o: 1e-4)
+    by = {(round(x[0], 3), x[1]): o["solved_by"] for x, (*_, o) in zip(st.matrix(), block)}
+    assert by[(0.1, 160.0)] == "exact" and by[(0.2, 160.0)] == "closed-form"

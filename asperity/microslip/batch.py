@@ -107,12 +107,13 @@ def assess_batch(model: str, params: dict, mu_plus, mu_minus, dT, F, *, substeps
     return out
 
 
-def risk_columns(out: dict) -> dict[str, list]:
+def risk_columns(out: dict, solved_by="exact") -> dict[str, list]:
     """The risk stage's study outputs (``study.cases.OUTPUTS["risk"]``) of every case of
     :func:`assess_batch`'s answer, as ``study.cases.evaluate`` stores them: numbers as
     floats, None for no number (NaN; inf, as ``_finite``), the verdict's word,
     ``stabilised_at_cycle`` and ``extrapolated`` as ints or None.  A case with code 2 gets
-    None everywhere (its row comes from the per-case path)."""
+    None everywhere (its row comes from the per-case path).  ``solved_by``: the store's
+    word for the path of each case (one word, or one per case)."""
     from .verdict import VERDICTS
     done = (out["code"] != NOT_HANDLED).tolist()
 
@@ -132,6 +133,8 @@ def risk_columns(out: dict) -> dict[str, list]:
                        for v, ok in zip(out["verdict"].tolist(), done)]
     cols["stabilised_at_cycle"] = ints(out["stabilised_at"])
     cols["extrapolated"] = ints(out["extrapolated"])
+    by = [solved_by] * len(done) if isinstance(solved_by, str) else list(solved_by)
+    cols["solved_by"] = [b if ok else None for b, ok in zip(by, done)]
     return cols
 
 

@@ -21,17 +21,19 @@ import numpy as np
 
 from .chains import TOL
 
-#: columns of the kernel's output
-FIELDS = ("mu_plus", "mu_minus", "dT_c_K", "margin", "drift_per_cycle_m",
-          "drift_after_cycles_m", "cycles_to_tolerance", "stabilised_at_cycle", "extrapolated",
-          "verdict")
+#: columns of the kernel's output (the names and conventions of
+#: :func:`asperity.microslip.batch.assess_batch`'s answer, so that the two merge and
+#: :func:`~asperity.microslip.batch.risk_columns` turns either into a study's row)
+FIELDS = ("mu_plus", "mu_minus", "dT_c", "margin", "drift_per_cycle", "drift_after_cycles",
+          "cycles_to_tolerance", "stabilised_at", "extrapolated", "verdict")
 FORCE_SHARES = {"uniform": (0.5, 0.5), "start": (1.0, 0.0), "end": (0.0, 1.0)}
 
 
 def two_node_closed(params: dict, mu_plus, mu_minus, dT, F, *, substeps: int, force_at: str,
                     cycles, tolerance, max_marched: int = 200, tol=TOL) -> dict:
     """{field: (m,) array} of :data:`FIELDS` and ``code`` (m,) (0 solved, 1 slides off,
-    2 not covered) for m checked two-node cases.
+    2 not covered) for m checked two-node cases; ints -1 for none (``stabilised_at``,
+    ``extrapolated``), NaN for no number.
 
     params: {"k", "l0", "alpha_T", "k_t", "N"} (m,) arrays; mu_plus, mu_minus (m,) (inf:
     self-locking); dT, F (m, P): each case's breakpoints (closed cycles); substeps,
@@ -52,6 +54,12 @@ def two_node_closed(params: dict, mu_plus, mu_minus, dT, F, *, substeps: int, fo
                    fw0, fw1, np.ascontiguousarray(cycles, dtype=float),
                    np.ascontiguousarray(tolerance, dtype=float), int(max_marched),
                    float(tol.no_drift), float(tol.stabilised), out, code)
-    res = {name: out[:, i] for i, name in enumerate(FIELDS)}
+    res = {name: out[:, i].copy() for i, name in enumerate(FIELDS)}
+    off = code == 1                               # slides off: as the exact solver says it
+    tol = np.asarray(tolerance, dtype=float)
+    res["cycles_to_tolerance"][off] = np.where(np.isnan(tol[off]), np.nan, 0.0)
+    res["extrapolated"][off] = -1.0
+    for name in ("stabilised_at", "extrapolated", "verdict"):
+        res[name] = np.nan_to_num(res[name], nan=-1.0).astype(np.int64)
     res["code"] = code
     return res

@@ -29,7 +29,6 @@ import time
 import numpy as np
 
 from ..microslip import limits as L
-from ..microslip.verdict import VERDICTS
 
 #: varied fields the block path takes as arrays: name -> (low, high) or a check's name
 ASSEMBLY_FIELDS = {"two-node": {"k", "l0", "k_t", "N", "alpha_T"},
@@ -262,60 +261,32 @@ def _solve(spec: dict, base, a: dict, valid):
               "max_marched": int(spec.get("max_marched", 200))}
     params = {k: (sub(v) if isinstance(v, np.ndarray) else v) for k, v in a["params"].items()}
     mp, mm = sub(a["mu_plus"]), sub(a["mu_minus"])
+    from ..microslip.batch import assess_batch, risk_columns
+    dT, F = sub(a["dT"]), sub(a["F"])
     if base.model == "two-node":
         from ..microslip.two_node_batch import two_node_closed
-        r = two_node_closed(params, mp, mm, sub(a["dT"]), sub(a["F"]), **kw)
-        path = "closed-form"
+        r = two_node_closed(params, mp, mm, dT, F, **kw)
+        path = np.where(np.asarray(r["code"]) != 2, "closed-form", "exact").astype(object)
+        left = np.flatnonzero(path == "exact")     # the exact solver takes what it leaves
+        if left.size:
+            pick = lambda x: x[left]
+            e = assess_batch("two-node", {k: pick(v) for k, v in params.items()}, pick(mp),
+                             pick(mm), pick(dT), pick(F), **{
+                                 **kw, "cycles": pick(kw["cycles"]),
+                                 "tolerance": pick(kw["tolerance"])})
+            for key in r:
+                r[key][left] = e[key]
     else:
-        try:
-            from ..microslip.batch import assess_batch
-        except ImportError:
-            return None
-        r = assess_batch("strip", params, mp, mm, sub(a["dT"]), sub(a["F"]), **kw)
-        path = "exact"
+        r = assess_batch("strip", params, mp, mm, dT, F, **kw)
+        path = np.full(idx.size, "exact", dtype=object)
     code = np.asarray(r["code"])
     done = np.zeros(m, bool)
     done[idx] = code != 2
-    off = code == 1
-    got = code != 2
-    tol_given = ~np.isnan(sub(a["tolerance"]))
-
-    def column(values, keep=got, integer=False):
-        """A whole column: the answered cases' values, None elsewhere."""
-        full = np.full(m, np.nan)
-        v = np.asarray(values, dtype=float)
-        full[idx] = np.where(keep & np.isfinite(v), v, np.nan)
-        out = full.astype(object)
-        out[np.isnan(full)] = None
-        if integer:
-            ok = ~np.isnan(full)
-            out[ok] = full[ok].astype(np.int64)
-        return out.tolist()
-
-    slid = got & ~off
-    verdict = np.full(m, None, dtype=object)
-    verdict[idx[got]] = np.array(VERDICTS, dtype=object)[
-        np.where(off, 3, np.nan_to_num(np.asarray(r["verdict"], dtype=float)).astype(int))[got]]
-    by = np.full(m, None, dtype=object)
-    by[idx[got]] = path
-    stab = np.asarray(_get(r, "stabilised_at", None), dtype=float)
-    out = {"mu_plus": column(r["mu_plus"]), "mu_minus": column(r["mu_minus"]),
-           "dT_c_K": column(r["dT_c_K"] if "dT_c_K" in r else r["dT_c"]),
-           "margin": column(r["margin"]), "verdict": verdict.tolist(),
-           "drift_per_cycle_m": column(_get(r, "drift_per_cycle", None), slid),
-           "drift_after_cycles_m": column(_get(r, "drift_after_cycles", None), slid),
-           "cycles_to_tolerance": column(np.where(off, np.where(tol_given, 0.0, np.nan),
-                                                  _get(r, "cycles_to_tolerance", None))),
-           "stabilised_at_cycle": column(np.where(stab < 0, np.nan, stab), slid, True),
-           "extrapolated": column(_get(r, "extrapolated", None), slid, True),
-           "solved_by": by.tolist()}
+    cols = risk_columns(r, path.tolist())
+    out = {}
+    for name in OUT_NAMES:
+        full = [None] * m
+        for i, v in zip(idx.tolist(), cols[name]):
+            full[i] = v
+        out[name] = full
     return done, out
-
-
-def _get(r: dict, name: str, j):
-    """A solver's result column (the closed form names it with its unit, the exact solver
-    without)."""
-    for key in (name, f"{name}_m", f"{name}_cycle"):
-        if key in r:
-            return r[key] if j is None else r[key][j]
-    raise KeyError(name)
