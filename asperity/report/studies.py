@@ -29,13 +29,15 @@ assembly = "{SURF / 'two-node-spec.toml'}"
     dT_c = 0.1 * 100.0 * (1 / 1e6 + 2 / 5e5) / (1.2e-5 * 0.1)
     exact = (150.0 - 2 * dT_c) / 100.0
     p = s["p_ratchet"]
+    by = ", ".join(f"{k} {n}" for k, n in (s.get("solved_by") or {}).items())
     return ["### Probability of ratchet against its closed form", "",
             "The SPEC.md two-node assembly (dT_c = 41.67 K) under cycles 0 -> dT_max with "
             "dT_max uniform in [50, 150] K ratchets iff dT_max > 2 dT_c: P = (150 - 2 dT_c) / "
             "100.  Monte Carlo through the study engine (4000 cases, seed 4, in process):", "",
             "| closed form | estimate | 95 % interval (Wilson) | covered |", "|---|---|---|---|",
             f"| {exact:.5f} | {p['estimate']:.5f} | {p['low']:.5f} - {p['high']:.5f} | "
-            f"{'yes' if p['low'] <= exact <= p['high'] else 'NO'} |", ""]
+            f"{'yes' if p['low'] <= exact <= p['high'] else 'NO'} |", "",
+            f"Solved by (the store's `solved_by`): {by}.", ""]
 
 
 def _ishigami() -> list[str]:
@@ -93,9 +95,12 @@ def section(folder: Path) -> list[str]:
     """Markdown lines of the section; writes study_drift.png and study_verdicts.png."""
     folder = Path(folder)
     lines = ["## Studies: statistics against closed forms, a tolerance study", "",
-             "The study engine (`asperity study`) runs every case through the public API "
-             "(tests check each case equal to the single-case call); what is checked here "
-             "is the statistics on top.", ""]
+             "The study engine (`asperity study`) runs every case through the public API, "
+             "or, for risk studies, through the block path: blocks of cases as arrays, the "
+             "two-node model in closed form and the strip by the exact event solver over "
+             "the whole block, each case equal to the single-case call (tests compare them "
+             "case by case); the store's `solved_by` column says which path answered each "
+             "case.  What is checked here is the statistics on top.", ""]
     with tempfile.TemporaryDirectory(prefix="asperity-report-") as tmp:
         tmp = Path(tmp)
         lines += _two_node(tmp)

@@ -35,9 +35,6 @@ ASSEMBLY_FIELDS = {"two-node": {"k", "l0", "k_t", "N", "alpha_T"},
                    "strip": {"h", "E", "p", "l", "k_t", "alpha_T"}}
 LOADING_FIELDS = {"dT_min", "dT_max", "force", "force_min", "force_max", "cycles",
                   "tolerance"}
-#: the block path runs only blocks of at least this many cases (the per-case path is as
-#: fast below it)
-MIN_BLOCK = 8
 
 
 class BlockResult:

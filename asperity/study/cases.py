@@ -231,8 +231,9 @@ def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple
     import warnings
 
     from ..progress import silenced
-    from .blocks import MIN_BLOCK, plan, run_block
-    if files is None and names and len(ids) >= MIN_BLOCK and plan(spec, names) is None:
+    from .blocks import plan, run_block
+    if files is None and names and plan(spec, names) is None:   # whatever the batch size:
+        # the path of a case never depends on how the cases were batched
         with warnings.catch_warnings(), silenced():
             warnings.simplefilter("ignore")
             return run_block(spec, names, ids, rows)
@@ -258,4 +259,6 @@ def warm_up(spec: dict, values: dict | None) -> bool:
         importlib.import_module(m)
     if values is not None:
         run_case(spec, values)
+        if values:                           # the block path's kernels too
+            run_batch(spec, list(values), [0], [list(values.values())])
     return True
