@@ -53,6 +53,8 @@ from asperity.kernel_cache import CALLS, dependents  # noqa: E402 (the package's
 
 KERNEL_DEPENDENTS = {m: dependents(m) for m in {d for deps in CALLS.values() for d in deps}}
 
+BLOCKS = ("test_study_blocks.py",)
+TWO_NODE_BATCH = ("test_two_node_batch.py", "test_study_blocks.py")
 TEXTURE = ("test_texture_closed_form.py", "test_law_fitting.py", "test_derive_cli.py")
 FRICTION = ("test_texture_closed_form.py", "test_surface_facets.py", "test_derive_cli.py",
             "test_friction_facet_kernel.py", "test_law_fitting.py")
@@ -1168,6 +1170,49 @@ MUTANTS = [
     Mutant("fe-getfem-thermal-strain-sign", "fe/getfem_script.py",
            '"Sym(Grad_u) - alphaT*dT*Id(2)"', '"Sym(Grad_u) + alphaT*dT*Id(2)"',
            ("test_fe_getfem.py",), "the FE strip expands when it cools"),
+    # ---- risk studies in blocks (issue 28)
+    Mutant("blocks-dT-order-unchecked", "study/blocks.py",
+           "valid &= _in(a, *L.DT) & _in(b, *L.DT) & (b >= a)",
+           "valid &= _in(a, *L.DT) & _in(b, *L.DT)", BLOCKS,
+           "a case with dT_min > dT_max answered in a block instead of refused"),
+    Mutant("blocks-study-cycles-ignored", "study/blocks.py",
+           "    if spec.get(\"cycles\") is not None:\n        cycles = np.full(m, "
+           "float(spec[\"cycles\"]))\n    elif cycles is None:",
+           "    if cycles is None:", BLOCKS,
+           "the study's cycles (the command line's override) ignored by the block path"),
+    Mutant("blocks-force-max-not-force-min", "study/blocks.py",
+           "        if \"loading.force_max\" not in cols and \"force_max\" not in lo:\n"
+           "            f1 = f0\n", "", BLOCKS,
+           "a varied force_min without force_max: the force ramps to the file's default"),
+    Mutant("blocks-texture-face-default-part", "study/blocks.py",
+           "face = where[\"textured\"] or fr.get(\"textured\", \"support\")",
+           "face = where[\"textured\"] or fr.get(\"textured\", \"part\")", BLOCKS,
+           "the block path's textured face defaults to the part (mu+ and mu- swapped)"),
+    Mutant("blocks-explicit-mu-chain-range", "study/blocks.py",
+           "ok = ok & _in(x, L.MU[0], L.MU_FILE)", "ok = ok & _in(x, *L.MU)", BLOCKS,
+           "an explicit mu above the file's 100 answered instead of refused"),
+    Mutant("blocks-refused-cases-not-rerun", "study/blocks.py",
+           "            reference = ~done", "            reference = np.zeros(m, bool)",
+           BLOCKS, "cases the arrays refuse are stored as empty ok rows, never run alone"),
+    Mutant("blocks-inputs-of-another-block", "study/engine.py",
+           "results.inputs = matrix[np.asarray(results.ids, np.int64)].tolist()",
+           "results.inputs = matrix[:len(results.ids)].tolist()",
+           ("test_study_blocks.py", "test_study_engine.py"),
+           "a block's rows stored with the inputs of the study's first cases"),
+    Mutant("two-node-no-split-at-the-kink", "microslip/_two_node_kernels.py",
+           "    if (Fa - Fk) * (Fb - Fk) < 0.0:", "    if False:", TWO_NODE_BATCH,
+           "a force crossing cp - cm inside an increment: the slip put on one node"),
+    Mutant("two-node-lead-in-skipped", "microslip/_two_node_kernels.py",
+           "        if dT[c, 0] != 0.0 or F[c, 0] != 0.0:", "        if False:",
+           TWO_NODE_BATCH, "the way from the stress-free state to the cycle's first point "
+           "skipped (dT_min != 0)"),
+    Mutant("two-node-force-shares-swapped", "microslip/two_node_batch.py",
+           '"start": (1.0, 0.0), "end": (0.0, 1.0)', '"start": (0.0, 1.0), "end": (1.0, 0.0)',
+           TWO_NODE_BATCH, "force_at start and end swapped in the closed form"),
+    Mutant("two-node-mean-of-the-sliders", "microslip/_two_node_kernels.py",
+           "mean[cyc] = 0.5 * (st[1] + q0 / kt[c]) + 0.5 * (st[2] + q1 / kt[c])",
+           "mean[cyc] = 0.5 * (st[1] + st[2])", TWO_NODE_BATCH,
+           "the assembly's displacement taken as the sliders', without the contact springs"),
     # ---- command-line names of library fields
     Mutant("cli-spring-ratio-flags-dropped", "cli/sources.py",
            '{"springs.k_f / k_n ": "--k-f / --k-n ", **fields}', "{**fields}",

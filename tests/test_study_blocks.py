@@ -216,3 +216,43 @@ assembly = "SURF/two-node-spec.toml"
     assert_same(block, per_case(st), lambda o: 1e-4)
     by = {(round(x[0], 3), x[1]): o["solved_by"] for x, (*_, o) in zip(st.matrix(), block)}
     assert by[(0.1, 160.0)] == "exact" and by[(0.2, 160.0)] == "closed-form"
+
+
+VARIANTS = {
+    # the study's own cycles and tolerance override the file's (the command line's path)
+    "study-cycles": ('cycles = 5e4\ntolerance = 2e-5\n', "",
+                     '"loading.dT_max" = { distribution = "uniform", low = 60.0, '
+                     'high = 200.0 }'),
+    # force_min alone: a constant force (force_max follows it)
+    "force-min-only": ("", 'force_min = 5.0\n',
+                       '"loading.force_min" = { distribution = "uniform", low = -25.0, '
+                       'high = 35.0 }\n"loading.dT_max" = { distribution = "uniform", '
+                       'low = 0.0, high = 150.0 }'),
+    # a constant force over a five-point history
+    "history-force": ("", 'history = [0.0, 90.0, 30.0, 120.0, 0.0]\nforce = 1.0\n',
+                      '"loading.force" = { distribution = "uniform", low = -30.0, '
+                      'high = 30.0 }'),
+    # explicit coefficients across the file's limit of 100: above it refused per case
+    "mu-beyond-the-file": ("", "", '"friction.mu_minus" = { distribution = "uniform", '
+                                   'low = 50.0, high = 150.0 }\n"assembly.N" = { '
+                                   'distribution = "uniform", low = 1.0, high = 2.0 }'),
+}
+
+
+@pytest.mark.parametrize("name", list(VARIANTS))
+def test_options_combined_equal_the_per_case_path(tmp_path, name):
+    study_extra, loading, params = VARIANTS[name]
+    asm = (SURF / "two-node-spec.toml").read_text()
+    if "history" in loading:
+        asm = asm.replace("dT_min = 0.0\ndT_max = 125.0      # 3 dT_c\n", "")
+    asm = asm.replace("[loading]\n", "[loading]\n" + loading)
+    (tmp_path / "a.toml").write_text(asm)
+    body = (f'[study]\nkind = "monte-carlo"\nsamples = 200\nseed = 21\n{study_extra}'
+            f'assembly = "{tmp_path / "a.toml"}"\n[parameters]\n{params}\n')
+    st = study(tmp_path, body)
+    assert plan(st.spec, st.parameter_names) is None
+    block = run_batch(st.spec, st.parameter_names, np.arange(st.n_cases), st.matrix())
+    ref = per_case(st)
+    assert_same(block, ref, lambda o: 1e-4)
+    statuses = {s for _, s, *_ in block}
+    assert statuses == ({"ok", "failed"} if name == "mu-beyond-the-file" else {"ok"})
