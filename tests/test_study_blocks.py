@@ -221,21 +221,21 @@ assembly = "SURF/two-node-spec.toml"
 VARIANTS = {
     # the study's own cycles and tolerance override the file's (the command line's path)
     "study-cycles": ('cycles = 5e4\ntolerance = 2e-5\n', "",
-                     '"loading.dT_max" = { distribution = "uniform", low = 60.0, '
-                     'high = 200.0 }'),
+                     ('"loading.dT_max" = { distribution = "uniform", low = 60.0, '
+                     'high = 200.0 }')),
     # force_min alone: a constant force (force_max follows it)
     "force-min-only": ("", 'force_min = 5.0\n',
-                       '"loading.force_min" = { distribution = "uniform", low = -25.0, '
+                       ('"loading.force_min" = { distribution = "uniform", low = -25.0, '
                        'high = 35.0 }\n"loading.dT_max" = { distribution = "uniform", '
-                       'low = 0.0, high = 150.0 }'),
+                       'low = 0.0, high = 150.0 }')),
     # a constant force over a five-point history
     "history-force": ("", 'history = [0.0, 90.0, 30.0, 120.0, 0.0]\nforce = 1.0\n',
-                      '"loading.force" = { distribution = "uniform", low = -30.0, '
-                      'high = 30.0 }'),
+                      ('"loading.force" = { distribution = "uniform", low = -30.0, '
+                      'high = 30.0 }')),
     # explicit coefficients across the file's limit of 100: above it refused per case
-    "mu-beyond-the-file": ("", "", '"friction.mu_minus" = { distribution = "uniform", '
+    "mu-beyond-the-file": ("", "", ('"friction.mu_minus" = { distribution = "uniform", '
                                    'low = 50.0, high = 150.0 }\n"assembly.N" = { '
-                                   'distribution = "uniform", low = 1.0, high = 2.0 }'),
+                                   'distribution = "uniform", low = 1.0, high = 2.0 }')),
 }
 
 
