@@ -1,7 +1,6 @@
 """A study's summary as terminal text and as ``summary.md`` (what a person reads)."""
 from __future__ import annotations
 
-
 #: the store's solved_by values, as the summary says them
 SOLVED_BY = {"closed-form": "the closed form", "exact": "the exact event solver"}
 
