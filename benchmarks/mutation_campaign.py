@@ -62,7 +62,10 @@ COSMIC_RAY = "cosmic-ray==8.7.0"
 VENV = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "asperity-mutation" / "venv"
 SCOPE = ("contact/*.py", "bodies/*.py", "dynamics/body*.py", "dynamics/_body*_kernels.py",
          "laws/family*.py", "friction/elastic*.py", "surface/contact_facets.py",
-         "surface/mesh_grid.py", "crawling/*.py", "fe/*.py", "cli/law_fe.py")
+         "surface/mesh_grid.py", "crawling/*.py", "fe/*.py", "cli/law_fe.py",
+         "study/blocks.py", "microslip/two_node_batch.py", "microslip/_two_node_kernels.py",
+         "microslip/batch.py", "microslip/_batch_kernels.py", "microslip/friction_batch.py",
+         "microslip/_friction_batch_kernels.py")
 #: test files per module glob, the first match wins: globs in tests/ (missing ones ignored),
 #: "file::test_name" for one test function (all its cases), and an optional third item, a
 #: pytest -k expression over the whole selection (it sees file names too: "not (convergence
@@ -125,6 +128,11 @@ TESTS = (
     ("cli/law_fe.py", ("test_fe_law_cli.py",)),
     ("fe/fortran_harness.py", ("test_fe_harness.py",) + _FE),
     ("fe/*.py", _FE),
+    ("study/blocks.py", ("test_study_blocks.py",)),
+    ("microslip/*two_node*.py", ("test_two_node_batch.py", "test_study_blocks.py")),
+    ("microslip/*friction_batch*.py", ("test_friction_batch.py",)),
+    ("microslip/_batch_kernels.py", ("test_microslip_batch.py",)),
+    ("microslip/batch.py", ("test_microslip_batch.py",)),
 )
 #: seconds a kernel module's mutant may spend compiling its kernels and their dependents again
 COMPILE_ALLOWANCE = 150.0
