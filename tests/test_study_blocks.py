@@ -64,6 +64,17 @@ assembly = "SURF/two-node-spec.toml"
 "texture.mu_alpha" = { distribution = "uniform", low = 0.05, high = 0.3 }
 "loading.dT_max" = { distribution = "uniform", low = 20.0, high = 200.0 }
 """
+STRIP = """
+[study]
+kind = "monte-carlo"
+samples = 150
+seed = 15
+assembly = "SURF/bushing-strip.toml"
+[parameters]
+"loading.dT_max" = { distribution = "uniform", low = 0.5, high = 6.0 }
+"loading.dT_min" = { distribution = "uniform", low = -2.5, high = 0.4 }
+"assembly.E" = { distribution = "lognormal", median = 1.1e11, sigma = 0.2 }
+"""
 BAD = """
 [study]
 kind = "monte-carlo"
@@ -108,8 +119,8 @@ def assert_same(block, ref, scale_of=lambda out: 1e-9):
             assert abs(w - v) <= 1e-12 * scale, (cid, k, w, v)
 
 
-@pytest.mark.parametrize("body", [TWO_NODE, FORCES, TEXTURE], ids=["two-node", "forces",
-                                                                   "texture"])
+@pytest.mark.parametrize("body", [TWO_NODE, FORCES, TEXTURE, STRIP],
+                         ids=["two-node", "forces", "texture", "strip"])
 def test_a_block_equals_the_per_case_path_case_by_case(tmp_path, body):
     st = study(tmp_path, body)
     assert plan(st.spec, st.parameter_names) is None
@@ -119,8 +130,13 @@ def test_a_block_equals_the_per_case_path_case_by_case(tmp_path, body):
     # the displacement scale of a case: alpha_T l0 dT ~ 1e-4 m here
     assert_same(block, ref, lambda o: 1e-4)
     by = [o.get("solved_by") for *_, o in block]
-    assert by.count("closed-form") >= 0.9 * st.n_cases
-    assert {o["verdict"] for *_, o in ref if "verdict" in o} >= {"shakedown", "ratchet"}
+    verdicts = {o["verdict"] for *_, o in ref if "verdict" in o}
+    if body is STRIP:             # shakedown below dT_c in closed form, the rest exact
+        assert 0.2 * st.n_cases <= by.count("closed-form") <= 0.8 * st.n_cases
+        assert verdicts >= {"shakedown", "alternating-slip"}
+    else:
+        assert by.count("closed-form") >= 0.9 * st.n_cases
+        assert verdicts >= {"shakedown", "ratchet"}
 
 
 def test_bad_values_in_a_block_are_named_per_case_and_the_others_answered(tmp_path):

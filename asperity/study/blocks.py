@@ -263,19 +263,19 @@ def _solve(spec: dict, base, a: dict, valid):
     if base.model == "two-node":
         from ..microslip.two_node_batch import two_node_closed
         r = two_node_closed(params, mp, mm, dT, F, **kw)
-        path = np.where(np.asarray(r["code"]) != 2, "closed-form", "exact").astype(object)
-        left = np.flatnonzero(path == "exact")     # the exact solver takes what it leaves
-        if left.size:
-            pick = lambda x: x[left]
-            e = assess_batch("two-node", {k: pick(v) for k, v in params.items()}, pick(mp),
-                             pick(mm), pick(dT), pick(F), **{
-                                 **kw, "cycles": pick(kw["cycles"]),
-                                 "tolerance": pick(kw["tolerance"])})
-            for key in r:
-                r[key][left] = e[key]
     else:
-        r = assess_batch("strip", params, mp, mm, dT, F, **kw)
-        path = np.full(idx.size, "exact", dtype=object)
+        from ..microslip.strip_batch import strip_shakedown
+        r = strip_shakedown(params, mp, mm, dT, F, cycles=kw["cycles"],
+                            max_marched=kw["max_marched"])
+    path = np.where(np.asarray(r["code"]) != 2, "closed-form", "exact").astype(object)
+    left = np.flatnonzero(path == "exact")     # the exact block solver takes what they leave
+    if left.size:
+        def pick(x):
+            return x[left] if isinstance(x, np.ndarray) else x
+        e = assess_batch(base.model, {k: pick(v) for k, v in params.items()}, pick(mp),
+                         pick(mm), pick(dT), pick(F), **{k: pick(v) for k, v in kw.items()})
+        for key in r:
+            r[key][left] = e[key]
     code = np.asarray(r["code"])
     done = np.zeros(m, bool)
     done[idx] = code != 2
