@@ -1213,6 +1213,22 @@ MUTANTS = [
            "mean[cyc] = 0.5 * (st[1] + q0 / kt[c]) + 0.5 * (st[2] + q1 / kt[c])",
            "mean[cyc] = 0.5 * (st[1] + st[2])", TWO_NODE_BATCH,
            "the assembly's displacement taken as the sliders', without the contact springs"),
+    Mutant("strip-dT_c-half-length-off-by-one", "microslip/strip_batch.py",
+           "np.tanh(0.5 * (n - 1) * theta)", "np.tanh(0.5 * n * theta)",
+           ("test_strip_batch.py",), "the discrete strip's half length counted in nodes, "
+           "not elements"),
+    Mutant("strip-shakedown-ignores-the-force", "microslip/strip_batch.py",
+           "    ok = ((np.abs(F) == 0.0).all(axis=1) & (reach", "    ok = ((reach",
+           ("test_strip_batch.py",), "a strip under a force taken as shaking down below dT_c"),
+    Mutant("strip-shakedown-shared-drift-array", "microslip/strip_batch.py",
+           '            "dT_c": dT_c, "margin": margin, "drift_per_cycle": np.where(ok, 0.0, '
+           'np.nan),\n            "drift_after_cycles": np.where(ok, 0.0, np.nan),',
+           '            "dT_c": dT_c, "margin": margin, "drift_per_cycle": (zero := '
+           'np.where(ok, 0.0, np.nan)),\n'
+           '            "drift_after_cycles": zero,',
+           ("test_strip_batch.py", "test_study_blocks.py"),
+           "one array for the drift per cycle and after the life: the exact solver's answers "
+           "written into it overwrite each other (a bug made and caught here)"),
     # ---- command-line names of library fields
     Mutant("cli-spring-ratio-flags-dropped", "cli/sources.py",
            '{"springs.k_f / k_n ": "--k-f / --k-n ", **fields}', "{**fields}",
