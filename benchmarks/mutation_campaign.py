@@ -65,7 +65,7 @@ SCOPE = ("contact/*.py", "bodies/*.py", "dynamics/body*.py", "dynamics/_body*_ke
          "surface/mesh_grid.py", "crawling/*.py", "fe/*.py", "cli/law_fe.py",
          "study/blocks.py", "microslip/two_node_batch.py", "microslip/_two_node_kernels.py",
          "microslip/batch.py", "microslip/_batch_kernels.py", "microslip/friction_batch.py",
-         "microslip/_friction_batch_kernels.py")
+         "microslip/_friction_batch_kernels.py", "microslip/strip_batch.py")
 #: test files per module glob, the first match wins: globs in tests/ (missing ones ignored),
 #: "file::test_name" for one test function (all its cases), and an optional third item, a
 #: pytest -k expression over the whole selection (it sees file names too: "not (convergence
@@ -130,6 +130,7 @@ TESTS = (
     ("fe/*.py", _FE),
     ("study/blocks.py", ("test_study_blocks.py",)),
     ("microslip/*two_node*.py", ("test_two_node_batch.py", "test_study_blocks.py")),
+    ("microslip/strip_batch.py", ("test_strip_batch.py", "test_study_blocks.py")),
     ("microslip/*friction_batch*.py", ("test_friction_batch.py",)),
     ("microslip/_batch_kernels.py", ("test_microslip_batch.py",)),
     ("microslip/batch.py", ("test_microslip_batch.py",)),
