@@ -31,10 +31,13 @@ from numba import njit
 from ..kernel_cache import refresh
 from ._chain_kernels import (
     _BLOCK_ROUNDS,
+    _GO_ON,
     STATUS_NO_CONVERGENCE,
     STATUS_OK,
+    rate_bounds,
     rate_statuses,
     solve_lcp,
+    solve_lcps,
 )
 
 refresh(__file__)     # drop cached kernels compiled against older callees
@@ -102,34 +105,40 @@ def segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w, max_events, sta
 
 
 @njit(cache=True)
-def segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, guess, w, w2, keep=True):
+def segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc, guess, memo, W, S, X,
+                      keep=True):
     """The backward-Euler increment of one linear load segment, taken if certain to be the
     exact end state (see the module's docstring): returns True and updates (u, q, acc), or
-    returns False and leaves them as they were.  ``guess`` (n,) int64: the statuses to start
-    the pivoting from (in), the increment's statuses (out).  w, w2: (7, n) work arrays."""
+    returns False and leaves them as they were.  TH (2, n-1): the segment's elongations,
+    in both rows.  ``guess`` (n,) int64: the statuses to start the pivoting from (in), the
+    increment's statuses (out).  W (3, 7, n), S (3, n) int64, X (3, n): work arrays.
+
+    The increment first; then, in one pass, the rate problems at its start (its pivoting
+    started from the increment's sliders at a threshold: the sliders sliding at the start
+    once the increment is right) and at its end.  ``guess`` is left as it was when the rate
+    problem at the start does not settle (it is never tried then)."""
     n = u.size
     if dF != 0.0:
         return False
-    # the rate problem at the start: who slides as the segment begins
-    if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, st, w, keep) != STATUS_OK:
-        return False
-    lo, hi, base, f, G, P, v = w2[0], w2[1], w2[2], w2[3], w2[4], w2[5], w2[6]
+    th = TH[0]
+    lo, hi, base, f, G, P, v = W[2, 0], W[2, 1], W[2, 2], W[2, 3], W[2, 4], W[2, 5], W[2, 6]
+    g0 = S[2]
     for i in range(n):
         hi[i] = (cp[i] - q[i]) / kt[i]
         lo[i] = (-cm[i] - q[i]) / kt[i]
         base[i] = 0.0
+        g0[i] = guess[i]
+    codes = np.full(2, _GO_ON)
     if solve_lcp(kb, kt, cp, cm, th, base, lo, hi, guess, f, G, P, v,
                  4 * n + 2 * _BLOCK_ROUNDS) != STATUS_OK:
+        if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, S[0], W[0], keep) != STATUS_OK:
+            guess[:] = g0
         return False
     sticks = False
     for i in range(n):
-        if st[i] != 0 and guess[i] != st[i]:
-            return False            # a slider sliding at the start stopped in the increment
         sticks = sticks or guess[i] == 0
-    if not sticks:
-        return False                # the chain translates: its least motion is a rate's
-    # the end state, kept aside in w: u, q, slip
-    ue, qe, se = w[0], w[1], w[2]
+    # the end state, kept aside in X: u, q, slip
+    ue, qe, se = X[0], X[1], X[2]
     for i in range(n):
         ue[i] = u[i] + v[i]
         if guess[i] > 0:
@@ -141,9 +150,31 @@ def segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, guess, w, w2, k
         else:
             qe[i] = q[i] + kt[i] * v[i]
             se[i] = 0.0
-    # every slider that slipped still slides at the end
-    if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, qe, st, w2) != STATUS_OK:
+    # the rate problems at the start (0) and, if some slider sticks, at the end (1)
+    rate_problem(cp, cm, fw, q, memo, S[0], W[0], (_ON if keep else _STUCK) if memo.size == 0
+                 or memo[0] == _UNSET else _MEMO)
+    if sticks:
+        rate_problem(cp, cm, fw, qe, memo, S[1], W[1], _ON)
+    else:
+        codes[1] = STATUS_OK
+    solve_lcps(kb, kt, cp, cm, TH, W, S, codes, 4 * n + 2 * _BLOCK_ROUNDS)
+    if codes[0] != STATUS_OK:
+        guess[:] = g0
+        if memo.size:
+            memo[0] = _UNSET
         return False
+    st = S[0]
+    if memo.size:
+        memo[:] = st
+    for i in range(n):
+        if st[i] != 0 and guess[i] != st[i]:
+            return False            # a slider sliding at the start stopped in the increment
+    if not sticks:
+        return False                # the chain translates: its least motion is a rate's
+    # every slider that slipped still slides at the end
+    if codes[1] != STATUS_OK:
+        return False
+    st = S[1]
     for i in range(n):
         if guess[i] != 0 and se[i] > 0.0 and st[i] != guess[i]:
             return False
@@ -152,6 +183,35 @@ def segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, guess, w, w2, k
         q[i] = qe[i]
         acc[i] += se[i]
     return True
+
+
+#: rate_problem's starts: every slider sticking, the sliders at a threshold sliding on, the
+#: statuses remembered from the cycle before; memo[0] == _UNSET: nothing remembered
+_STUCK, _ON, _MEMO, _UNSET = 0, 1, 2, 2
+
+
+@njit(cache=True)
+def rate_problem(cp, cm, fw, q, memo, st, w, start):
+    """Set up the rate problem at the state q without a change of force in w (lo, hi,
+    base) and its pivoting's start in st (``start``: _STUCK, _ON as in
+    :func:`rate_statuses`, or _MEMO: the statuses ``memo``)."""
+    rate_bounds(cp, cm, q, w[0], w[1])
+    base = w[2]
+    for i in range(q.size):
+        base[i] = 0.0 * fw[i]
+        if start == _MEMO:        # those of them at their threshold still
+            st[i] = memo[i] if (memo[i] > 0 and w[1, i] == 0.0) or (
+                memo[i] < 0 and w[0, i] == 0.0) else 0
+        elif start == _ON:
+            st[i] = 1 if q[i] == cp[i] else (-1 if q[i] == -cm[i] else 0)
+        else:
+            st[i] = 0
+
+
+def increment_work(n):
+    """The work arrays of :func:`segment_increment` for a chain of n nodes: TH, W, S, X."""
+    return (np.empty((2, max(n - 1, 0))), np.empty((3, 7, n)), np.empty((3, n), np.int64),
+            np.empty((3, n)))
 
 
 @njit(cache=True)
@@ -174,12 +234,28 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, 
     Returns (code, points completed, events marched one by one, node-passes spent); on
     return with points completed < m and code STATUS_OK, ``state`` holds the progress of
     the next point's segment."""
+    return march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess,
+                      np.empty((dT_seq.size, 0), np.int64), state, acc, slip_seq, held_seq,
+                      rec_nodes, rec_u, max_events, events_only, budget)
+
+
+@njit(cache=True)
+def march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, memo,
+               state, acc, slip_seq, held_seq, rec_nodes, rec_u, max_events, events_only,
+               budget):
+    """:func:`march`, and memo (m, n) int64 (or (m, 0): nothing kept): the statuses of the
+    rate problem at the start of each point's segment one cycle earlier (memo[j, 0] ==
+    _UNSET: not known), its pivoting's start; overwritten.  Once the cycle is stabilised
+    it is that problem's solution (one round, not several from every slider sticking)."""
     n = u.size
     m = dT_seq.size
-    st = np.empty(n, np.int64)
-    w = np.empty((7, n))
-    w2 = np.empty((7, n))
-    th = np.empty(max(n - 1, 0))
+    TH = np.empty((2, max(n - 1, 0)))
+    W = np.empty((3, 7, n))
+    S = np.empty((3, n), np.int64)
+    X = np.empty((3, n))
+    th = TH[0]
+    st = S[0]
+    w = W[0]
     events = 0
     work = 0
     a_dT = dT0
@@ -194,12 +270,13 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, 
             p_dT != 0.0)
         for e in range(n - 1):
             th[e] = alpha_T * le[e] * ddT
+            TH[1, e] = th[e]
         if state[0] == 0.0:
             for i in range(n):
                 acc[i] = 0.0
             state[1] = 0.0
-            if not events_only and segment_increment(kb, kt, cp, cm, fw, th, dF, u, q, acc,
-                                                     st, guess[j], w, w2, keep):
+            if not events_only and segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc,
+                                                     guess[j], memo[j], W, S, X, keep):
                 state[0] = 1.0
                 work += 10 * n
         if state[0] < 1.0:
