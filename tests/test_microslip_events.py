@@ -247,10 +247,12 @@ def test_the_increment_is_refused_when_a_sliding_slider_stops_in_it():
             stops = any(st0[i] != 0 and g[i] != st0[i] for i in range(n))
             u0, q0 = u.copy(), q.copy()
             if stops:
-                TH, W, S, X = increment_work(n)
+                TH, W, S, X, codes = increment_work(n)
                 TH[:] = th
+                none = np.empty(0, np.int64)
                 took = segment_increment(kb, kt, cp, cm, fw, TH, 0.0, u, q, acc,
-                                         np.zeros(n, np.int64), np.empty(0, np.int64), W, S, X)
+                                         np.zeros(n, np.int64), none, W, S, X, True, 2, codes,
+                                         none)
                 assert not took and np.array_equal(u, u0) and np.array_equal(q, q0)
                 refused += 1
             segment_events(kb, kt, cp, cm, fw, th, 0.0, u, q, acc, st, w, 10_000, np.zeros(2),

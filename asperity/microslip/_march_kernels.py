@@ -105,64 +105,70 @@ def segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w, max_events, sta
 
 
 @njit(cache=True)
-def segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc, guess, memo, W, S, X,
-                      keep=True):
+def segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc, guess, memo, W, S, X, keep, b,
+                      codes, g_next):
     """The backward-Euler increment of one linear load segment, taken if certain to be the
     exact end state (see the module's docstring): returns True and updates (u, q, acc), or
-    returns False and leaves them as they were.  TH (2, n-1): the segment's elongations,
-    in both rows.  ``guess`` (n,) int64: the statuses to start the pivoting from (in), the
-    increment's statuses (out).  W (3, 7, n), S (3, n) int64, X (3, n): work arrays.
+    returns False and leaves them as they were.  ``guess`` (n,) int64: the statuses to
+    start the pivoting from (in), the increment's statuses (out; left as they were if the
+    rate problem at the start does not settle).  ``memo`` (n,) int64 or (0,): see
+    :func:`march_memo`.  W (4, 7, n), S (4, n) int64, X (3, n), codes (4,) int64: work
+    arrays (:func:`increment_work`); TH (4, n-1): the segment's elongations in rows 0 and 1.
 
-    The increment first; then, in one pass, the rate problems at its start (its pivoting
-    started from the increment's sliders at a threshold: the sliders sliding at the start
-    once the increment is right) and at its end.  ``guess`` is left as it was when the rate
-    problem at the start does not settle (it is never tried then)."""
+    The increment is solved in slot ``b`` (2 or 3) unless it was already (codes[b] !=
+    _GO_ON: its status, its statuses in S[b]); then, in one pass, the rate problems at its
+    start (slot 0) and end (slot 1) and, if ``g_next`` (the next segment's guess) is given,
+    the next segment's increment from this one's end state in the other slot (under the
+    elongations TH[5 - b]): its status in codes[5 - b], good if this one is taken."""
     n = u.size
     if dF != 0.0:
         return False
     th = TH[0]
-    lo, hi, base, f, G, P, v = W[2, 0], W[2, 1], W[2, 2], W[2, 3], W[2, 4], W[2, 5], W[2, 6]
-    g0 = S[2]
-    for i in range(n):
-        hi[i] = (cp[i] - q[i]) / kt[i]
-        lo[i] = (-cm[i] - q[i]) / kt[i]
-        base[i] = 0.0
-        g0[i] = guess[i]
-    codes = np.full(2, _GO_ON)
-    if solve_lcp(kb, kt, cp, cm, th, base, lo, hi, guess, f, G, P, v,
-                 4 * n + 2 * _BLOCK_ROUNDS) != STATUS_OK:
-        if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, S[0], W[0], keep) != STATUS_OK:
-            guess[:] = g0
+    nb = 5 - b
+    rounds = 4 * n + 2 * _BLOCK_ROUNDS
+    if codes[b] == _GO_ON:
+        increment_problem(kt, cp, cm, q, guess, W[b], S[b])
+        codes[b] = solve_lcp(kb, kt, cp, cm, th, W[b, 2], W[b, 0], W[b, 1], S[b], W[b, 3],
+                             W[b, 4], W[b, 5], W[b, 6], rounds)
+    gb, lo, hi, v = S[b], W[b, 0], W[b, 1], W[b, 6]
+    if codes[b] != STATUS_OK:
+        if rate_statuses(kb, kt, cp, cm, fw, th, 0.0, q, S[0], W[0], keep) == STATUS_OK:
+            guess[:] = gb
         return False
     sticks = False
     for i in range(n):
-        sticks = sticks or guess[i] == 0
+        sticks = sticks or gb[i] == 0
     # the end state, kept aside in X: u, q, slip
     ue, qe, se = X[0], X[1], X[2]
     for i in range(n):
         ue[i] = u[i] + v[i]
-        if guess[i] > 0:
+        if gb[i] > 0:
             qe[i] = cp[i]
             se[i] = v[i] - hi[i]
-        elif guess[i] < 0:
+        elif gb[i] < 0:
             qe[i] = -cm[i]
             se[i] = lo[i] - v[i]
         else:
             qe[i] = q[i] + kt[i] * v[i]
             se[i] = 0.0
     # the rate problems at the start (0) and, if some slider sticks, at the end (1)
+    codes[0] = codes[1] = codes[nb] = _GO_ON
     rate_problem(cp, cm, fw, q, memo, S[0], W[0], (_ON if keep else _STUCK) if memo.size == 0
                  or memo[0] == _UNSET else _MEMO)
     if sticks:
         rate_problem(cp, cm, fw, qe, memo, S[1], W[1], _ON)
     else:
         codes[1] = STATUS_OK
-    solve_lcps(kb, kt, cp, cm, TH, W, S, codes, 4 * n + 2 * _BLOCK_ROUNDS)
+    if g_next.size:
+        increment_problem(kt, cp, cm, qe, g_next, W[nb], S[nb])
+    else:
+        codes[nb] = STATUS_OK
+    solve_lcps(kb, kt, cp, cm, TH, W, S, codes, rounds)
     if codes[0] != STATUS_OK:
-        guess[:] = g0
         if memo.size:
             memo[0] = _UNSET
         return False
+    guess[:] = gb
     st = S[0]
     if memo.size:
         memo[:] = st
@@ -183,6 +189,17 @@ def segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc, guess, memo, W, S, 
         q[i] = qe[i]
         acc[i] += se[i]
     return True
+
+
+@njit(cache=True)
+def increment_problem(kt, cp, cm, q, guess, w, st):
+    """Set up the increment from the state q without a change of force in w (lo, hi, base)
+    and its pivoting's start ``guess`` in st."""
+    for i in range(q.size):
+        w[1, i] = (cp[i] - q[i]) / kt[i]
+        w[0, i] = (-cm[i] - q[i]) / kt[i]
+        w[2, i] = 0.0
+        st[i] = guess[i]
 
 
 #: rate_problem's starts: every slider sticking, the sliders at a threshold sliding on, the
@@ -208,10 +225,12 @@ def rate_problem(cp, cm, fw, q, memo, st, w, start):
             st[i] = 0
 
 
+@njit(cache=True)
 def increment_work(n):
-    """The work arrays of :func:`segment_increment` for a chain of n nodes: TH, W, S, X."""
-    return (np.empty((2, max(n - 1, 0))), np.empty((3, 7, n)), np.empty((3, n), np.int64),
-            np.empty((3, n)))
+    """The work arrays of :func:`segment_increment` for a chain of n nodes: TH, W, S, X,
+    codes."""
+    return (np.empty((4, max(n - 1, 0))), np.empty((4, 7, n)), np.empty((4, n), np.int64),
+            np.empty((3, n)), np.full(4, _GO_ON))
 
 
 @njit(cache=True)
@@ -249,10 +268,10 @@ def march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, gu
     it is that problem's solution (one round, not several from every slider sticking)."""
     n = u.size
     m = dT_seq.size
-    TH = np.empty((2, max(n - 1, 0)))
-    W = np.empty((3, 7, n))
-    S = np.empty((3, n), np.int64)
-    X = np.empty((3, n))
+    TH, W, S, X, codes = increment_work(n)
+    none = np.empty(0, np.int64)
+    b = 2           # the slot of the next increment, solved ahead for point ``ahead``
+    ahead = -1
     th = TH[0]
     st = S[0]
     w = W[0]
@@ -275,10 +294,24 @@ def march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, gu
             for i in range(n):
                 acc[i] = 0.0
             state[1] = 0.0
-            if not events_only and segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc,
-                                                     guess[j], memo[j], W, S, X, keep):
-                state[0] = 1.0
-                work += 10 * n
+            if not events_only:
+                if ahead != j:
+                    codes[b] = _GO_ON
+                # the next segment's increment solved ahead if it may be taken
+                nxt = j + 1 < m and F_seq[j + 1] - F_seq[j] == 0.0
+                if nxt:
+                    dd = dT_seq[j + 1] - dT_seq[j]
+                    for e in range(n - 1):
+                        TH[5 - b, e] = alpha_T * le[e] * dd
+                ahead = -1
+                if segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc, guess[j],
+                                     memo[j], W, S, X, keep, b, codes,
+                                     guess[j + 1] if nxt else none):
+                    state[0] = 1.0
+                    work += 10 * n
+                    if nxt:
+                        ahead = j + 1
+                        b = 5 - b
         if state[0] < 1.0:
             ev0 = int(state[1])
             code, wk = segment_events(kb, kt, cp, cm, fw, th, dF, u, q, acc, st, w,
