@@ -247,7 +247,7 @@ def test_the_increment_is_refused_when_a_sliding_slider_stops_in_it():
             stops = any(st0[i] != 0 and g[i] != st0[i] for i in range(n))
             u0, q0 = u.copy(), q.copy()
             if stops:
-                TH, W, S, X, codes = increment_work(n)
+                TH, W, S, X, codes, _ = increment_work(n)
                 TH[:] = th
                 none = np.empty(0, np.int64)
                 took = segment_increment(kb, kt, cp, cm, fw, TH, 0.0, u, q, acc,

@@ -228,9 +228,11 @@ def rate_problem(cp, cm, fw, q, memo, st, w, start):
 @njit(cache=True)
 def increment_work(n):
     """The work arrays of :func:`segment_increment` for a chain of n nodes: TH, W, S, X,
-    codes."""
+    codes, and ctl (2,) int64 (see :func:`march_memo`)."""
+    ctl = np.zeros(2, np.int64)
+    ctl[1] = 2
     return (np.empty((4, max(n - 1, 0))), np.empty((4, 7, n)), np.empty((4, n), np.int64),
-            np.empty((3, n)), np.full(4, _GO_ON))
+            np.empty((3, n)), np.full(4, _GO_ON), ctl)
 
 
 @njit(cache=True)
@@ -253,25 +255,39 @@ def march(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, 
     Returns (code, points completed, events marched one by one, node-passes spent); on
     return with points completed < m and code STATUS_OK, ``state`` holds the progress of
     the next point's segment."""
+    none = np.empty(0, np.int64)
     return march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess,
-                      np.empty((dT_seq.size, 0), np.int64), state, acc, slip_seq, held_seq,
-                      rec_nodes, rec_u, max_events, events_only, budget)
+                      np.empty((dT_seq.size, 0), np.int64), increment_work(u.size), 0.0, 0.0,
+                      none, state, acc, slip_seq, held_seq, rec_nodes, rec_u, max_events,
+                      events_only, budget)
 
 
 @njit(cache=True)
 def march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, guess, memo,
-               state, acc, slip_seq, held_seq, rec_nodes, rec_u, max_events, events_only,
-               budget):
-    """:func:`march`, and memo (m, n) int64 (or (m, 0): nothing kept): the statuses of the
-    rate problem at the start of each point's segment one cycle earlier (memo[j, 0] ==
-    _UNSET: not known), its pivoting's start; overwritten.  Once the cycle is stabilised
-    it is that problem's solution (one round, not several from every slider sticking)."""
+               ws, dT_next, F_next, g_next, state, acc, slip_seq, held_seq, rec_nodes, rec_u,
+               max_events, events_only, budget):
+    """:func:`march`, and
+
+    memo (m, n) int64 (or (m, 0): nothing kept): the statuses of the rate problem at the
+    start of each point's segment one cycle earlier (memo[j, 0] == _UNSET: not known), its
+    pivoting's start; overwritten.  Once the cycle is stabilised it is that problem's
+    solution (one round, not several from every slider sticking);
+    ws: the work arrays (:func:`increment_work`), kept from one call to the next: the
+    increment of the point after the last one marched, solved ahead, is taken from them by
+    the next call, which must go on from where this one stopped (the same state, guesses
+    and points);
+    (dT_next, F_next): the point after dT_seq[-1], g_next (n,) int64 its guess (or (0,):
+    none)."""
     n = u.size
     m = dT_seq.size
-    TH, W, S, X, codes = increment_work(n)
-    none = np.empty(0, np.int64)
-    b = 2           # the slot of the next increment, solved ahead for point ``ahead``
-    ahead = -1
+    TH, W, S, X, codes, ctl = ws
+    none = g_next[:0]
+    # the slot of the next increment, solved ahead for point ``ahead`` (ctl: of the call
+    # before: solved ahead for the first point, its slot)
+    b = ctl[1]
+    ahead = 0 if ctl[0] == 1 and state[0] == 0.0 else -1
+    ctl[0] = 0
+    done = 0
     th = TH[0]
     st = S[0]
     w = W[0]
@@ -298,15 +314,16 @@ def march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, gu
                 if ahead != j:
                     codes[b] = _GO_ON
                 # the next segment's increment solved ahead if it may be taken
-                nxt = j + 1 < m and F_seq[j + 1] - F_seq[j] == 0.0
+                last = j + 1 == m
+                g1 = g_next if last else guess[j + 1]
+                nxt = g1.size > 0 and (F_next if last else F_seq[j + 1]) - F_seq[j] == 0.0
                 if nxt:
-                    dd = dT_seq[j + 1] - dT_seq[j]
+                    dd = (dT_next if last else dT_seq[j + 1]) - dT_seq[j]
                     for e in range(n - 1):
                         TH[5 - b, e] = alpha_T * le[e] * dd
                 ahead = -1
                 if segment_increment(kb, kt, cp, cm, fw, TH, dF, u, q, acc, guess[j],
-                                     memo[j], W, S, X, keep, b, codes,
-                                     guess[j + 1] if nxt else none):
+                                     memo[j], W, S, X, keep, b, codes, g1 if nxt else none):
                     state[0] = 1.0
                     work += 10 * n
                     if nxt:
@@ -338,6 +355,9 @@ def march_memo(kb, le, kt, cp, cm, fw, alpha_T, dT0, F0, dT_seq, F_seq, u, q, gu
         p_dT = ddT
         p_F = dF
         state[0] = 0.0
+        done = j + 1
         if work >= budget:
-            return STATUS_OK, j + 1, events, work
-    return STATUS_OK, m, events, work
+            break
+    ctl[0] = 1 if ahead == done else 0
+    ctl[1] = b
+    return STATUS_OK, done, events, work

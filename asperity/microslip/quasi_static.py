@@ -207,7 +207,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     """
     from ..progress import report
     from ._chain_kernels import STATUS_NON_FINITE, STATUS_OK, STATUS_SLIDE_OFF
-    from ._march_kernels import _UNSET, march_memo
+    from ._march_kernels import _UNSET, increment_work, march_memo
     check_inputs(chain, loading, tol)
     cycles = check_int("cycles", cycles, 1, 100_000_000)
     min_cycles = check_int("min_cycles", min_cycles, 1, 100_000_000)
@@ -229,10 +229,12 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     state = np.zeros(2)                   # progress of a segment marched in pieces
     acc = np.zeros(n)
 
-    def run(dT, F, guess, memo, c0):
+    def run(dT, F, guess, memo, ws, more, c0):
         """March the points (dT, F) in pieces of about 0.1 s (guess, memo: the statuses of
-        each point's increment and at its segment's start one cycle earlier); c0: cycles
-        done before (for progress)."""
+        each point's increment and at its segment's start one cycle earlier; ws: the
+        kernel's work arrays, kept from a call to the next; ``more``: the points are marched
+        again after this, the next increment is solved ahead); c0: cycles done before (for
+        progress)."""
         m = dT.size
         ru = np.empty((m, rec.size))
         slip = np.zeros(m)
@@ -241,9 +243,10 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         j0 = 0
         while j0 < m:
             code, k, ev, work = march_memo(*args, load[0], load[1], dT[j0:], F[j0:], u, q,
-                                           guess[j0:], memo[j0:], state, acc, slip[j0:],
-                                           held[j0:], rec, ru[j0:], max_events, events_only,
-                                           pacer.size())
+                                           guess[j0:], memo[j0:], ws, dT[0], F[0],
+                                           guess[0] if more else guess[0, :0], state, acc,
+                                           slip[j0:], held[j0:], rec, ru[j0:], max_events,
+                                           events_only, pacer.size())
             pacer.done(work)
             ev_sum += ev
             j = j0 + k
@@ -270,7 +273,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     dT0, F0 = loading.lead_in()
     if dT0.size:
         ru, _, _, ev = run(dT0, F0, np.zeros((dT0.size, n), np.int64),
-                           np.empty((dT0.size, 0), np.int64), 0)
+                           np.empty((dT0.size, 0), np.int64), increment_work(n), False, 0)
         events += ev
         tr_dT.append(dT0)
         tr_u.append(ru)
@@ -278,6 +281,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     dTc, Fc = loading.cycle_points()
     guess = np.zeros((dTc.size, n), np.int64)
     memo = np.full((dTc.size, n), _UNSET)
+    ws = increment_work(n)
     mean_u = [float(chain.weight @ u)]
     u_end = [u.copy()]
     q_prev = q.copy()
@@ -286,7 +290,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     slip = False
     whole = False
     for c in range(1, cycles + 1):
-        ru, slips, held, ev = run(dTc, Fc, guess, memo, c - 1)
+        ru, slips, held, ev = run(dTc, Fc, guess, memo, ws, c < cycles, c - 1)
         events += ev
         tr_t.append(c - 1 + np.arange(1, dTc.size + 1) / dTc.size)
         tr_dT.append(dTc)
