@@ -283,30 +283,30 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     memo = np.full((dTc.size, n), _UNSET)
     ws = increment_work(n)
     mean_u = [float(chain.weight @ u)]
-    u_end = [u.copy()]
-    q_prev = q.copy()
-    q_end = q_prev
+    u_end = np.empty((cycles + 1, n))     # rows filled as the cycles are marched
+    u_end[0] = u
+    q_prev, dq = q.copy(), np.empty(n)
+    frac = np.arange(1, dTc.size + 1) / dTc.size
     stab = None
     slip = False
     whole = False
     for c in range(1, cycles + 1):
         ru, slips, held, ev = run(dTc, Fc, guess, memo, ws, c < cycles, c - 1)
         events += ev
-        tr_t.append(c - 1 + np.arange(1, dTc.size + 1) / dTc.size)
+        tr_t.append(c - 1 + frac)
         tr_dT.append(dTc)
         tr_u.append(ru)
         mean_u.append(float(chain.weight @ u))
-        u_end.append(u.copy())
-        q_end = q.copy()
+        u_end[c] = u
         slip = bool(slips.max() > tol.no_drift * scale)
         whole = held <= 1
-        if np.max(np.abs(q_end - q_prev)) <= tol.stabilised * cap:
+        if np.abs(np.subtract(q, q_prev, out=dq), out=dq).max() <= tol.stabilised * cap:
             stab = c if stab is None else stab
             if until_stable and c >= min_cycles:
                 break
         else:
             stab = None
-        q_prev = q_end
+        q_prev[:] = q
     mean_u = np.array(mean_u)
     k = len(mean_u) - 1
     d = float(mean_u[k] - mean_u[k - 1])
@@ -314,7 +314,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         d = 0.0
     trace = {"t": np.concatenate(tr_t), "dT": np.concatenate(tr_dT),
              "u": np.concatenate(tr_u), "nodes": rec}
-    return MicroslipResult(chain, loading, "quasi-static", k, mean_u, np.array(u_end), q_end, d,
+    return MicroslipResult(chain, loading, "quasi-static", k, mean_u, u_end[:k + 1], q.copy(), d,
                            stab, slip, trace,
                            {"method": "event-driven: every slider's start and stop located "
                                       "exactly along each linear load segment",
