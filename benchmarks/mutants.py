@@ -63,7 +63,7 @@ WARM = ("test_law_warm.py", "test_dynamics_moreau.py")
 MICROSLIP = ("test_microslip.py", "test_microslip_verdict.py", "test_microslip_risk.py",
              "test_risk_cli.py", "test_chain_reference.py")
 CHAIN = ("test_microslip_events.py", "test_chain_reference.py", "test_microslip.py",
-         "test_hostile_microslip.py")
+         "test_hostile_microslip.py", "test_chain_march.py")
 WEB_PAGES = ("test_web_pages.py",)
 WEB_BROWSER = ("test_web_pages_browser.py",)
 PROCS = "test_processes.py"

@@ -18,6 +18,17 @@ along a segment:
   chain's translation is a rate's least motion), and all that slipped still slide at its
   end (the rate problem there); else the segment is marched event by event.
 
+Cost (issue 28): each pivoting round is a chain solve bound by the latency of its
+divisions, so independent problems are solved together (:func:`._chain_kernels.solve_lcps`,
+one pass over the nodes): the rate problems at a segment's start and end with the next
+segment's increment (solved ahead from this one's end state, used if this one is taken).
+:func:`march_memo` (simulate's) also starts the rate problem at a segment's start from its
+solution one cycle earlier (four rounds from every slider sticking, one once the cycle is
+stabilised) and keeps its work arrays, with the increment solved ahead, from one call to
+the next.  A pivoting's start changes its solution only where two solutions tie within
+AT_THRESHOLD and SLIP_BACK: on fuzzed chains and histories the results are those of
+:func:`march`, which remembers nothing, bit for bit (tests/test_chain_march.py).
+
 Array-in/array-out loops, no Python objects, no validation; failures come back as the
 status codes of :mod:`._chain_kernels`.
 """
