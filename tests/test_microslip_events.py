@@ -225,7 +225,7 @@ def test_the_increment_is_refused_when_a_sliding_slider_stops_in_it():
     wrong: the event-by-event march ends elsewhere); and such chains are marched event by
     event by simulate, equal to events_only."""
     from asperity.microslip._chain_kernels import rate_statuses, solve_lcp
-    from asperity.microslip._march_kernels import segment_events, segment_increment
+    from asperity.microslip._march_kernels import increment_work, segment_events, segment_increment
     from asperity.microslip.chains import Chain, is_uniform
     rng = np.random.default_rng(7)
     refused = wrong = 0
@@ -235,7 +235,7 @@ def test_the_increment_is_refused_when_a_sliding_slider_stops_in_it():
         kt, cp, cm = 10 ** rng.uniform(4, 8, n), rng.uniform(1, 20, n), rng.uniform(1, 20, n)
         fw, aT = np.full(n, 1 / n), 1e-5
         u, q = np.zeros(n), np.zeros(n)
-        st, w, w2, acc = np.zeros(n, np.int64), np.empty((7, n)), np.empty((7, n)), np.zeros(n)
+        st, w, acc = np.zeros(n, np.int64), np.empty((7, n)), np.zeros(n)
         for seg in range(8):
             th = aT * le * rng.uniform(-1, 1) * 10 ** rng.uniform(1, 3.5)
             st0 = np.zeros(n, np.int64)
@@ -247,8 +247,12 @@ def test_the_increment_is_refused_when_a_sliding_slider_stops_in_it():
             stops = any(st0[i] != 0 and g[i] != st0[i] for i in range(n))
             u0, q0 = u.copy(), q.copy()
             if stops:
-                took = segment_increment(kb, kt, cp, cm, fw, th, 0.0, u, q, acc, st,
-                                         np.zeros(n, np.int64), w, w2)
+                TH, W, S, X, codes, _ = increment_work(n)
+                TH[:] = th
+                none = np.empty(0, np.int64)
+                took = segment_increment(kb, kt, cp, cm, fw, TH, 0.0, u, q, acc,
+                                         np.zeros(n, np.int64), none, W, S, X, True, 2, codes,
+                                         none)
                 assert not took and np.array_equal(u, u0) and np.array_equal(q, q0)
                 refused += 1
             segment_events(kb, kt, cp, cm, fw, th, 0.0, u, q, acc, st, w, 10_000, np.zeros(2),

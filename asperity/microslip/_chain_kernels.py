@@ -55,6 +55,14 @@ BALANCED = 1e-12
 #: principal pivoting: flip every violation for this many rounds, then one at a time (least
 #: index first: finite for the positive definite problems of a chain that sticks somewhere)
 _BLOCK_ROUNDS = 8
+#: a round of the pivoting that settled nothing (:func:`lcp_settle`)
+_GO_ON = -1
+
+
+@njit(cache=True)
+def in_series(k1, k2):
+    """The stiffness of two springs in series (the condensation of :func:`solve_chain`)."""
+    return k1 * k2 / (k1 + k2)
 
 
 @njit(cache=True)
@@ -76,7 +84,7 @@ def solve_chain(kb, kt, th, f, st, G, P, v):
     for i in range(1, n):
         e = i - 1
         if G[e] > 0.0:
-            sr = kb[e] * G[e] / (kb[e] + G[e])
+            sr = in_series(kb[e], G[e])
             p = sr * (P[e] / G[e] + th[e])
         else:
             sr = 0.0
@@ -94,7 +102,7 @@ def solve_chain(kb, kt, th, f, st, G, P, v):
         code = 2
     for i in range(n - 2, -1, -1):
         if G[i] > 0.0:
-            sr = kb[i] * G[i] / (kb[i] + G[i])
+            sr = in_series(kb[i], G[i])
             v[i] = (P[i] + sr * (v[i + 1] - th[i] - P[i] / G[i])) / G[i]
         else:
             v[i] = v[i + 1] - th[i] + P[i] / kb[i]
@@ -166,72 +174,170 @@ def solve_lcp(kb, kt, cp, cm, th, base, lo, hi, st, f, G, P, v, max_rounds):
     lo_i towards -x).  ``st`` (in: the guess, out: the solution): +1/-1 sliding towards
     +x/-x, 0 sticking.  f, G, P: work arrays.  Returns STATUS_OK, STATUS_SLIDE_OFF,
     STATUS_NO_CONVERGENCE or STATUS_NON_FINITE."""
-    n = v.size
     for rnd in range(max_rounds):
-        for i in range(n):
-            if st[i] > 0:
-                f[i] = base[i] - kt[i] * hi[i]
-            elif st[i] < 0:
-                f[i] = base[i] - kt[i] * lo[i]
-            else:
-                f[i] = base[i]
-        code = solve_chain(kb, kt, th, f, st, G, P, v)
-        if code == 1:
-            # the sliders cannot hold the load: one pushing along it stops
-            tot = 0.0
-            for i in range(n):
-                tot += f[i]
-            flip = -1
-            for i in range(n):
-                if st[i] != 0 and st[i] * tot < 0.0:
-                    flip = i
-                    break
-            if flip < 0:
-                return STATUS_SLIDE_OFF
-            st[flip] = 0
-            continue
-        if code == 2:
-            flip = _translate(kt, st, lo, hi, v)
-            if flip >= 0:
-                st[flip] = 0
-                continue
-        scale = 0.0
-        for i in range(n):
-            scale = max(scale, abs(v[i]))
-        if not math.isfinite(scale):
-            return STATUS_NON_FINITE
-        back = SLIP_BACK * scale
-        nviol = 0
-        first = -1
-        for i in range(n):
-            to = 0
-            if st[i] > 0:
-                to = -1 if v[i] - hi[i] < -back else 1
-            elif st[i] < 0:
-                to = 1 if v[i] - lo[i] > back else -1
-            elif kt[i] * (v[i] - hi[i]) > AT_THRESHOLD * cp[i]:
-                to = 2
-            elif kt[i] * (lo[i] - v[i]) > AT_THRESHOLD * cm[i]:
-                to = -2
-            if to == 2 or to == -2 or (st[i] != 0 and to == -st[i]):
-                nviol += 1
-                if first < 0:
-                    first = i
-                if rnd < _BLOCK_ROUNDS:
-                    st[i] = 0 if st[i] != 0 else to // 2
-        if nviol == 0:
-            if code == 0 and _all_at_bounds(kt, cp, cm, lo, hi, st, v):
-                # a degenerate solution: every slider slides or sticks exactly at a bound, a
-                # whole family of solutions (the chain may translate); the one of least
-                # motion lets them all slide (solve again so, if that keeps directions)
-                for i in range(n):
-                    if st[i] == 0:
-                        st[i] = 1 if _at_hi(kt[i], cp[i], hi[i], v[i]) else -1
-                continue
-            return STATUS_OK
-        if rnd >= _BLOCK_ROUNDS:
-            st[first] = 0 if st[first] != 0 else (1 if v[first] > hi[first] else -1)
+        lcp_loads(kt, base, lo, hi, st, f)
+        code = lcp_settle(kt, cp, cm, lo, hi, st, f, v, solve_chain(kb, kt, th, f, st, G, P, v),
+                          rnd)
+        if code != _GO_ON:
+            return code
     return STATUS_NO_CONVERGENCE
+
+
+@njit(cache=True)
+def lcp_loads(kt, base, lo, hi, st, f):
+    """The nodal loads ``f`` of a round of :func:`solve_lcp`: a sliding slider's force at
+    its bound."""
+    for i in range(f.size):
+        if st[i] > 0:
+            f[i] = base[i] - kt[i] * hi[i]
+        elif st[i] < 0:
+            f[i] = base[i] - kt[i] * lo[i]
+        else:
+            f[i] = base[i]
+
+
+@njit(cache=True)
+def lcp_settle(kt, cp, cm, lo, hi, st, f, v, code, rnd):
+    """The end of round ``rnd`` of :func:`solve_lcp` (``code``: of the chain's solve
+    ``v`` under the loads ``f``): a status (STATUS_OK: ``st`` solves it), or _GO_ON with
+    ``st`` pivoted for the next round."""
+    n = v.size
+    if code == 1:
+        # the sliders cannot hold the load: one pushing along it stops
+        tot = 0.0
+        for i in range(n):
+            tot += f[i]
+        flip = -1
+        for i in range(n):
+            if st[i] != 0 and st[i] * tot < 0.0:
+                flip = i
+                break
+        if flip < 0:
+            return STATUS_SLIDE_OFF
+        st[flip] = 0
+        return _GO_ON
+    if code == 2:
+        flip = _translate(kt, st, lo, hi, v)
+        if flip >= 0:
+            st[flip] = 0
+            return _GO_ON
+    scale = 0.0
+    for i in range(n):
+        scale = max(scale, abs(v[i]))
+    if not math.isfinite(scale):
+        return STATUS_NON_FINITE
+    back = SLIP_BACK * scale
+    nviol = 0
+    first = -1
+    for i in range(n):
+        to = 0
+        if st[i] > 0:
+            to = -1 if v[i] - hi[i] < -back else 1
+        elif st[i] < 0:
+            to = 1 if v[i] - lo[i] > back else -1
+        elif kt[i] * (v[i] - hi[i]) > AT_THRESHOLD * cp[i]:
+            to = 2
+        elif kt[i] * (lo[i] - v[i]) > AT_THRESHOLD * cm[i]:
+            to = -2
+        if to == 2 or to == -2 or (st[i] != 0 and to == -st[i]):
+            nviol += 1
+            if first < 0:
+                first = i
+            if rnd < _BLOCK_ROUNDS:
+                st[i] = 0 if st[i] != 0 else to // 2
+    if nviol == 0:
+        if code == 0 and _all_at_bounds(kt, cp, cm, lo, hi, st, v):
+            # a degenerate solution: every slider slides or sticks exactly at a bound, a
+            # whole family of solutions (the chain may translate); the one of least
+            # motion lets them all slide (solve again so, if that keeps directions)
+            for i in range(n):
+                if st[i] == 0:
+                    st[i] = 1 if _at_hi(kt[i], cp[i], hi[i], v[i]) else -1
+            return _GO_ON
+        return STATUS_OK
+    if rnd >= _BLOCK_ROUNDS:
+        st[first] = 0 if st[first] != 0 else (1 if v[first] > hi[first] else -1)
+    return _GO_ON
+
+
+@njit(cache=True)
+def solve_lcps(kb, kt, cp, cm, TH, W, ST, codes, max_rounds):
+    """:func:`solve_lcp` for several independent problems at once, round by round (each
+    round's chain solves in one pass over the nodes: their recurrences, each bound by the
+    latency of its divisions, overlap in the processor): problem k under the elongations
+    TH[k], W[k] = (lo, hi, base, f, G, P, v), statuses ST[k], for each k with codes[k]
+    == _GO_ON on entry; codes[k] (out): its status.  Each problem takes exactly the rounds
+    it takes alone: the results are those of :func:`solve_lcp`, bit for bit."""
+    K = codes.size
+    chain = np.zeros(K, np.int64)
+    for rnd in range(max_rounds):
+        more = False
+        for k in range(K):
+            if codes[k] == _GO_ON:
+                lcp_loads(kt, W[k, 2], W[k, 0], W[k, 1], ST[k], W[k, 3])
+                more = True
+        if not more:
+            return
+        solve_chains(kb, kt, TH, W, ST, codes, chain)
+        for k in range(K):
+            if codes[k] == _GO_ON:
+                codes[k] = lcp_settle(kt, cp, cm, W[k, 0], W[k, 1], ST[k], W[k, 3], W[k, 6],
+                                      chain[k], rnd)
+    for k in range(K):
+        if codes[k] == _GO_ON:
+            codes[k] = STATUS_NO_CONVERGENCE
+
+
+@njit(cache=True)
+def solve_chains(kb, kt, TH, W, ST, codes, chain):
+    """:func:`solve_chain` of the problems k with codes[k] == _GO_ON (see
+    :func:`solve_lcps`), the same operations in one pass over the nodes; chain[k] (out):
+    each one's code."""
+    K = codes.size
+    n = kt.size
+    fabs = np.zeros(K)
+    for k in range(K):
+        if codes[k] == _GO_ON:
+            W[k, 4, 0] = kt[0] if ST[k, 0] == 0 else 0.0
+            W[k, 5, 0] = W[k, 3, 0]
+            fabs[k] = abs(W[k, 3, 0])
+    for i in range(1, n):
+        e = i - 1
+        for k in range(K):
+            if codes[k] != _GO_ON:
+                continue
+            g = W[k, 4, e]
+            if g > 0.0:
+                sr = in_series(kb[e], g)
+                p = sr * (W[k, 5, e] / g + TH[k, e])
+            else:
+                sr = 0.0
+                p = W[k, 5, e]
+            W[k, 4, i] = sr + (kt[i] if ST[k, i] == 0 else 0.0)
+            W[k, 5, i] = p + W[k, 3, i]
+            fabs[k] += abs(W[k, 3, i])
+    for k in range(K):
+        if codes[k] != _GO_ON:
+            continue
+        chain[k] = 0
+        if W[k, 4, n - 1] > 0.0:
+            W[k, 6, n - 1] = W[k, 5, n - 1] / W[k, 4, n - 1]
+        elif abs(W[k, 5, n - 1]) > BALANCED * fabs[k]:
+            chain[k] = 1
+        else:
+            W[k, 6, n - 1] = 0.0
+            chain[k] = 2
+    for i in range(n - 2, -1, -1):
+        for k in range(K):
+            if codes[k] != _GO_ON or chain[k] == 1:
+                continue
+            g = W[k, 4, i]
+            P = W[k, 5, i]
+            if g > 0.0:
+                sr = in_series(kb[i], g)
+                W[k, 6, i] = (P + sr * (W[k, 6, i + 1] - TH[k, i] - P / g)) / g
+            else:
+                W[k, 6, i] = W[k, 6, i + 1] - TH[k, i] + P / kb[i]
 
 
 @njit(cache=True)

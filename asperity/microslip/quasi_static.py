@@ -207,7 +207,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     """
     from ..progress import report
     from ._chain_kernels import STATUS_NON_FINITE, STATUS_OK, STATUS_SLIDE_OFF
-    from ._march_kernels import march
+    from ._march_kernels import _UNSET, increment_work, march_memo
     check_inputs(chain, loading, tol)
     cycles = check_int("cycles", cycles, 1, 100_000_000)
     min_cycles = check_int("min_cycles", min_cycles, 1, 100_000_000)
@@ -229,9 +229,12 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     state = np.zeros(2)                   # progress of a segment marched in pieces
     acc = np.zeros(n)
 
-    def run(dT, F, guess, c0):
-        """March the points (dT, F) in pieces of about 0.1 s (guess: the statuses of each
-        point's increment one cycle earlier); c0: cycles done before (for progress)."""
+    def run(dT, F, guess, memo, ws, more, c0):
+        """March the points (dT, F) in pieces of about 0.1 s (guess, memo: the statuses of
+        each point's increment and at its segment's start one cycle earlier; ws: the
+        kernel's work arrays, kept from a call to the next; ``more``: the points are marched
+        again after this, the next increment is solved ahead); c0: cycles done before (for
+        progress)."""
         m = dT.size
         ru = np.empty((m, rec.size))
         slip = np.zeros(m)
@@ -239,10 +242,11 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         ev_sum = 0
         j0 = 0
         while j0 < m:
-            code, k, ev, work = march(*args, load[0], load[1], dT[j0:], F[j0:], u, q,
-                                      guess[j0:], state, acc, slip[j0:], held[j0:], rec,
-                                      ru[j0:],
-                                      max_events, events_only, pacer.size())
+            code, k, ev, work = march_memo(*args, load[0], load[1], dT[j0:], F[j0:], u, q,
+                                           guess[j0:], memo[j0:], ws, dT[0], F[0],
+                                           guess[0] if more else guess[0, :0], state, acc,
+                                           slip[j0:], held[j0:], rec, ru[j0:], max_events,
+                                           events_only, pacer.size())
             pacer.done(work)
             ev_sum += ev
             j = j0 + k
@@ -268,38 +272,41 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
     events = 0
     dT0, F0 = loading.lead_in()
     if dT0.size:
-        ru, _, _, ev = run(dT0, F0, np.zeros((dT0.size, n), np.int64), 0)
+        ru, _, _, ev = run(dT0, F0, np.zeros((dT0.size, n), np.int64),
+                           np.empty((dT0.size, 0), np.int64), increment_work(n), False, 0)
         events += ev
         tr_dT.append(dT0)
         tr_u.append(ru)
         tr_t = [np.linspace(-1.0, 0.0, dT0.size + 1)]
     dTc, Fc = loading.cycle_points()
     guess = np.zeros((dTc.size, n), np.int64)
+    memo = np.full((dTc.size, n), _UNSET)
+    ws = increment_work(n)
     mean_u = [float(chain.weight @ u)]
-    u_end = [u.copy()]
-    q_prev = q.copy()
-    q_end = q_prev
+    u_end = np.empty((cycles + 1, n))     # rows filled as the cycles are marched
+    u_end[0] = u
+    q_prev, dq = q.copy(), np.empty(n)
+    frac = np.arange(1, dTc.size + 1) / dTc.size
     stab = None
     slip = False
     whole = False
     for c in range(1, cycles + 1):
-        ru, slips, held, ev = run(dTc, Fc, guess, c - 1)
+        ru, slips, held, ev = run(dTc, Fc, guess, memo, ws, c < cycles, c - 1)
         events += ev
-        tr_t.append(c - 1 + np.arange(1, dTc.size + 1) / dTc.size)
+        tr_t.append(c - 1 + frac)
         tr_dT.append(dTc)
         tr_u.append(ru)
         mean_u.append(float(chain.weight @ u))
-        u_end.append(u.copy())
-        q_end = q.copy()
+        u_end[c] = u
         slip = bool(slips.max() > tol.no_drift * scale)
         whole = held <= 1
-        if np.max(np.abs(q_end - q_prev)) <= tol.stabilised * cap:
+        if np.abs(np.subtract(q, q_prev, out=dq), out=dq).max() <= tol.stabilised * cap:
             stab = c if stab is None else stab
             if until_stable and c >= min_cycles:
                 break
         else:
             stab = None
-        q_prev = q_end
+        q_prev[:] = q
     mean_u = np.array(mean_u)
     k = len(mean_u) - 1
     d = float(mean_u[k] - mean_u[k - 1])
@@ -307,7 +314,7 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         d = 0.0
     trace = {"t": np.concatenate(tr_t), "dT": np.concatenate(tr_dT),
              "u": np.concatenate(tr_u), "nodes": rec}
-    return MicroslipResult(chain, loading, "quasi-static", k, mean_u, np.array(u_end), q_end, d,
+    return MicroslipResult(chain, loading, "quasi-static", k, mean_u, u_end[:k + 1], q.copy(), d,
                            stab, slip, trace,
                            {"method": "event-driven: every slider's start and stop located "
                                       "exactly along each linear load segment",
