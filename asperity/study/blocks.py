@@ -62,6 +62,16 @@ class BlockResult:
     def __getitem__(self, i):
         return list(self)[i]
 
+    def todo(self) -> list[int]:
+        """Positions of the cases the block left to the per-case path (no status yet)."""
+        return [i for i, st in enumerate(self.status) if st is None]
+
+    def put(self, i: int, status: str, message: str, seconds: float, out: dict) -> None:
+        """The per-case path's answer for the case at position ``i``."""
+        self.status[i], self.message[i], self.seconds[i] = status, message, float(seconds)
+        for n, col in self.outputs.items():
+            col[i] = out.get(n)
+
     @property
     def total_seconds(self) -> float:
         return float(sum(self.seconds))
@@ -95,18 +105,16 @@ def plan(spec: dict, names) -> str | None:
 
 def run_block(spec: dict, names: list[str], ids, rows) -> BlockResult:
     """The results of the cases ``ids`` (parameter values ``rows``) of a study that
-    :func:`plan` accepts."""
-    from .cases import run_case
+    :func:`plan` accepts; the cases it cannot answer exactly have no status yet
+    (:meth:`BlockResult.todo`: :func:`asperity.study.cases.run_batch` runs them one by
+    one)."""
     t0 = time.perf_counter()
     ids = np.asarray(ids, dtype=np.int64)
     rows = np.asarray(rows, dtype=float).reshape(ids.size, len(names))
     m = ids.size
     cols = {n: rows[:, i] for i, n in enumerate(names)}
-    status = ["ok"] * m
-    message = [""] * m
-    seconds = np.zeros(m)
     outputs = {n: [None] * m for n in OUT_NAMES}
-    reference = np.ones(m, bool)             # cases the per-case path answers
+    done = np.zeros(m, bool)
     base = _base(spec, names, rows)
     if base is not None:
         try:
@@ -116,16 +124,12 @@ def run_block(spec: dict, names: list[str], ids, rows) -> BlockResult:
             solved = None
         if solved is not None:
             done, outputs = solved
-            reference = ~done
-    n_block = int(m - reference.sum())
+    n_block = int(done.sum())
+    seconds = np.zeros(m)
     if n_block:
-        seconds[~reference] = (time.perf_counter() - t0) / n_block
-    for i in np.flatnonzero(reference):
-        values = {n: float(v) for n, v in zip(names, rows[i])}
-        st, msg, sec, out = run_case(spec, values)
-        status[i], message[i], seconds[i] = st, msg, sec
-        for n in OUT_NAMES:
-            outputs[n][i] = out.get(n)
+        seconds[done] = (time.perf_counter() - t0) / n_block
+    status = np.where(done, "ok", None).tolist()
+    message = np.where(done, "", None).tolist()
     return BlockResult(ids.tolist(), status, message, seconds, outputs)
 
 
@@ -133,7 +137,7 @@ def _base(spec: dict, names, rows):
     """The block's assembly at the file's values, once a case shows that the varied tables
     keep their structure (a value out of range in the first cases is the arrays' to find);
     None: the per-case path answers every case (and says why)."""
-    from .cases import _assembly
+    from .builders import _assembly
     try:
         base = _assembly(spec, {})
     except Exception:                       # noqa: BLE001 - the per-case path says why
@@ -230,7 +234,7 @@ def _friction(spec: dict, base, cols: dict, m: int):
                                             slip_axis_deg=axis, textured=face)
     else:
         if spec.get("texture") is not None:
-            from .cases import _texture
+            from .builders import _texture
             f = assembly_friction(base, _texture(spec, {}),
                                   texture_name=spec.get("texture_name", ""), contact=contact,
                                   **where)
