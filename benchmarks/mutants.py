@@ -1180,8 +1180,8 @@ MUTANTS = [
            "    if cycles is None:", BLOCKS,
            "the study's cycles (the command line's override) ignored by the block path"),
     Mutant("blocks-force-max-not-force-min", "study/blocks.py",
-           "        if \"loading.force_max\" not in cols and \"force_max\" not in lo:\n"
-           "            f1 = f0\n", "", BLOCKS,
+           "np.full(m, float(lo[\"force_max\"])) if \"force_max\" in lo else f0",
+           "np.full(m, float(lo.get(\"force_max\", 0.0)))", BLOCKS,
            "a varied force_min without force_max: the force ramps to the file's default"),
     Mutant("blocks-texture-face-default-part", "study/blocks.py",
            "face = where[\"textured\"] or fr.get(\"textured\", \"support\")",

@@ -9,6 +9,16 @@ iteration whose answers stay the same: only a test pinning an iteration count co
 """
 
 EQUIVALENT: dict[str, str] = {
+    "microslip/two_node_batch.py:NumberReplacer:91bac0021f":
+        "NaN -> -1 (mutant: 0) in the int fields reaches only the cases not covered (code 2: "
+        "the kernel sets -1 itself where a covered case has no stabilised cycle or "
+        "extrapolation), whose fields the caller never reads",
+    "microslip/two_node_batch.py:ReplaceComparisonOperator_Eq_GtE:59f218c1aa":
+        "code >= 1 for == 1 also rewrites the slides-off fields of the cases not covered "
+        "(code 2), whose fields the caller never reads",
+    "microslip/_friction_batch_kernels.py:NumberReplacer:a914761e5d":
+        "a skipped case's T[i, 0] set NaN twice and T[i, 1] left as it was: the caller "
+        "refuses every skipped case (ok False) whatever T holds",
     "fe/table.py:ReplaceBinaryOperator_Mul_Mod:97892b3468":
         "the final check skips directions within 2.0 % ARC_HALF (3.99e-9 rad) of a flat edge "
         "instead of 2 ARC_HALF (8e-9): outside the arc's run (ARC_HALF) the table holds the "

@@ -102,3 +102,18 @@ def test_one_shakedown_case_against_assess_assembly():
     assert r["dT_c"][0] == pytest.approx(ref["dT_c_K"], rel=1e-12)
     assert abs(r["drift_after_cycles"][0] - ref["drift_after_cycles_m"]) <= 1e-20
     assert ref["cycles_to_tolerance"] is None
+
+
+@pytest.mark.parametrize("rel", [0.0, 4e-13, 9e-13, 1.5e-12, 4e-12, 1e-6])
+def test_nearly_equal_coefficients_are_made_equal_as_the_chain_does(rel):
+    """mu+ and mu- within 1e-12 of each other (relative) are one coefficient, as in
+    strip_chain; the block's mu_minus, dT_c and margin follow the chain's."""
+    p = {"h": 2.5e-3, "E": 1.1e11, "p": 5e6, "l": 0.04, "k_t": 1e13, "alpha_T": 6e-6}
+    for mu in (0.02, 0.2, 2.0):
+        mp, mm = mu, mu * (1 - rel)
+        r = strip_shakedown({k: [v] for k, v in p.items()} | {"n": 201}, [mp], [mm],
+                            [[0.0, 0.1, 0.0]], [[0.0, 0.0, 0.0]], cycles=[100.0])
+        chain = strip_chain(*p.values(), 201, mp, mm)
+        assert r["code"][0] == 0
+        assert (r["mu_plus"][0], r["mu_minus"][0]) == (chain.mu_plus, chain.mu_minus)
+        assert r["dT_c"][0] == pytest.approx(elastic_limit(chain), rel=1e-12)

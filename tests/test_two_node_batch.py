@@ -169,3 +169,50 @@ def test_the_force_crossing_cp_minus_cm_splits_the_slip_between_the_nodes():
     r = reference(b, 0, "uniform", 1)
     assert compare(b, res, 0, r) == []
     assert r["verdict"] != "shakedown"            # the sliders slip in every cycle
+
+
+def spec_block(margins, lead_in=0.0, mp=0.2, mm=0.1, cycles=1e6, tolerance=np.nan):
+    """The SPEC.md two-node assembly (dT_c = 41.67 K) at the given margins."""
+    m = len(margins)
+    one = np.ones(m)
+    dT_c = min(mp, mm) * 100.0 * (1 / 1e6 + 2 / 5e5) / (1.2e-5 * 0.1)
+    lo = lead_in * one
+    hi = lo + 2.0 * dT_c * np.asarray(margins, dtype=float)
+    return {"params": {"k": 1e6 * one, "l0": 0.1 * one, "alpha_T": 1.2e-5 * one,
+                       "k_t": 5e5 * one, "N": 100.0 * one},
+            "mu_plus": mp * one, "mu_minus": mm * one, "dT": np.column_stack([lo, hi, lo]),
+            "F": np.zeros((m, 3)), "cycles": cycles * one, "tolerance": tolerance * one}
+
+
+@pytest.mark.parametrize("lead_in", [0.0, -7.5, 20.0])
+def test_margins_at_the_threshold_equal_the_exact_solver_or_are_left_to_it(lead_in):
+    """Margins 1 +- 1e-4 ... 1e-12 and exactly 1 (the drift per cycle from 1e-4 of the
+    thermal scale down to its rounding, across the no-drift threshold 1e-8): every case the
+    closed form answers equals the exact solver, decisions included."""
+    deltas = [s * d for d in (1e-4, 1e-6, 1e-7, 1e-8, 2e-8, 1e-9, 1e-10, 1e-12) for s in (1, -1)]
+    b = spec_block([1.0 + d for d in deltas] + [1.0], lead_in, tolerance=3.0712345678e-3)
+    res = two_node_closed(b["params"], b["mu_plus"], b["mu_minus"], b["dT"], b["F"],
+                          substeps=1, force_at="uniform", cycles=b["cycles"],
+                          tolerance=b["tolerance"])
+    answered = 0
+    for c in range(len(deltas) + 1):
+        r = reference(b, c, "uniform", 1)
+        if res["code"][c] == 2:
+            continue
+        answered += 1
+        assert compare(b, res, c, r) == [], (c, compare(b, res, c, r))
+    assert answered >= len(deltas) - 2       # the ones at the no-drift threshold left
+
+
+def test_equal_coefficients_under_thermal_cycles_are_left_to_the_exact_path():
+    """mu+ = mu- (or within 1e-12 of each other) and a slip: which node slips is the
+    march's choice, so the closed form answers none of them; below dT_c it answers."""
+    b = spec_block([0.2, 0.45, 0.6, 1.5, 3.0], mp=0.15, mm=0.15)
+    b["mu_minus"] = b["mu_minus"] * (1 + np.array([0, 0, 5e-13, 0, -5e-13]))
+    res = two_node_closed(b["params"], b["mu_plus"], b["mu_minus"], b["dT"], b["F"],
+                          substeps=1, force_at="uniform", cycles=b["cycles"],
+                          tolerance=b["tolerance"])
+    assert res["code"].tolist() == [0, 0, 2, 2, 2]
+    assert res["mu_minus"][0] == res["mu_plus"][0]
+    for c in (0, 1):
+        assert compare(b, res, c, reference(b, c, "uniform", 1)) == []

@@ -182,8 +182,9 @@ def _arrays(spec: dict, base, cols: dict, m: int):
     dT = np.tile(base.loading.dT, (m, 1))
     F = np.tile(base.loading.F, (m, 1))
     if "loading.dT_min" in cols or "loading.dT_max" in cols:
-        a = cols.get("loading.dT_min", np.full(m, float(lo.get("dT_min", 0.0))))
-        b = cols.get("loading.dT_max", np.full(m, float(lo.get("dT_max", 0.0))))
+        # (the table has both: the first cases' build proved its structure)
+        a = cols.get("loading.dT_min", np.full(m, float(lo.get("dT_min", np.nan))))
+        b = cols.get("loading.dT_max", np.full(m, float(lo.get("dT_max", np.nan))))
         valid &= _in(a, *L.DT) & _in(b, *L.DT) & (b >= a)
         dT = np.column_stack([a, b, a])
     if "loading.force" in cols:
@@ -191,10 +192,10 @@ def _arrays(spec: dict, base, cols: dict, m: int):
         valid &= _in(x, *L.FORCE)
         F = np.repeat(x[:, None], dT.shape[1], axis=1)
     if "loading.force_min" in cols or "loading.force_max" in cols:
-        f0 = cols.get("loading.force_min", np.full(m, float(lo.get("force_min", 0.0))))
-        f1 = cols.get("loading.force_max", np.full(m, float(lo.get("force_max", f0[0]))))
-        if "loading.force_max" not in cols and "force_max" not in lo:
-            f1 = f0
+        f0 = cols.get("loading.force_min", np.full(m, float(lo.get("force_min", np.nan))))
+        f1 = cols.get("loading.force_max")
+        if f1 is None:                      # the file's, else force_min's (a constant force)
+            f1 = np.full(m, float(lo["force_max"])) if "force_max" in lo else f0
         valid &= _in(f0, *L.FORCE) & _in(f1, *L.FORCE)
         F = np.column_stack([f0, f1, f0])
     cycles = cols.get("loading.cycles")
