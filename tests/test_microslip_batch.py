@@ -373,3 +373,32 @@ def test_risk_columns_are_what_the_study_stores():
                     assert abs(row[k] - want[k]) <= 1e-12 * scale, (j, k)
                     row[k] = want[k]
             assert row == want, j
+
+
+def test_the_work_cap_counts_a_changing_force_per_node_squared():
+    """quasi_static.march_cost: a segment whose force changes costs about n^2 node-passes
+    (event by event), one whose force is constant about 10 n: with a cap between the two
+    the strip under constant force is solved here and the one under a force in phase is
+    left to the per-case path."""
+    rng = np.random.default_rng(9)
+    n = 201
+    for force, code in (("constant", {0, 1}), ("phase", {NOT_HANDLED})):
+        b = strip_block(rng, 3, n=n, force=force, lead=False, locked=0.0)
+        b["cycles"] = np.full(3, 1e6)
+        cap = 4.0 * MAX_MARCHED * (10 * 2 * n + 2000)          # constant: ~10 n a segment
+        assert 2 * n * n * MAX_MARCHED > cap                      # in phase: ~n^2
+        out = run_block(b, max_case_work=cap)
+        assert set(out["code"].tolist()) <= code, (force, out["code"])
+
+
+def test_the_model_is_read_by_value_not_identity():
+    """A model name built at run time (read from a file, say) is the same model."""
+    b = strip_block(np.random.default_rng(10), 4, n=7)
+    name = "".join(["st", "rip"])
+    params = dict(b["par"], n=7)
+    args = (params, b["mup"], b["mum"], b["dT"], b["F"])
+    kw = {"substeps": 1, "force_at": "uniform", "cycles": b["cycles"],
+          "tolerance": b["tolerance"], "max_marched": MAX_MARCHED}
+    a, c = assess_batch(name, *args, **kw), assess_batch("strip", *args, **kw)
+    for key in a:
+        assert np.array_equal(a[key], c[key], equal_nan=True), key

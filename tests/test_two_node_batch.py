@@ -189,7 +189,8 @@ def test_margins_at_the_threshold_equal_the_exact_solver_or_are_left_to_it(lead_
     """Margins 1 +- 1e-4 ... 1e-12 and exactly 1 (the drift per cycle from 1e-4 of the
     thermal scale down to its rounding, across the no-drift threshold 1e-8): every case the
     closed form answers equals the exact solver, decisions included."""
-    deltas = [s * d for d in (1e-4, 1e-6, 1e-7, 1e-8, 2e-8, 1e-9, 1e-10, 1e-12) for s in (1, -1)]
+    deltas = [s * d for d in (1e-4, 1e-6, 1e-7, 1e-8, 2e-8, 7e-9, 5e-9, 1e-9, 1e-10, 1e-12)
+              for s in (1, -1)]
     b = spec_block([1.0 + d for d in deltas] + [1.0], lead_in, tolerance=3.0712345678e-3)
     res = two_node_closed(b["params"], b["mu_plus"], b["mu_minus"], b["dT"], b["F"],
                           substeps=1, force_at="uniform", cycles=b["cycles"],
