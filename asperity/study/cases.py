@@ -243,7 +243,8 @@ def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple
 
 def warm_up(spec: dict, values: dict | None) -> bool:
     """Import what the stages need and load their compiled kernels by running one case
-    (files studies: imports only), so that the first batches are not charged for it."""
+    (files studies: on a small synthetic scan, :mod:`.warm`), so that the first batches
+    are not charged for it."""
     import importlib
     for m in ("asperity.microslip.risk", "asperity.friction.derive", "asperity.laws.fitting",
               "asperity.texture.wedges", "asperity.surface.facets",
@@ -251,4 +252,7 @@ def warm_up(spec: dict, values: dict | None) -> bool:
         importlib.import_module(m)
     if values is not None:
         run_case(spec, values)
+    else:
+        from .warm import warm_scan
+        warm_scan(spec)
     return True
