@@ -113,13 +113,14 @@ def bench_study(workers: int = 2, n_two: int = 200_000, n_strip: int = 40_000,
                 store.close()
             if counts.get("ok", 0) != study.n_cases:
                 raise RuntimeError(f"{label}: {counts} of {study.n_cases} cases")
-            loop = rep.seconds - rep.startup_seconds
+            loop = rep.seconds - rep.startup_seconds - rep.shutdown_seconds
             rate = rep.ran / loop
             out["cases"][label] = {
                 "cases": study.n_cases, "serial_cases_per_s": serial,
                 "serial_ms_per_case": 1e3 / serial, "serial_cases_timed": n_serial,
                 "engine_cases_per_s": rate, "speedup": rate / serial,
-                "startup_s": rep.startup_seconds, "loop_s": loop,
+                "startup_s": rep.startup_seconds, "shutdown_s": rep.shutdown_seconds,
+                "loop_s": loop,
                 "overhead": 1.0 - case_seconds / (rep.workers * loop),
                 "where": rep.where}
     return out
@@ -127,7 +128,7 @@ def bench_study(workers: int = 2, n_two: int = 200_000, n_strip: int = 40_000,
 
 def format_study(out: dict) -> str:
     lines = [f"study engine, serial in-process loop (one core) vs {out['workers']} local "
-             "workers (LocalCluster; start-up and worker warm-up excluded):"]
+             "workers (LocalCluster; start-up, worker warm-up and shut-down excluded):"]
     for label, r in out["cases"].items():
         lines.append(f"  {label:<24} {r['cases']:>7} cases: serial {r['serial_cases_per_s']:9.4g} "
                      f"cases/s ({r['serial_ms_per_case']:.3g} ms), engine "
