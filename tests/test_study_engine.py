@@ -428,12 +428,20 @@ def test_local_workers_run_without_the_profiler_and_with_glibcs_malloc_threshold
     assert list(got.values()) == [(False, None, "1")]
 
 
-def test_the_warm_up_scan_runs_the_study_options_and_never_raises(tmp_path):
+def test_the_warm_up_scan_runs_the_study_options_and_a_failure_stays_a_status(tmp_path):
+    from asperity.study.cases import run_case
     from asperity.study.spec import load_study
-    from asperity.study.warm import warm_scan
-    (tmp_path / "scan0.npy").write_bytes(b"")          # named only: warm_scan reads its own
+    from asperity.study.warm import synthetic_scan
+    (tmp_path / "scan0.npy").write_bytes(b"")          # named only: the warm-up reads its own
     spec = load_study(study_file(tmp_path, SCANS)).spec
-    assert warm_scan(spec) == "ok"
-    no_units = {**spec, "surface": {"mu": 0.1}}        # e.g. an x3p library: um, 1 um pixels
-    assert warm_scan(no_units) == "ok"
-    assert warm_scan({**spec, "surface": {"max_slope": 1e-3}}) == "failed"   # every facet dropped
+
+    def status(surface):
+        with synthetic_scan({**spec, "surface": surface}) as (s, path):
+            got = run_case(s, {}, path)
+        assert not os.path.exists(path)
+        return got[0], got[3]
+
+    st, out = status(spec["surface"])
+    assert st == "ok" and 0 < out["mu_a_plus"] < 1
+    assert status({"mu": 0.1})[0] == "ok"              # e.g. an x3p library: um, 1 um pixels
+    assert status({"max_slope": 1e-3})[0] == "failed"  # every facet dropped

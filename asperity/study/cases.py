@@ -253,6 +253,7 @@ def warm_up(spec: dict, values: dict | None) -> bool:
     if values is not None:
         run_case(spec, values)
     else:
-        from .warm import warm_scan
-        warm_scan(spec)
+        from .warm import synthetic_scan
+        with synthetic_scan(spec) as (scan_spec, path):
+            run_case(scan_spec, {}, path)
     return True

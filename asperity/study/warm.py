@@ -3,16 +3,19 @@
 A worker's first derive of a scan loads the facet kernels from numba's cache (the
 parallel sweep and its OpenMP set-up: about 0.6 s of CPU, more than ten cases of a
 256 x 256 scan), which the first batch would otherwise pay and the batch sizes would
-learn from.  :func:`warm_scan` runs the study's stages once on a small synthetic height
-map (:data:`SIDE` x :data:`SIDE`, a random walk, in a temporary ``.npy``) read with the
-study's own options (``unit`` and ``pixel_size`` set when the study leaves them to the
-files): the same reader, preparation, facet and derive kernels as a real case, for a few
-milliseconds and whatever the size of the library's scans.  The result is thrown away;
-a synthetic map the options refuse (a despike window wider than it, say) only warms less.
+learn from.  :func:`synthetic_scan` gives a small synthetic height map (:data:`SIDE` x
+:data:`SIDE`, a random walk, in a temporary ``.npy``) and the study's spec to read it
+with its own options (``unit`` and ``pixel_size`` set when the study leaves them to the
+files): one case on it runs the same reader, preparation, facet and derive kernels as a
+real case, in a few milliseconds whatever the size of the library's scans.  Its result
+is thrown away; a synthetic map the options refuse (a despike window wider than it, say)
+only warms less.
 """
 from __future__ import annotations
 
+import contextlib
 import tempfile
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -21,12 +24,11 @@ import numpy as np
 SIDE = 48
 
 
-def warm_scan(spec: dict, values: dict | None = None) -> str:
-    """Run one case of ``spec`` on a synthetic scan; its status ("ok", "failed", ...)."""
-    import warnings
-
+@contextlib.contextmanager
+def synthetic_scan(spec: dict):
+    """``with synthetic_scan(spec) as (scan_spec, path): run_case(scan_spec, {}, path)``;
+    warnings and progress silenced inside, as in a batch."""
     from ..progress import silenced
-    from .cases import run_case
     rng = np.random.default_rng(0)
     z = np.cumsum(rng.normal(size=(SIDE, SIDE)), axis=1) * 0.02
     z += np.cumsum(rng.normal(size=(SIDE, SIDE)), axis=0) * 0.01
@@ -38,4 +40,4 @@ def warm_scan(spec: dict, values: dict | None = None) -> str:
         warnings.simplefilter("ignore")            # as in a batch: they reach nobody
         path = Path(tmp) / "warm.npy"
         np.save(path, z.astype(np.float32))
-        return run_case({**spec, "surface": opts}, dict(values or {}), str(path))[0]
+        yield {**spec, "surface": opts}, str(path)
