@@ -373,3 +373,75 @@ def test_a_case_that_kills_its_workers_is_isolated_and_stored_as_failed(tmp_path
     bad = [r for r in rows if r[1] != "ok"]
     assert [r[0] for r in bad] == [CRASH_CASE], bad
     assert "died, also when it ran alone" in bad[0][2]
+
+
+# ----------------------------------------------------------------------------- scan libraries
+
+SCANS = """
+[study]
+kind = "files"
+files = ["scan*.npy"]
+unit = "um"
+pixel_size = 1.0
+mu = 0.1
+stages = ["derive"]
+directions = 36
+"""
+
+
+def test_a_scan_library_on_two_local_workers_stores_what_this_process_stores(tmp_path):
+    """The workers warm up on a synthetic scan (asperity.study.warm) and run without Dask's
+    profiler and with glibc's own malloc thresholds: every stored output stays that of the
+    in-process run, bit for bit."""
+    import numpy as np
+    rng = np.random.default_rng(5)
+    for i in range(6):
+        z = np.cumsum(rng.normal(size=(40, 56)), axis=1) * 0.03 * (1 + i)
+        np.save(tmp_path / f"scan{i}.npy", (z + np.cumsum(rng.normal(size=(40, 56)), axis=0)
+                                            * 0.01).astype(np.float32))
+    f = study_file(tmp_path, SCANS)
+    run_study_file(f, tmp_path / "a", workers=0)
+    two = run_study_file(f, tmp_path / "b", workers=2)
+    assert two["run"]["where"] == "LocalCluster (2 workers)" and two["run"]["ran"] == 6
+    a, b = (cases_but_seconds(tmp_path / x) for x in "ab")
+    assert len(a) == 6 and {r["status"] for r in a} == {"ok"}
+    assert all(0 < r["mu_a_plus"] < 1 and r["anisotropy"] > 0 for r in a)
+    assert a == b
+
+
+def cases_but_seconds(folder: Path) -> list[dict]:
+    con = sqlite3.connect(folder / "study.sqlite")
+    con.row_factory = sqlite3.Row
+    try:
+        return [{k: r[k] for k in r.keys() if k != "seconds"}   # noqa: SIM118 (a Row)
+                for r in con.execute("SELECT * FROM cases ORDER BY case_id")]
+    finally:
+        con.close()
+
+
+def test_local_workers_run_without_the_profiler_and_with_glibcs_malloc_thresholds():
+    from asperity.study.clusters import cluster
+    with cluster(None, 1) as (client, _where, _n):
+        got = client.run(lambda: (__import__("dask").config.get(
+            "distributed.worker.profile.enabled"), os.environ.get("MALLOC_TRIM_THRESHOLD_"),
+            os.environ.get("NUMBA_NUM_THREADS")))
+    assert list(got.values()) == [(False, None, "1")]
+
+
+def test_the_warm_up_scan_runs_the_study_options_and_a_failure_stays_a_status(tmp_path):
+    from asperity.study.cases import run_case
+    from asperity.study.spec import load_study
+    from asperity.study.warm import synthetic_scan
+    (tmp_path / "scan0.npy").write_bytes(b"")          # named only: the warm-up reads its own
+    spec = load_study(study_file(tmp_path, SCANS)).spec
+
+    def status(surface):
+        with synthetic_scan({**spec, "surface": surface}) as (s, path):
+            got = run_case(s, {}, path)
+        assert not os.path.exists(path)
+        return got[0], got[3]
+
+    st, out = status(spec["surface"])
+    assert st == "ok" and 0 < out["mu_a_plus"] < 1
+    assert status({"mu": 0.1})[0] == "ok"              # e.g. an x3p library: um, 1 um pixels
+    assert status({"max_slope": 1e-3})[0] == "failed"  # every facet dropped

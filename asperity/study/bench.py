@@ -141,13 +141,14 @@ def bench_study(workers: int = 2, n_two: int = 1_000_000, n_strip: int = 40_000,
                 store.close()
             if counts.get("ok", 0) != study.n_cases:
                 raise RuntimeError(f"{label}: {counts} of {study.n_cases} cases")
-            loop = rep.seconds - rep.startup_seconds
+            loop = rep.seconds - rep.startup_seconds - rep.shutdown_seconds
             rate = rep.ran / loop
             out["cases"][label] = {
                 "cases": study.n_cases, "per_case_cases_per_s": per_case,
                 "per_case_ms": 1e3 / per_case, "per_case_timed": n_per_case,
                 "serial_cases_per_s": serial, "engine_cases_per_s": rate,
-                "speedup": rate / serial, "startup_s": rep.startup_seconds, "loop_s": loop,
+                "speedup": rate / serial, "startup_s": rep.startup_seconds,
+                "shutdown_s": rep.shutdown_seconds, "loop_s": loop,
                 "study_s": whole, "minutes_per_1e6_cases": 1e6 / rate / 60,
                 "overhead": 1.0 - case_seconds / (rep.workers * loop),
                 "solved_by": summary.get("solved_by") or {"exact": study.n_cases},
@@ -157,8 +158,8 @@ def bench_study(workers: int = 2, n_two: int = 1_000_000, n_strip: int = 40_000,
 
 def format_study(out: dict) -> str:
     lines = [(f"study engine: serial = this process on one core (the block path where it "
-             f"applies), engine = {out['workers']} local workers (LocalCluster; start-up "
-             "excluded); a whole study = start, cases, store, summary:")]
+             f"applies), engine = {out['workers']} local workers (LocalCluster; start-up, "
+             "warm-up and shut-down excluded); a whole study = start, cases, store, summary:")]
     for label, r in out["cases"].items():
         by = ", ".join(f"{k} {v}" for k, v in r["solved_by"].items())
         lines.append(f"  {label:<24} {r['cases']:>8} cases: per case {r['per_case_ms']:.3g} "

@@ -157,7 +157,8 @@ def run_batch(spec: dict, names: list[str], ids, rows, files=None) -> list[tuple
 
 def warm_up(spec: dict, values: dict | None) -> bool:
     """Import what the stages need and load their compiled kernels by running one case
-    (files studies: imports only), so that the first batches are not charged for it."""
+    (files studies: on a small synthetic scan, :mod:`.warm`), so that the first batches
+    are not charged for it."""
     import importlib
     for m in ("asperity.microslip.risk", "asperity.friction.derive", "asperity.laws.fitting",
               "asperity.texture.wedges", "asperity.surface.facets",
@@ -167,4 +168,8 @@ def warm_up(spec: dict, values: dict | None) -> bool:
         run_case(spec, values)
         if values:                           # the block path's kernels too
             run_batch(spec, list(values), [0], [list(values.values())])
+    else:
+        from .warm import synthetic_scan
+        with synthetic_scan(spec) as (scan_spec, path):
+            run_case(scan_spec, {}, path)
     return True

@@ -29,6 +29,13 @@ GREETING_SECONDS = 5.0
 #: a Dask scheduler's first message (its handshake) is far smaller than this
 MAX_GREETING_BYTES = 1 << 20
 EXAMPLE = "an address such as tcp://10.0.0.5:8786 or a scheduler file"
+#: Dask settings of a local cluster's workers: no profiler (it samples the running task's
+#: stack every 10 ms, a few % of a worker's CPU, for a dashboard a local cluster does not
+#: have), and glibc's own malloc thresholds, as in a serial run (Dask's pre-spawn
+#: MALLOC_TRIM_THRESHOLD_ fixes them, and every array over 128 kB is then mapped and
+#: unmapped afresh: +70 % page faults in a derive of a 256 x 256 scan)
+LOCAL_WORKER_CONFIG = {"distributed.worker.profile.enabled": False,
+                       "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
 
 
 class EngineError(AsperityError):
@@ -225,6 +232,7 @@ def connect(scheduler: str | None, workers: int | None, per_worker: float | None
     """(client, local cluster or None, description, number of workers).  ``scheduler``: a
     checked address (:func:`resolve_scheduler`) or None for a local cluster of ``workers``
     processes (None: one per core) of about ``per_worker`` bytes each."""
+    import dask
     import distributed
 
     from .. import lifeline
@@ -241,8 +249,8 @@ def connect(scheduler: str | None, workers: int | None, per_worker: float | None
         try:
             # one core per worker: the numba kernels must not start a thread per core in
             # every worker (oversubscription)
-            with hold, warnings.catch_warnings():   # e.g. a note on a busy port
-                warnings.simplefilter("ignore")
+            with hold, warnings.catch_warnings(), dask.config.set(LOCAL_WORKER_CONFIG):
+                warnings.simplefilter("ignore")     # e.g. a note on a busy port
                 cluster = distributed.LocalCluster(
                     n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
                     dashboard_address=None, silence_logs=logging.ERROR,

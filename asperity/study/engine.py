@@ -57,6 +57,7 @@ class RunReport:
     where: str                 # "in-process", "LocalCluster (2 workers)", "tcp://..."
     workers: int
     startup_seconds: float = 0.0   # starting or reaching the cluster
+    shutdown_seconds: float = 0.0  # closing it (a local cluster's workers exit: ~0.3-1 s)
 
 
 class Batcher:
@@ -153,7 +154,7 @@ def run_study(study, store, *, scheduler: str | None = None, workers: int | None
         raise StudyInterrupted(f"{stored} of {n} cases stored in {store.folder}; run the same "
                                f"command again to resume") from None
     return RunReport(n, stored - done.size, stored, time.perf_counter() - t0, where, nw,
-                     timing["startup"])
+                     timing["startup"], timing.get("shutdown", 0.0))
 
 
 def case_seconds(results) -> float:
@@ -244,5 +245,7 @@ def _run_dask(todo, task_args, finished, scheduler, workers, batch_size, first, 
     finally:
         for _, f in in_flight.values():
             f.cancel()
+        t1 = time.perf_counter()
         _close(client, cluster)
+        timing["shutdown"] = time.perf_counter() - t1
     return where, nw
