@@ -85,8 +85,8 @@ def wedge_tangential(alpha_rad, beta_rad, mu_a, mu_b, cs, sn, windward, level_to
             locked = False
             ww0 = 0.0
             ww1 = 0.0
+            climbed = False
             if windward:
-                climbed = False
                 level = False
                 for f in range(2):
                     if sl[f] > level_tol and w[f] > 0:
@@ -95,27 +95,20 @@ def wedge_tangential(alpha_rad, beta_rad, mu_a, mu_b, cs, sn, windward, level_to
                         level = True
                 if not climbed and not level:
                     status[i] = STATUS_NO_WINDWARD
-                for f in range(2):
-                    if climbed:
-                        loaded = sl[f] > level_tol and w[f] > 0
+            for f in range(2):
+                if not windward:
+                    loaded = w[f] > 0
+                elif climbed:
+                    loaded = sl[f] > level_tol and w[f] > 0
+                else:
+                    loaded = abs(sl[f]) <= level_tol and w[f] > 0
+                if loaded:
+                    if f == 0:
+                        ww0 = w[0]
                     else:
-                        loaded = abs(sl[f]) <= level_tol and w[f] > 0
-                    if loaded:
-                        if f == 0:
-                            ww0 = w[0]
-                        else:
-                            ww1 = w[1]
-                        if fz[f] <= lock_tol:
-                            locked = True
-            else:
-                for f in range(2):
-                    if w[f] > 0:
-                        if f == 0:
-                            ww0 = w[0]
-                        else:
-                            ww1 = w[1]
-                        if fz[f] <= lock_tol:
-                            locked = True
+                        ww1 = w[1]
+                    if fz[f] <= lock_tol:
+                        locked = True
             if locked:
                 T[i, d] = np.inf
                 continue
