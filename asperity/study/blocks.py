@@ -10,14 +10,15 @@ numbers of the assembly, its explicit friction, its loading or the wedge texture
 2. mu+ and mu- come once for the block (a fixed friction source), from the case's columns
    (``friction.mu_plus``/``mu_minus``) or from the textures in one vectorised call
    (:func:`asperity.microslip.friction_batch.texture_friction_batch`);
-3. two-node cases are solved by the closed form (:mod:`asperity.microslip.two_node_batch`),
-   strip cases by the exact solver over the whole block
-   (:func:`asperity.microslip.batch.assess_batch`) when it is installed;
+3. the closed forms answer what they cover: every two-node case
+   (:mod:`asperity.microslip.two_node_batch`) and the strips that shake down below their
+   elastic limit (:mod:`asperity.microslip.strip_batch`); the exact event solver over the
+   whole block (:func:`asperity.microslip.batch.assess_batch`) takes what they leave;
 4. every case the arrays cannot answer exactly as the per-case path -- a value outside its
-   range (the per-case path then names the case's field), a decision at a threshold, a
-   refusal, a solver failure -- runs through :func:`asperity.study.cases.run_case`, the
-   reference.  The store's ``solved_by`` column says which path answered each case
-   (``closed-form`` or ``exact``).
+   range (the per-case path then names the case's field), a refusal, a solver failure --
+   is left without a status, and :func:`asperity.study.cases.run_batch` runs it through
+   :func:`asperity.study.cases.run_case`, the reference.  The store's ``solved_by`` column
+   says which path answered each case (``closed-form`` or ``exact``).
 
 The block's results equal the per-case path's: discrete outputs identically, numbers to
 1e-12 of their scale (``tests/test_study_blocks.py``).
@@ -30,7 +31,7 @@ import numpy as np
 
 from ..microslip import limits as L
 
-#: varied fields the block path takes as arrays: name -> (low, high) or a check's name
+#: the numbers of each model, and of the loading, a block may vary
 ASSEMBLY_FIELDS = {"two-node": {"k", "l0", "k_t", "N", "alpha_T"},
                    "strip": {"h", "E", "p", "l", "k_t", "alpha_T"}}
 LOADING_FIELDS = {"dT_min", "dT_max", "force", "force_min", "force_max", "cycles",
@@ -244,9 +245,10 @@ def _friction(spec: dict, base, cols: dict, m: int):
         mp, mm, ok = np.full(m, f.mu_plus), np.full(m, f.mu_minus), np.ones(m, bool)
     for key, arr in (("mu_plus", mp), ("mu_minus", mm)):
         x = cols.get(f"friction.{key}")
-        if x is not None:
-            ok = ok & _in(x, L.MU[0], L.MU_FILE)
-            arr[:] = x
+        if x is not None:                   # checked as the file's; a study's texture
+            ok = ok & _in(x, L.MU[0], L.MU_FILE)      # replaces the file's friction
+            if spec.get("texture") is None:
+                arr[:] = x
     chain_ok = lambda x: np.isposinf(x) | _in(x, *L.MU)
     return mp, mm, ok & chain_ok(mp) & chain_ok(mm)
 
