@@ -250,9 +250,9 @@ VARIANTS = {
                       'high = 30.0 }')),
     # a study's texture replaces the file's explicit coefficients (still checked)
     "texture-over-explicit": ('texture = "SURF/wedge-asymmetric.toml"\n', "",
-                              '"friction.mu_plus" = { distribution = "uniform", low = 0.05, '
+                              ('"friction.mu_plus" = { distribution = "uniform", low = 0.05, '
                               'high = 0.3 }\n"loading.dT_max" = { distribution = '
-                              '"uniform", low = 20.0, high = 200.0 }'),
+                              '"uniform", low = 20.0, high = 200.0 }')),
     # explicit coefficients across the file's limit of 100: above it refused per case
     "mu-beyond-the-file": ("", "", ('"friction.mu_minus" = { distribution = "uniform", '
                                    'low = 50.0, high = 150.0 }\n"assembly.N" = { '
