@@ -277,3 +277,22 @@ def test_options_combined_equal_the_per_case_path(tmp_path, name):
     assert_same(block, ref, lambda o: 1e-4)
     statuses = {s for _, s, *_ in block}
     assert statuses == ({"ok", "failed"} if name == "mu-beyond-the-file" else {"ok"})
+
+
+def test_the_study_benchmark_reports_each_models_rates_paths_and_whole_study():
+    """asperity bench --only study on tiny studies: every figure present and consistent
+    (no speed asserted: speed targets live in the benchmark's output)."""
+    from asperity.study.bench import bench_study, format_study
+    out = bench_study(workers=2, n_two=400, n_strip=60, n_scans=2, serial_seconds=0.2)
+    assert set(out["cases"]) == {"two-node risk", "201-node strip risk",
+                                 "derive of a 256^2 scan"}
+    for label, r in out["cases"].items():
+        assert sum(r["solved_by"].values()) == r["cases"], label
+        assert r["minutes_per_1e6_cases"] == pytest.approx(1e6 / r["engine_cases_per_s"] / 60)
+        assert r["speedup"] == pytest.approx(r["engine_cases_per_s"] / r["serial_cases_per_s"])
+        assert 0 < r["loop_s"] < r["study_s"] and r["startup_s"] > 0
+    assert out["cases"]["two-node risk"]["solved_by"] == {"closed-form": 400}
+    assert out["cases"]["derive of a 256^2 scan"]["serial_cases_per_s"] == \
+        out["cases"]["derive of a 256^2 scan"]["per_case_cases_per_s"]
+    text = format_study(out)
+    assert "solved by: closed-form 400" in text and "a 1e6-case study" in text
