@@ -394,7 +394,7 @@ def test_the_work_cap_counts_a_changing_force_per_node_squared():
 def test_the_model_is_read_by_value_not_identity():
     """A model name built at run time (read from a file, say) is the same model."""
     b = strip_block(np.random.default_rng(10), 4, n=7)
-    name = "".join(["st", "rip"])
+    name = "".join(["st", "rip"])  # noqa: FLY002 - built at run time, not interned
     params = dict(b["par"], n=7)
     args = (params, b["mup"], b["mum"], b["dT"], b["F"])
     kw = {"substeps": 1, "force_at": "uniform", "cycles": b["cycles"],
