@@ -279,10 +279,13 @@ def test_options_combined_equal_the_per_case_path(tmp_path, name):
     assert statuses == ({"ok", "failed"} if name == "mu-beyond-the-file" else {"ok"})
 
 
-def test_the_study_benchmark_reports_each_models_rates_paths_and_whole_study():
+def test_the_study_benchmark_reports_each_models_rates_paths_and_whole_study(monkeypatch):
     """asperity bench --only study on tiny studies: every figure present and consistent
     (no speed asserted: speed targets live in the benchmark's output)."""
+    from asperity.study import bench
     from asperity.study.bench import bench_study, format_study
+    # this checkout's surfaces/ (a copy of the package, as the mutation runs make, sits apart)
+    monkeypatch.setattr(bench, "ROOT", ROOT)
     out = bench_study(workers=2, n_two=400, n_strip=60, n_scans=2, serial_seconds=0.2)
     assert set(out["cases"]) == {"two-node risk", "201-node strip risk",
                                  "derive of a 256^2 scan"}
