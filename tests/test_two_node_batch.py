@@ -217,3 +217,10 @@ def test_equal_coefficients_under_thermal_cycles_are_left_to_the_exact_path():
     assert res["mu_minus"][0] == res["mu_plus"][0]
     for c in (0, 1):
         assert compare(b, res, c, reference(b, c, "uniform", 1)) == []
+
+
+def test_kernel_constants_are_the_limits():
+    from asperity.microslip import _two_node_kernels as K
+    from asperity.microslip import limits as L
+    assert (K.SAME_FRICTION, K.STIFFNESS_RATIO, K.ASYMMETRY, K.MARGIN) == (
+        L.SAME_FRICTION, L.STIFFNESS_RATIO, L.ASYMMETRY, L.MARGIN)

@@ -38,6 +38,10 @@ SLIDES_OFF = 1      # the load exceeds the capacity (check_capacity's outcome)
 NOT_COVERED = 2     # the caller runs the exact per-case path
 #: a decision within this relative distance of its threshold is left to the exact path
 BAND = 1e-9
+#: limits.SAME_FRICTION, STIFFNESS_RATIO, ASYMMETRY, MARGIN as literals (numba freezes a
+#: global at compile time and its cache would not see limits.py change; a test keeps them
+#: equal)
+SAME_FRICTION, STIFFNESS_RATIO, ASYMMETRY, MARGIN = 1e-12, 1e9, 1e3, 1e4
 
 
 @njit(cache=True)
@@ -109,14 +113,14 @@ def two_node_block(k, l0, aT, kt, N, mp, mm, dT, F, substeps, fw0, fw1, cycles, 
         code[c] = NOT_COVERED
         p_, q_ = mp[c], mm[c]
         if p_ == q_ or (math.isfinite(p_) and math.isfinite(q_)
-                        and abs(p_ - q_) <= 1e-12 * max(abs(p_), abs(q_))):
+                        and abs(p_ - q_) <= SAME_FRICTION * max(abs(p_), abs(q_))):
             q_ = p_                        # chains._built: the same coefficient
         # chains._check_resolvable and check_margin refuse: the exact path says why
         ratio = max(k[c] / kt[c], kt[c] / k[c])
-        if ratio > 1e9 * (1.0 - BAND):
+        if ratio > STIFFNESS_RATIO * (1.0 - BAND):
             continue
         if math.isfinite(p_) and math.isfinite(q_) and \
-                max(p_, q_) > 1e3 * min(p_, q_) * (1.0 - BAND):
+                max(p_, q_) > ASYMMETRY * min(p_, q_) * (1.0 - BAND):
             continue
         cp = p_ * N[c]
         cm = q_ * N[c]
@@ -132,7 +136,7 @@ def two_node_block(k, l0, aT, kt, N, mp, mm, dT, F, substeps, fw0, fw1, cycles, 
             absmax = max(absmax, abs(dT[c, j]))
         rng = dmax - dmin
         margin = rng / (2.0 * dTc) if math.isfinite(dTc) and dTc > 0 else 0.0
-        if margin > 1e4 * (1.0 - BAND):
+        if margin > MARGIN * (1.0 - BAND):
             continue
         out[c, 0] = p_
         out[c, 1] = q_

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .limits import ASYMMETRY, STIFFNESS_RATIO
+from .limits import ASYMMETRY, SAME_FRICTION, STIFFNESS_RATIO
 
 #: strips longer than this are left to the exact path (it checks their march's resources)
 MAX_NODES = 100_000
@@ -37,15 +37,20 @@ MAX_NODES = 100_000
 BAND = 1e-9
 
 
+def _elements(params: dict):
+    """(n, dx, kb, kt) of m strips as strip_chain builds them: element spacing and
+    stiffness E h / dx, an interior node's contact stiffness k_t dx."""
+    n = int(params.get("n", 201))
+    dx = np.asarray(params["l"], dtype=float) / (n - 1)
+    kb = np.asarray(params["E"], dtype=float) * np.asarray(params["h"], dtype=float) / dx
+    return n, dx, kb, np.asarray(params["k_t"], dtype=float) * dx
+
+
 def strip_dT_c_block(params: dict, mu_plus, mu_minus) -> np.ndarray:
     """dT_c (K) of m discrete strips: params h, E, p, l, k_t, alpha_T (m,) and n (one int);
     inf where both sides self-lock."""
-    h, E, p, l, k_t, aT = (np.asarray(params[k], dtype=float) for k in
-                           ("h", "E", "p", "l", "k_t", "alpha_T"))
-    n = int(params.get("n", 201))
-    dx = l / (n - 1)
-    kb = E * h / dx
-    kt = k_t * dx
+    p, k_t, aT = (np.asarray(params[k], dtype=float) for k in ("p", "k_t", "alpha_T"))
+    n, dx, kb, kt = _elements(params)
     s = np.sqrt(kt / (4.0 * kb))                       # sinh(theta / 2)
     theta = 2.0 * np.arcsinh(s)
     sinh_t = 2.0 * s * np.sqrt(1.0 + s * s)
@@ -61,16 +66,13 @@ def strip_shakedown(params: dict, mu_plus, mu_minus, dT, F, *, cycles, max_march
     mp = np.array(mu_plus, dtype=float)               # copies: the answer's own arrays
     mm = np.array(mu_minus, dtype=float)
     same = (mp == mm) | (np.isfinite(mp) & np.isfinite(mm)
-                         & (np.abs(mp - mm) <= 1e-12 * np.maximum(np.abs(mp), np.abs(mm))))
+                         & (np.abs(mp - mm) <= SAME_FRICTION * np.maximum(np.abs(mp), np.abs(mm))))
     mm = np.where(same, mp, mm)                        # chains._built
     dT_c = strip_dT_c_block(params, mp, mm)
     dT = np.asarray(dT, dtype=float).reshape(m, -1)
     F = np.asarray(F, dtype=float).reshape(m, -1)
-    reach = np.maximum(np.abs(dT).max(axis=1), 0.0)
-    n = int(params.get("n", 201))
-    dx = np.asarray(params["l"], dtype=float) / (n - 1)
-    kb = np.asarray(params["E"], dtype=float) * np.asarray(params["h"], dtype=float) / dx
-    kt = np.asarray(params["k_t"], dtype=float) * dx
+    reach = np.abs(dT).max(axis=1)
+    n, _, kb, kt = _elements(params)
     ratio = np.maximum(kb / (0.5 * kt), kt / kb)
     fin = np.isfinite(mp) & np.isfinite(mm)
     asym = np.where(fin, np.maximum(mp, mm) / np.where(fin, np.minimum(mp, mm), 1.0), 1.0)

@@ -13,6 +13,7 @@ Scheduling overhead: the share of the workers' time not spent in cases,
 """
 from __future__ import annotations
 
+import contextlib
 import tempfile
 import time
 from pathlib import Path
@@ -65,16 +66,23 @@ stages = ["derive"]
     return out
 
 
-def _serial(study, limit_seconds: float) -> tuple[float, int]:
-    """Cases per second of a plain loop over the single-case API (no engine, no store), on
-    one core (numba's parallel kernels limited to one thread, as in each worker)."""
+@contextlib.contextmanager
+def _one_thread():
+    """numba's kernels on one thread, as in each worker (restored after)."""
     import numba
     threads = numba.get_num_threads()
     numba.set_num_threads(1)
     try:
-        return _loop(study, limit_seconds)
+        yield
     finally:
         numba.set_num_threads(threads)
+
+
+def _serial(study, limit_seconds: float) -> tuple[float, int]:
+    """Cases per second of a plain loop over the single-case API (no engine, no store), on
+    one core."""
+    with _one_thread():
+        return _loop(study, limit_seconds)
 
 
 def _loop(study, limit_seconds: float) -> tuple[float, int]:
@@ -95,20 +103,16 @@ def _loop(study, limit_seconds: float) -> tuple[float, int]:
 
 
 def _in_process(study, tmp: Path, label: str) -> dict:
-    """Cases per second of the engine in this process (one core: numba's kernels on one
-    thread), the block path where it applies."""
-    import numba
-
+    """Cases per second of the engine in this process, on one core, the block path where
+    it applies."""
     from .engine import run_study
     from .store import open_store
-    threads = numba.get_num_threads()
-    numba.set_num_threads(1)
     store = open_store(tmp / f"{label}-serial", study)
     try:
-        rep = run_study(study, store, workers=0)
+        with _one_thread():
+            rep = run_study(study, store, workers=0)
     finally:
         store.close()
-        numba.set_num_threads(threads)
     return {"cases": rep.ran, "cases_per_s": rep.ran / rep.seconds}
 
 

@@ -54,14 +54,13 @@ class BlockResult:
         return len(self.ids)
 
     def __iter__(self):
-        names = list(self.outputs)
-        for i, cid in enumerate(self.ids):
-            yield (cid, self.status[i], self.message[i], self.seconds[i],
-                   {n: self.outputs[n][i] for n in names
-                    if self.outputs[n][i] is not None or self.status[i] == "ok"})
+        return (self[i] for i in range(len(self.ids)))
 
     def __getitem__(self, i):
-        return list(self)[i]
+        names = list(self.outputs)
+        ok = self.status[i] == "ok"
+        return (self.ids[i], self.status[i], self.message[i], self.seconds[i],
+                {n: self.outputs[n][i] for n in names if self.outputs[n][i] is not None or ok})
 
     def todo(self) -> list[int]:
         """Positions of the cases the block left to the per-case path (no status yet)."""
@@ -179,7 +178,7 @@ def _arrays(spec: dict, base, cols: dict, m: int):
         params[key] = x
     if base.model == "strip":
         params["n"] = int(p["n"])
-    lo = dict(spec["assembly"].get("loading") or {})
+    lo = spec["assembly"].get("loading") or {}
     dT = np.tile(base.loading.dT, (m, 1))
     F = np.tile(base.loading.F, (m, 1))
     if "loading.dT_min" in cols or "loading.dT_max" in cols:
@@ -227,11 +226,8 @@ def _friction(spec: dict, base, cols: dict, m: int):
     contact = spec.get("contact") or "all-faces"
     tex = {n.split(".", 1)[1]: v for n, v in cols.items() if n.startswith("texture.")}
     if tex:
-        from ..microslip.friction_batch import texture_friction_batch
-        fr = base.friction_table
-        axis = where["slip_axis_deg"] if where["slip_axis_deg"] is not None else \
-            fr.get("slip_axis_deg")
-        face = where["textured"] or fr.get("textured", "support")
+        from ..microslip.friction_batch import resolve_slip_rules, texture_friction_batch
+        axis, face = resolve_slip_rules(base.friction_table, **where)
         mp, mm, ok = texture_friction_batch(spec["texture"], tex, contact=contact,
                                             slip_axis_deg=axis, textured=face)
     else:
@@ -287,6 +283,8 @@ def _solve(spec: dict, base, a: dict, valid):
     done = np.zeros(m, bool)
     done[idx] = code != 2
     cols = risk_columns(r, path.tolist())
+    if idx.size == m:                       # every case valid: the columns as they are
+        return done, {name: cols[name] for name in OUT_NAMES}
     out = {}
     for name in OUT_NAMES:
         full = [None] * m

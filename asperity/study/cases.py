@@ -164,10 +164,10 @@ def warm_up(spec: dict, values: dict | None) -> bool:
               "asperity.texture.wedges", "asperity.surface.facets",
               "asperity.crawling.solver"):
         importlib.import_module(m)
-    if values is not None:
+    if values:                               # through the block path where it applies
+        run_batch(spec, list(values), [0], [list(values.values())])
+    elif values is not None:
         run_case(spec, values)
-        if values:                           # the block path's kernels too
-            run_batch(spec, list(values), [0], [list(values.values())])
     else:
         from .warm import synthetic_scan
         with synthetic_scan(spec) as (scan_spec, path):
