@@ -17,11 +17,11 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path[:0] = [str(ROOT), str(HERE / "_ext")]
 
-import asperity  # noqa: E402  (this checkout's package, for autodoc)
+import asperity
 
 project = "asperity"
 author = "the asperity developers"
-copyright = "2026, the asperity developers"  # noqa: A001
+copyright = "2026, the asperity developers"
 release = version = asperity.__version__
 
 extensions = [
@@ -54,7 +54,7 @@ autodoc_member_order = "bysource"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 sys.path.insert(0, str(ROOT / "tests"))
-from test_api_docs import CHECKS  # noqa: E402  (the same checks as the test suite)
+from test_api_docs import CHECKS
 
 # ASPERITY_DOCS_QUICK=1: no numpydoc validation and no gallery run (a draft build of the
 # prose pages; CI builds without it)

@@ -35,6 +35,7 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from typing import ClassVar
 
 from docutils import nodes
 from docutils.parsers.rst import directives
@@ -130,7 +131,7 @@ class Run(SphinxDirective):
     """``.. asperity-run::`` with the command line as content."""
 
     has_content = True
-    option_spec = {"name": directives.unchanged_required, "returncode": int,
+    option_spec: ClassVar[dict] = {"name": directives.unchanged_required, "returncode": int,
                    "stderr": directives.flag, "hide": directives.flag,
                    "image": directives.unchanged_required, "timeout": int}
 
@@ -147,7 +148,7 @@ class Run(SphinxDirective):
         env = dict(os.environ, MPLBACKEND="Agg", COLUMNS="100",
                    PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
         try:
-            proc = subprocess.run(argv, cwd=folder, env=env, capture_output=True, text=True,
+            proc = subprocess.run(argv, check=False, cwd=folder, env=env, capture_output=True, text=True,
                                   timeout=self.options.get("timeout", 600))
         except subprocess.TimeoutExpired:
             raise self.error(f"asperity-run: `{line}` did not finish in time") from None
@@ -184,13 +185,15 @@ class Value(SphinxRole):
     """``:asperity-value:`NAME:KEY[:FORMAT]``` or ``:asperity-value:`NAME:/REGEX/```."""
 
     def run(self):
-        name, _, rest = self.text.partition(":")
+        # the text as typed (rst would drop a regex's backslashes)
+        typed = self.rawtext[self.rawtext.index("`") + 1:self.rawtext.rindex("`")]
+        name, _, rest = typed.partition(":")
         output = self.env.temp_data.get("asperity_runs", {}).get(name)
         try:
             if output is None:
                 raise LookupError(f"no run named {name!r} above in this page")
             if rest.startswith("/"):
-                found = re.search(rest[1:rest.rindex("/")], output, flags=re.M)
+                found = re.search(rest[1:rest.rindex("/")], output, flags=re.MULTILINE)
                 if found is None:
                     raise LookupError(f"{rest} not in the output of {name!r}")
                 value = found.group(1)
@@ -220,7 +223,10 @@ def _merge(app, env, docnames, other):
 
 
 def _check_complete(app, env):
-    """Every public name and every command documented (a warning each otherwise)."""
+    """Every public name and every command documented (a warning each otherwise; config
+    ``asperity_check_complete = False`` for a site that is not the package's)."""
+    if not app.config.asperity_check_complete:
+        return
     import asperity
     from asperity.cli.main import COMMANDS
     objects = env.get_domain("py").objects
@@ -236,6 +242,7 @@ def _check_complete(app, env):
 
 
 def setup(app):
+    app.add_config_value("asperity_check_complete", True, "env")
     app.add_directive("asperity-command", CommandReference)
     app.add_directive("asperity-run", Run)
     app.add_role("asperity-value", Value())
