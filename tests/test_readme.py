@@ -21,12 +21,15 @@ def blocks(text: str, lang: str) -> list[str]:
 
 
 def commands() -> list[str]:
-    """``asperity ...`` calls of both READMEs that name shipped files: the bash blocks
-    (``pip install -e . && asperity ...`` keeps the asperity part) and inline code."""
+    """``asperity ...`` calls of both READMEs that name shipped files: each line of the bash
+    blocks (its ``asperity`` parts, joined by ``&&``: a later one reads what an earlier one
+    wrote; ``pip install -e . && asperity ...`` keeps the asperity part) and inline code."""
     found = []
     for block in blocks(README, "bash"):
         for line in block.splitlines():
-            found += [c.strip() for c in line.split("&&") if c.strip().startswith("asperity ")]
+            parts = [c.strip() for c in line.split("&&") if c.strip().startswith("asperity ")]
+            if parts:
+                found.append(" && ".join(parts))
     for text in (README, SURFACES_README):
         found += [c for c in re.findall(r"`(asperity [^`]+)`", text) if "surfaces/" in c]
     return list(dict.fromkeys(found))
@@ -61,16 +64,17 @@ def test_the_documented_commands_exist():
     assert any(c.startswith("asperity fit") for c in cmds)
 
 
-@pytest.mark.parametrize("command", commands())
-def test_documented_command_runs(command, in_project, capsys):
-    argv = shlex.split(command)[1:]
-    code, out, err = run(capsys, *argv)
-    assert code == 0, f"{command}: {err}"
-    assert out.strip(), command
-    for flag in ("--plot", "-o"):
-        if flag in argv and argv[argv.index(flag) + 1:][:1] != [] and \
-                not argv[argv.index(flag) + 1].startswith("-"):   # study --plot takes no file
-            assert (in_project / argv[argv.index(flag) + 1]).stat().st_size > 0, command
+@pytest.mark.parametrize("line", commands())
+def test_documented_command_runs(line, in_project, capsys):
+    for command in line.split(" && "):
+        argv = shlex.split(command)[1:]
+        code, out, err = run(capsys, *argv)
+        assert code == 0, f"{command}: {err}"
+        assert out.strip(), command
+        for flag in ("--plot", "-o", "--csv", "--abaqus"):
+            if flag in argv and argv[argv.index(flag) + 1:][:1] != [] and \
+                    not argv[argv.index(flag) + 1].startswith("-"):  # study --plot: no file
+                assert (in_project / argv[argv.index(flag) + 1]).stat().st_size > 0, command
 
 
 @pytest.mark.parametrize("name", sorted(COMMANDS))
@@ -79,3 +83,20 @@ def test_every_command_has_help(name, capsys):
         run(capsys, name, "--help")
     assert exc.value.code == 0
     assert "usage: asperity " + name in capsys.readouterr().out
+
+
+def test_a_newcomer_reads_it_to_the_end():
+    """Under 300 lines: the rest is in the documentation site (docs/)."""
+    assert len(README.splitlines()) < 300
+
+
+def test_ci_runs_the_tests_and_builds_the_site_as_the_readme_says():
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    shown = [part.strip() for block in blocks(README, "bash") for line in block.splitlines()
+             for part in line.split("&&")]
+    tests = [c for c in shown if c.startswith("python -m pytest")]
+    docs = [c for c in shown if c.startswith("python -m sphinx")]
+    assert len(tests) == 1 and len(docs) == 1
+    for command in tests + docs:
+        assert any(line.strip() == command for line in ci.splitlines()), command
+    assert "-W" in docs[0].split() and " docs " in f" {docs[0]} "
