@@ -19,7 +19,11 @@ import asperity
 PACKAGE = Path(asperity.__file__).resolve().parent
 ROOMS = ("texture", "surface", "friction", "laws", "dynamics", "microslip", "report", "cli",
          "web", "contact", "crawling", "fe")
+#: lines of code (and comments) a module may have; its docstrings -- the API reference's
+#: numpydoc sections and examples -- are not counted, but the whole file stays under
+#: MAX_TOTAL_LINES
 MAX_LINES = 400
+MAX_TOTAL_LINES = 700
 
 #: asperity.__all__ as the public API was fixed (issue 10): names may be added, never lost
 PUBLIC_API = {
@@ -156,10 +160,31 @@ def test_the_web_stack_loads_only_for_asperity_serve():
     assert out.stdout.strip() == "[]", out.stdout + out.stderr
 
 
+def docstring_lines(text: str) -> int:
+    """Lines taken by the module's, classes' and functions' docstrings."""
+    n = 0
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) \
+                and node.body and isinstance(node.body[0], ast.Expr) \
+                and isinstance(node.body[0].value, ast.Constant) \
+                and isinstance(node.body[0].value.value, str):
+            n += node.body[0].end_lineno - node.body[0].lineno + 1
+    return n
+
+
 def test_modules_are_small():
-    big = {name: n for name, p in MODULES.items()
-           if (n := len(p.read_text(encoding="utf-8").splitlines())) > MAX_LINES}
-    assert not big, f"modules over {MAX_LINES} lines: {big}"
+    sizes = {name: (len(text.splitlines()), docstring_lines(text))
+             for name, p in MODULES.items() for text in [p.read_text(encoding="utf-8")]}
+    big = {name: total - docs for name, (total, docs) in sizes.items()
+           if total - docs > MAX_LINES}
+    assert not big, f"modules over {MAX_LINES} lines of code: {big}"
+    long = {name: total for name, (total, _) in sizes.items() if total > MAX_TOTAL_LINES}
+    assert not long, f"modules over {MAX_TOTAL_LINES} lines with their docstrings: {long}"
+
+
+def test_docstring_lines_are_counted_apart():
+    text = '"""Module\n\ntext."""\n\n\ndef f():\n    """One\n    two."""\n    return 1\n'
+    assert docstring_lines(text) == 5 and len(text.splitlines()) == 9
 
 
 def test_numba_kernels_live_in_kernel_modules():

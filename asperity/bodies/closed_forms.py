@@ -195,16 +195,27 @@ def spin_drift_force(law, n: int = 4096) -> np.ndarray:
 class DiscReference:
     """An accurate integration of the disc's (or ring's) closed forms to rest.
 
-    stop_time        : s, when the motion ends
-    slide_stop_time  : s, when v reaches 0
-    spin_stop_time   : s, when omega reaches 0
-    distance         : m, path length slid
-    turned           : rad, angle turned
-    terminal_ratio   : v / (R omega) as the motion ends (None when one of them was zero
-                       from the start)
-    together         : slide and spin stop at the same time
-    t, v, omega      : the path (arrays, t increasing)
-    kind             : "disc" or "ring"
+    Attributes
+    ----------
+    stop_time : float
+        When the motion ends, s.
+    slide_stop_time : float
+        When v reaches 0, s.
+    spin_stop_time : float
+        When omega reaches 0, s.
+    distance : float
+        Path length slid, m.
+    turned : float
+        Angle turned, rad.
+    terminal_ratio : float or None
+        v / (R omega) as the motion ends (None when one of them was zero from the
+        start).
+    together : bool
+        Slide and spin stop at the same time.
+    t, v, omega : ndarray
+        The path (t increasing).
+    kind : str
+        ``"disc"`` or ``"ring"``.
     """
 
     stop_time: float

@@ -105,18 +105,31 @@ class BodySettings:
 class BodyResult:
     """A simulated body.
 
-    t (k,), q (k, 3) = (x, y, theta), u (k, 3) = (vx, vy, omega): recorded states (every
-        ``record_every`` steps, the first and the last included), SI units, x, y frame
-    dt, steps : step and steps integrated
-    status : "ok", "not-converged" or "non-finite" (see ``status_message``)
-    stop_time : time at which the body came to rest for good (u exactly 0), None if moving
-    slide_stop_time, spin_stop_time : from when on |v| (resp. rho |omega|, rho = sqrt(I/m))
-        stays below STOP_FRACTION of the velocity scale |v0| + rho |omega0| + g dt (every
-        step counts, not only the recorded ones); None if it does not
-    final_angle_rad : theta at the end
-    max_iterations_used, mean_iterations : iterations of the step solver
-    last_moving : (3,) the last velocity before the final rest (None if none), for
-        :meth:`terminal_ratio`
+    Attributes
+    ----------
+    t : ndarray, shape (k,)
+        Recorded times (every ``record_every`` steps, the first and the last included), s.
+    q : ndarray, shape (k, 3)
+        Recorded positions ``(x, y, theta)`` (m, m, rad) in the x, y frame.
+    u : ndarray, shape (k, 3)
+        Recorded velocities ``(vx, vy, omega)`` (m/s, m/s, rad/s).
+    dt, steps : float, int
+        Step and steps integrated.
+    status : str
+        ``"ok"``, ``"not-converged"`` or ``"non-finite"`` (see ``status_message``).
+    stop_time : float or None
+        Time at which the body came to rest for good (u exactly 0), None if moving.
+    slide_stop_time, spin_stop_time : float or None
+        From when on ``|v|`` (resp. ``rho |omega|``, ``rho = sqrt(I/m)``) stays below STOP_FRACTION
+        of the velocity scale ``|v0| + rho |omega0| + g dt`` (every step counts, not only the
+        recorded ones); None if it does not.
+    final_angle_rad : float
+        theta at the end.
+    max_iterations_used, mean_iterations : int, float
+        Iterations of the step solver.
+    last_moving : ndarray, shape (3,), or None
+        The last velocity before the final rest (None if none), for
+        :meth:`terminal_ratio`.
     """
 
     t: np.ndarray

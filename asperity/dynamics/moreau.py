@@ -187,15 +187,23 @@ def point_mass(law: PlanarLaw, mass: float = 1.0) -> Body:
 class Result:
     """A simulation.
 
-    t (k,), q (k, ndof), u (k, ndof): recorded states (every ``record_every`` steps, the
-        initial and the last state included), SI units (m, rad, m/s, rad/s)
-    steps : steps integrated
-    stop_step : steps done when the body last came to rest (exactly u = 0), None if it moves
-        at the end;  stop_time = stop_step dt
-    max_iterations_used, mean_iterations : fixed-point iterations per step
-    status : "ok", "not-converged" (iteration limit above tol: fail_step, fail_residual say
-        where first) or "non-finite"
-    max_residual : largest final residual of a step
+    Attributes
+    ----------
+    t, q, u : ndarray, shapes (k,), (k, ndof), (k, ndof)
+        Recorded states (every ``record_every`` steps, the initial and the last state
+        included), SI units (m, rad, m/s, rad/s).
+    steps : int
+        Steps integrated.
+    stop_step : int or None
+        Steps done when the body last came to rest (exactly u = 0), None if it moves at
+        the end; ``stop_time = stop_step dt``.
+    max_iterations_used, mean_iterations : int, float
+        Fixed-point iterations per step.
+    status : str
+        ``"ok"``, ``"not-converged"`` (iteration limit above tol: ``fail_step``,
+        ``fail_residual`` say where first) or ``"non-finite"``.
+    max_residual : float
+        Largest final residual of a step.
     """
 
     t: np.ndarray

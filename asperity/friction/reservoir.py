@@ -52,13 +52,21 @@ MU_MAX = 100.0
 class Reservoir:
     """Reservoir points p(psi) of a texture for a set of sliding directions.
 
-    psi        : (m,) float, sliding directions in radians (from t_a towards t_b)
-    p          : (m, 2) float, p = -lambda_T/lambda_N in the (t_a, t_b) frame; rows of
-                 self-locking directions hold ``inf``
-    locked     : (m,) bool, self-locking direction
-    locked_face: (m,) int, index of the first self-locking face (-1: none)
-    set_valued : (m,) bool, the reservoir is set-valued there (windward, along the ridges)
-    contact    : the contact regime
+    Attributes
+    ----------
+    psi : ndarray, shape (m,)
+        Sliding directions in radians (from t_a towards t_b).
+    p : ndarray, shape (m, 2)
+        ``p = -lambda_T/lambda_N`` in the (t_a, t_b) frame; rows of self-locking
+        directions hold ``inf``.
+    locked : ndarray of bool, shape (m,)
+        Self-locking direction.
+    locked_face : ndarray of int, shape (m,)
+        Index of the first self-locking face (-1: none).
+    set_valued : ndarray of bool, shape (m,)
+        The reservoir is set-valued there (windward, along the ridges).
+    contact : str
+        The contact regime.
     """
 
     psi: np.ndarray

@@ -97,15 +97,25 @@ TOL = MicroslipTolerances()
 
 @dataclass(frozen=True)
 class Chain:
-    """A slider chain (see :mod:`asperity.microslip._chain_kernels` for the equations).
+    """A slider chain (the equations: ``asperity.microslip._chain_kernels``).
 
-    kind : "two-node" or "strip"
-    x    : (n,) node positions along the slip axis, m
-    kb, le : (n-1,) element stiffness (N/m) and length (m)
-    kt   : (n,) contact stiffness (N/m);  cp, cm : (n,) thresholds mu+ N_i, mu- N_i (N)
-    fw   : (n,) share of the external force on each node (sums to 1)
-    weight : (n,) contact-area share of each node (sums to 1): the assembly's displacement
-             is the weighted mean of the node displacements
+    Attributes
+    ----------
+    kind : str
+        ``"two-node"`` or ``"strip"``.
+    x : ndarray, shape (n,)
+        Node positions along the slip axis, m.
+    kb, le : ndarray, shape (n-1,)
+        Element stiffness (N/m) and length (m).
+    kt : ndarray, shape (n,)
+        Contact stiffness, N/m.
+    cp, cm : ndarray, shape (n,)
+        Thresholds ``mu+ N_i``, ``mu- N_i``, N.
+    fw : ndarray, shape (n,)
+        Share of the external force on each node (sums to 1).
+    weight : ndarray, shape (n,)
+        Contact-area share of each node (sums to 1): the assembly's displacement is
+        the weighted mean of the node displacements.
     """
 
     kind: str

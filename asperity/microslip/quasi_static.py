@@ -32,19 +32,29 @@ PIECE_NODE_UPDATES = 1_000_000
 
 @dataclass
 class MicroslipResult:
-    """Outcome of :func:`simulate` (quasi-static) or :func:`simulate_dynamic`.
+    """Outcome of ``simulate`` (quasi-static) or ``simulate_dynamic``.
 
-    cycles_run : cycles marched
-    mean_u     : (cycles_run + 1,) assembly displacement (weighted mean of the nodes, m) at
-                 the start of the first cycle and at the end of every cycle
-    u_end      : (cycles_run + 1, n) node displacements at the same instants
-    drift_per_cycle : m per cycle, from the stabilised cycle (negative: towards -x)
-    stabilised_at : first cycle whose end state repeats the previous one up to a translation
-                 (None if not reached within the cycles marched)
-    slip_in_cycle : a slider slips during the stabilised (or last) cycle
-    trace      : dict with "t" (load-point index or time), "dT", "u" (points, recorded nodes)
-    whole_slip : in the last cycle marched every slider but at most one slides at once (a
-                 strip's neutral point then sits on a node: see :func:`pinned_resolution`)
+    Attributes
+    ----------
+    cycles_run : int
+        Cycles marched.
+    mean_u : ndarray, shape (cycles_run + 1,)
+        Assembly displacement (weighted mean of the nodes, m) at the start of the
+        first cycle and at the end of every cycle.
+    u_end : ndarray, shape (cycles_run + 1, n)
+        Node displacements at the same instants.
+    drift_per_cycle : float
+        m per cycle, from the stabilised cycle (negative: towards -x).
+    stabilised_at : int or None
+        First cycle whose end state repeats the previous one up to a translation
+        (None if not reached within the cycles marched).
+    slip_in_cycle : bool
+        A slider slips during the stabilised (or last) cycle.
+    trace : dict
+        ``"t"`` (load-point index or time), ``"dT"``, ``"u"`` (points, recorded nodes).
+    whole_slip : bool
+        In the last cycle marched every slider but at most one slides at once (a
+        strip's neutral point then sits on a node: see ``pinned_resolution``).
     """
 
     chain: Chain
@@ -81,7 +91,7 @@ class MicroslipResult:
         return float(self.mean_u[k] + (c - k) * self.drift_per_cycle)
 
     def cycles_to(self, tolerance: float) -> int | None:
-        """Whole cycles until |assembly displacement| first reaches ``tolerance`` (m) at a
+        """Whole cycles until ``|assembly displacement|`` first reaches ``tolerance`` (m) at a
         cycle end (None if never: no drift and not reached in the cycles marched)."""
         a = np.abs(self.mean_u)
         hit = np.flatnonzero(a >= tolerance)

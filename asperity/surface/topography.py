@@ -49,11 +49,17 @@ HEIGHT_SCALE_RANGE = (1e-6, 1e6)
 class HeightMap:
     """Heights on a regular grid, in metres.
 
-    heights     : (nx, ny) float64, ``heights[i, j] = z(x_i = i dx, y_j = j dy)``; NaN marks
-                  an undefined pixel
-    dx, dy      : grid spacing along x and y, m (> 0)
-    source      : file name (and channel) or a description
-    n_undefined : number of undefined pixels
+    Attributes
+    ----------
+    heights : ndarray, shape (nx, ny)
+        float64, ``heights[i, j] = z(x_i = i dx, y_j = j dy)``; NaN marks an
+        undefined pixel.
+    dx, dy : float
+        Grid spacing along x and y, m (> 0).
+    source : str
+        File name (and channel) or a description.
+    n_undefined : int
+        Number of undefined pixels.
     """
 
     heights: np.ndarray
@@ -93,13 +99,19 @@ class HeightMap:
 class TriangleMesh:
     """A triangle mesh in metres.
 
-    vertices     : (nv, 3) float64, m
-    faces        : (nf, 3) int64 vertex indices; degenerate triangles already removed
-    source       : file name or a description
-    n_degenerate : number of degenerate triangles of the file that were dropped
-    kept_faces   : (nf,) int64, index of each face among the file's triangles (None:
-                   ``arange(nf)``); lets a friction map list one value per triangle
-                   of the file
+    Attributes
+    ----------
+    vertices : ndarray, shape (nv, 3)
+        float64, m.
+    faces : ndarray, shape (nf, 3)
+        int64 vertex indices; degenerate triangles already removed.
+    source : str
+        File name or a description.
+    n_degenerate : int
+        Number of degenerate triangles of the file that were dropped.
+    kept_faces : ndarray, shape (nf,), or None
+        int64, index of each face among the file's triangles (None:
+        ``arange(nf)``); lets a friction map list one value per triangle of the file.
     """
 
     vertices: np.ndarray
