@@ -249,7 +249,7 @@ def disc(radius: float, *, contact_points: int | None = None, profile: str = "un
         The pressure: "uniform" (default), "hertz" (p ~ sqrt(1 - r^2/R^2)) or "linear"
         (p = a + b x + c y, fixed by ``centre_of_pressure``).
     centre_of_pressure : (2,) array_like of float, optional
-        (x, y), m, of a "linear" profile, inside the core |c| <= R/4 (default (0, 0));
+        (x, y), m, of a "linear" profile, inside the core ``|c| <= R/4`` (default (0, 0));
         other profiles take (0, 0) only.
 
     Returns
@@ -281,7 +281,7 @@ def disc(radius: float, *, contact_points: int | None = None, profile: str = "un
 
     Examples
     --------
-    The pure-spin torque arm, the load-weighted mean of |r|, is 2R/3 (m(0) = 2/3 of
+    The pure-spin torque arm, the load-weighted mean of ``|r|``, is 2R/3 (m(0) = 2/3 of
     SPEC.md 8), exactly:
 
     >>> fp = asperity.disc_footprint(0.05)
@@ -424,7 +424,7 @@ def rectangle(a: float, b: float, *, contact_points: int | None = None,
         ``centre_of_pressure``).
     centre_of_pressure : (2,) array_like of float, optional
         (x, y), m, of a "linear" profile, inside the core, the rhombus
-        |x|/(a/6) + |y|/(b/6) <= 1 (default (0, 0)).
+        ``|x|/(a/6) + |y|/(b/6) <= 1`` (default (0, 0)).
 
     Returns
     -------
