@@ -336,8 +336,8 @@ def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
         The law's t_a axis from the tangent (body) or from x (ground), deg, in
         [-360, 360] (default 0).
     weights : callable, array_like or None, optional
-        The points' mass shares: None (default) uniform, a callable of s (m) or N values,
-        each > 0 (normalised).
+        The points' mass shares: None (default) uniform, a callable of s (m) giving N
+        values, or N values; each > 0 (normalised).
     mass : float, optional
         kg, in [1e-9, 1e9] (default 1).
     settings : CrawlSettings, optional
@@ -351,7 +351,8 @@ def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
         ``dissipated`` by friction (J); per period ``speed_per_period`` (body lengths,
         head-ward positive) and ``drift_per_period`` (rad);
         ``speed_body_lengths_per_period`` their mean over the averaged periods;
-        ``status`` ("ok" unless a step did not converge); ``summary()`` the JSON object of
+        ``status`` ("ok", "not-converged" or "non-finite": the run stops at that step,
+        ``message`` says where); ``summary()`` the JSON object of
         ``asperity crawl --json``.
 
     Raises
