@@ -15,11 +15,47 @@ import numbers
 
 
 class AsperityError(Exception):
-    """Base class of the errors the command line reports in one line."""
+    """Base class of the errors the command line reports in one line.
+
+    Every error a user can cause (bad input, an unreadable file, an unwritable output, a
+    request too large for the machine) derives from it; the command line prints its
+    message on one line and exits with status 1, never with a traceback.  The message
+    names the field, the allowed range and what arrived.
+
+    See Also
+    --------
+    asperity.InputError
+
+    Examples
+    --------
+    >>> try:
+    ...     asperity.read_body("no-such-body.toml")
+    ... except asperity.AsperityError as exc:
+    ...     print(exc)
+    body file 'no-such-body.toml' does not exist
+    """
 
 
 class InputError(AsperityError, ValueError):
-    """A parameter is missing, of the wrong type, or outside its allowed range."""
+    """A parameter is missing, of the wrong type, or outside its allowed range.
+
+    Also a ``ValueError``.  The message names the field, the allowed range and what
+    arrived.
+
+    See Also
+    --------
+    asperity.AsperityError
+
+    Examples
+    --------
+    >>> try:
+    ...     asperity.disc_footprint(-0.05)
+    ... except asperity.InputError as exc:
+    ...     print(exc)
+    radius must be in [1e-09, 1000] m, got -0.05
+    >>> issubclass(asperity.InputError, ValueError)
+    True
+    """
 
 
 class TextureFileError(InputError):

@@ -112,9 +112,59 @@ def _eps_array(eps):
 
 
 def disc_f_m(eps):
-    """(f, m) of a uniformly loaded disc (SPEC.md 8) for eps = v / (R omega) in [0, inf]
-    (a number or an array; eps = inf is a pure slide, f = 1, m = 0; eps = 0 a pure spin,
-    f = 0, m = 2/3).  Force -mu N f along the velocity, torque -mu N R m against the spin."""
+    """Force and torque factors (f, m) of a uniformly loaded disc that slides and spins on
+    isotropic Coulomb friction (SPEC.md 8).
+
+    A disc of radius R under load N sliding at v and spinning at omega feels the force
+    -mu N f(eps) along the velocity and the torque -mu N R m(eps) against the spin.
+
+    Parameters
+    ----------
+    eps : float or array_like of float
+        v / (R omega), in [0, inf]: inf is a pure slide, 0 a pure spin.
+
+    Returns
+    -------
+    f : float or numpy.ndarray
+        The force factor, in [0, 1] (f(0) = 0, f(inf) = 1); an array for an array ``eps``.
+    m : float or numpy.ndarray
+        The torque factor, in [0, 2/3] (m(0) = 2/3, m(inf) = 0).
+
+    Raises
+    ------
+    InputError
+        ``eps`` negative or NaN.
+
+    See Also
+    --------
+    asperity.ring_f_m, asperity.disc_reference, asperity.disc_footprint
+
+    Notes
+    -----
+    With K, E the complete elliptic integrals of modulus k (SPEC.md 8), for eps <= 1
+
+    .. math::
+
+        f = \\frac{4}{3 \\pi \\epsilon}\\left[(1 + \\epsilon^2) E(\\epsilon)
+            - (1 - \\epsilon^2) K(\\epsilon)\\right], \\quad
+        m = \\frac{4}{9 \\pi}\\left[(4 - 2 \\epsilon^2) E(\\epsilon)
+            - (1 - \\epsilon^2) K(\\epsilon)\\right],
+
+    and the forms of modulus 1/eps beyond 1.  Written with B(k) = (E - k'^2 K)/k^2 (no
+    cancellation) and evaluated from the power series of K, E where k^2 <= 1/4, they are
+    accurate to a few ulps for every eps, the limits included.
+
+    Examples
+    --------
+    f(1) = 8/(3 pi), m(1) = 8/(9 pi), m(0) = 2/3:
+
+    >>> f, m = asperity.disc_f_m(1.0)
+    >>> print(f"{f:.6f} {8 / (3 * np.pi):.6f} {m:.6f} {8 / (9 * np.pi):.6f}")
+    0.848826 0.848826 0.282942 0.282942
+    >>> f, m = asperity.disc_f_m(np.array([0.0, 0.5, 2.0, np.inf]))
+    >>> f.round(6).tolist(), m.round(6).tolist()
+    ([0.0, 0.483844, 0.967688, 1.0], [0.666667, 0.547748, 0.127809, 0.0])
+    """
     e = _eps_array(eps)
     low = e <= 1.0
     with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
@@ -129,8 +179,55 @@ def disc_f_m(eps):
 
 
 def ring_f_m(eps):
-    """(f, m) of a uniformly loaded thin ring (see the module docstring): f(1) = m(1) = 2/pi,
-    m(0) = 1, f(inf) = 1; f(eps) = m(1/eps)."""
+    """Force and torque factors (f, m) of a uniformly loaded thin ring that slides and spins
+    on isotropic Coulomb friction.
+
+    A ring of radius R under load N sliding at v and spinning at omega feels the force
+    -mu N f(eps) along the velocity and the torque -mu N R m(eps) against the spin.
+
+    Parameters
+    ----------
+    eps : float or array_like of float
+        v / (R omega), in [0, inf]: inf is a pure slide, 0 a pure spin.
+
+    Returns
+    -------
+    f : float or numpy.ndarray
+        The force factor, in [0, 1] (f(0) = 0, f(inf) = 1); an array for an array ``eps``.
+    m : float or numpy.ndarray
+        The torque factor, in [0, 1] (m(0) = 1, m(inf) = 0).
+
+    Raises
+    ------
+    InputError
+        ``eps`` negative or NaN.
+
+    See Also
+    --------
+    asperity.disc_f_m, asperity.disc_reference, asperity.ring_footprint
+
+    Notes
+    -----
+    Derived in the module's docstring (``asperity.bodies.closed_forms``): by Landen's
+    transformation, with K, E of modulus eps (or 1/eps beyond 1),
+
+    .. math::
+
+        \\epsilon \\le 1: \\; m = \\frac{2}{\\pi} E(\\epsilon), \\quad
+        f = \\frac{2}{\\pi \\epsilon}\\left[E(\\epsilon)
+            - (1 - \\epsilon^2) K(\\epsilon)\\right],
+
+    and f(eps) = m(1/eps): f(1) = m(1) = 2/pi, f ~ eps/2 for a slow slide and
+    m ~ 1/(2 eps) for a slow spin.
+
+    Examples
+    --------
+    >>> f, m = asperity.ring_f_m(1.0)
+    >>> print(f"{f:.6f} {m:.6f} {2 / np.pi:.6f}")
+    0.636620 0.636620 0.636620
+    >>> print(f"{asperity.ring_f_m(3.0)[0]:.12f} {asperity.ring_f_m(1 / 3)[1]:.12f}")
+    0.971614975269 0.971614975269
+    """
     e = _eps_array(eps)
     low = e <= 1.0
     with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
@@ -170,17 +267,52 @@ def terminal_ratio(kind: str = "disc", tol: float = 1e-14) -> float:
 # ----------------------------------------------------------------------------- spin drift
 
 def spin_drift_force(law, n: int = 4096) -> np.ndarray:
-    """Net friction force per unit normal load (2,) of a pure spin with uniform pressure on
-    ``law`` (a PlanarLaw), in the law's frame: -1/(2 pi) int_0^2pi p(psi) dpsi, by the
-    periodic trapezoid rule on ``n`` directions (spectrally accurate for smooth p; for a
-    law with corners the error is O(1/n^2)).
+    """Net friction force per unit normal load of a pure spin with uniform pressure on a
+    direction-dependent law (SPEC.md 8).
 
+    Parameters
+    ----------
+    law : PlanarLaw
+        The friction law (:func:`asperity.coulomb_law`, :func:`asperity.law_from_gauge`,
+        ...), whose sliding force per unit load is p(psi).
+    n : int, optional
+        Sliding directions of the periodic trapezoid rule, in [8, 1e7] (default 4096):
+        spectrally accurate for a smooth p; for a law with corners the error is O(1/n^2).
+
+    Returns
+    -------
+    (2,) numpy.ndarray
+        -1/(2 pi) int_0^2pi p(psi) dpsi in the law's frame, per unit normal load.  The
+        body's acceleration is g times this.
+
+    Raises
+    ------
+    InputError
+        ``law`` not a PlanarLaw, ``n`` outside its range.
+
+    See Also
+    --------
+    asperity.slide_body, asperity.disc_f_m
+
+    Notes
+    -----
     Each point of a spinning footprint slides in the direction psi of omega x r, and with
     uniform pressure every direction carries the same share of the load; the sum of the
     points' forces -p(psi) is the average of -p.  Zero for a centrally symmetric law
     (p(psi + pi) = -p(psi): Coulomb, the ellipse), not for an asymmetric one (a truncated
-    ellipse with mu_a+ != mu_a-, the windward star).  The body's acceleration is g times
-    this (times the law's normal load)."""
+    ellipse with mu_a+ != mu_a-, the windward star): the part drifts.
+
+    Examples
+    --------
+    Hu et al.'s componentwise law, p = (mu_f|mu_b cos psi, mu_t sin psi), drifts by
+    -(mu_f - mu_b)/pi along x; Coulomb friction does not drift:
+
+    >>> law = asperity.componentwise_law(0.2, 0.1, 0.15)
+    >>> print(f"{asperity.spin_drift_force(law)[0]:.6f} {-(0.2 - 0.1) / np.pi:.6f}")
+    -0.031831 -0.031831
+    >>> bool(np.allclose(asperity.spin_drift_force(asperity.coulomb_law(0.3)), 0.0))
+    True
+    """
     from ..errors import check_int
     from ..laws.planar import PlanarLaw
     check_instance("law", law, PlanarLaw)
@@ -233,27 +365,81 @@ class DiscReference:
 
 def disc_reference(v0: float, omega0: float, mu: float, g: float = 9.81, R: float = 0.05,
                    kind: str = "disc", rtol: float = 1e-12) -> DiscReference:
-    """Integrate dv/dt = -mu g f(eps), domega/dt = -(mu g / (k_I R)) m(eps) (k_I = 1/2 for
-    the disc, 1 for the ring; eps = v / (R omega)) from (v0, omega0) to rest with scipy's
-    solve_ivp (DOP853, relative tolerance ``rtol``).
+    """Integrate the closed forms of a disc (or thin ring) that slides and spins, to rest.
 
-    Both stop at the same finite time, and the ODE is singular there (d eps/dt ~ 1/omega),
-    so it is integrated in the variable lambda = ln(R omega0 / (R omega)) instead of t:
-    with w = R omega, dlambda = a m / (k_I w) dt (a = mu g) and
+    Parameters
+    ----------
+    v0 : float
+        Initial sliding speed, m/s, in [0, 1e4].
+    omega0 : float
+        Initial spin, rad/s, in [0, 1e6].
+    mu : float
+        Coulomb coefficient, in [1e-6, 100].
+    g : float, optional
+        Gravity, m/s^2, in [1e-6, 1e4] (default 9.81).
+    R : float, optional
+        Radius, m, in [1e-9, 1e3] (default 0.05).
+    kind : str, optional
+        "disc" (default; I = M R^2 / 2) or "ring" (I = M R^2).
+    rtol : float, optional
+        Relative tolerance of scipy's ``solve_ivp`` (DOP853), in [1e-14, 1e-3]
+        (default 1e-12).
 
-        d eps / d lambda = eps - k_I f(eps) / m(eps),   dt / d lambda = k_I w / (a m),
-        ds / d lambda = eps w dt/dlambda,  dtheta / d lambda = (w / R) dt/dlambda,
+    Returns
+    -------
+    DiscReference
+        A frozen record: ``stop_time``, ``slide_stop_time``, ``spin_stop_time`` (s),
+        ``distance`` (m, the path slid), ``turned`` (rad), ``terminal_ratio`` (v / (R omega)
+        as the motion ends; None when v0 or omega0 is 0), ``together`` (slide and spin stop
+        at the same time), the path ``t``, ``v``, ``omega`` (arrays, t increasing) and
+        ``kind``.
 
-    from lambda = 0 until w has fallen to 1e-40 of max(v0, R omega0) (what is left of the
-    motion is then far below rounding).  eps follows a one-dimensional flow whose
-    only fixed point, f(eps0) = eps0 m(eps0) / k_I, attracts every start with v0, omega0 >
-    0: the terminal ratio is eps at the end (0.653002 disc, 1 ring) and slide and spin stop
-    together (``together``).
+    Raises
+    ------
+    InputError
+        A value outside its range.
+
+    See Also
+    --------
+    asperity.disc_f_m, asperity.ring_f_m, asperity.slide_body
+
+    Notes
+    -----
+    dv/dt = -mu g f(eps), domega/dt = -(mu g / (k_I R)) m(eps), eps = v / (R omega),
+    k_I = 1/2 for the disc, 1 for the ring.  Both stop at the same finite time, and the
+    ODE is singular there (d eps/dt ~ 1/omega), so it is integrated in the variable
+    lambda = ln(omega0 / omega) instead of t: with w = R omega, a = mu g,
+
+    .. math::
+
+        \\frac{d\\epsilon}{d\\lambda} = \\epsilon - \\frac{k_I f(\\epsilon)}{m(\\epsilon)},
+        \\quad \\frac{dt}{d\\lambda} = \\frac{k_I w}{a m(\\epsilon)},
+        \\quad \\frac{ds}{d\\lambda} = \\epsilon w \\frac{dt}{d\\lambda},
+        \\quad \\frac{d\\theta}{d\\lambda} = \\frac{w}{R} \\frac{dt}{d\\lambda},
+
+    from lambda = 0 until w has fallen to 1e-40 of max(v0, R omega0).  eps follows a
+    one-dimensional flow whose only fixed point, f(eps0) = eps0 m(eps0) / k_I, attracts
+    every start with v0, omega0 > 0: the terminal ratio is eps0 (0.653002 disc, 1 ring)
+    and slide and spin stop together.
 
     Pure slide (omega0 = 0): the point mass, t = v0 / (mu g), distance v0^2 / (2 mu g).
-    Pure spin (v0 = 0): t = k_I R omega0 / (mu g m(0)) (disc: m(0) = 2/3, t = 3 R omega0 /
-    (4 mu g); ring: m(0) = 1, t = R omega0 / (mu g)); no terminal ratio, ``together``
-    False (one of the two never moved).
+    Pure spin (v0 = 0): t = k_I R omega0 / (mu g m(0)) (disc: m(0) = 2/3,
+    t = 3 R omega0 / (4 mu g); ring: m(0) = 1, t = R omega0 / (mu g)); no terminal ratio,
+    ``together`` False (one of the two never moved).
+
+    Examples
+    --------
+    A disc launched at 0.5 m/s spinning at 20 rad/s on mu = 0.3 stops sliding and spinning
+    together, at the terminal ratio of SPEC.md 8:
+
+    >>> ref = asperity.disc_reference(0.5, 20.0, 0.3)
+    >>> print(f"{ref.stop_time:.4f} s {ref.distance:.4f} m ratio {ref.terminal_ratio:.6f}")
+    0.3233 s 0.0835 m ratio 0.653002
+    >>> ref.together
+    True
+    >>> ref = asperity.disc_reference(1.0, 0.0, 0.3)                 # a pure slide
+    >>> print(f"{ref.stop_time:.6f} {1.0 / (0.3 * 9.81):.6f}")
+    0.339789 0.339789
     """
     from scipy.integrate import solve_ivp
     v0 = check_range("v0", v0, 0.0, 1e4, unit="m/s")

@@ -1,37 +1,20 @@
 """Footprints of planar rigid bodies: where a body touches its support and what share of the
 normal load each contact point carries (issue 20).
 
-A :class:`Footprint` is a set of contact points in the body frame (m; the origin is the
-centroid of the footprint, which is the centre of mass of a uniform lamina of its shape)
-with weights: the share of the normal load each point carries (> 0, summing to 1; pressure
-times the area of the point's cell over the load).  The body solver applies the friction
-law at every point with the normal load ``weight * N``.
+A :class:`~asperity.Footprint` is a set of contact points in the body frame (m; the origin
+is the centroid of the footprint, the centre of mass of a uniform lamina of its shape) with
+weights: the share of the normal load each point carries (> 0, summing to 1; pressure times
+the area of the point's cell over the load).  The body solver applies the friction law at
+every point with the normal load ``weight * N``.
 
 Constructors, each sampling its shape at about ``contact_points`` points
-(:data:`DEFAULT_CONTACT_POINTS` per kind when None):
-
-* :func:`disc` -- a polar product rule: n_r ~ 0.7 sqrt(N) rings at the nodes of Gauss's
-  rule in the radius (Gauss-Legendre for uniform pressure, exact for int r^k r dr,
-  k = -1 .. 2 n_r - 2, so that the slow-slide force and the pure-spin torque are exact;
-  Gauss-Jacobi with the weight sqrt(1 - r/R) for Hertz's pressure), each with equally
-  spaced points, their number ~ r^(1/4) (more points, hence smaller cells, near the centre
-  than cells of equal size would give: a point's error near the instantaneous centre is
-  about its weight, and the force there is ~ eps), turned by the golden angle from ring to
-  ring; weight = ring weight / points on the ring (times the profile);
-* :func:`ring` -- a thin ring: N equally spaced points on the circle, equal weights;
-* :func:`rectangle` -- a x b (a along the body's x axis), the midpoints of an n_a x n_b
-  grid of equal cells about square, equal weights;
-* :func:`polygon` -- a simple polygon (vertices in either orientation; zero area or a
-  boundary that crosses itself refused): the cells of a square grid that the polygon
-  covers, each point at the centroid of the covered part of its cell, weight its area
-  (about N points: the grid is sized so);
-* :func:`~asperity.bodies.pressure.mesh_patch` -- the contact patch of a triangle mesh (``.stl .obj .ply`` read as
-  :func:`asperity.read_surface` reads meshes, or a TriangleMesh): the triangles whose three
-  vertices lie within ``tolerance`` of the lowest point, projected on the x-y plane
-  (their union: the outline of a flat bottom, a rim, several feet), sampled as a polygon;
-* :func:`~asperity.bodies.pressure.from_pressure` -- points with a pressure each (a contact solution, a measured
-  pressure film): :func:`~asperity.bodies.pressure.read_pressure` reads them from a CSV ``x_m,y_m,p_Pa`` or a
-  ``.npy`` (n, 3) file.
+(:data:`DEFAULT_CONTACT_POINTS` per kind when None; their docstrings give the rules):
+:func:`disc` (a polar product rule, Gauss in the radius), :func:`ring` (a thin ring),
+:func:`rectangle` and :func:`polygon` (the covered cells of a grid);
+:func:`~asperity.bodies.pressure.mesh_patch` (the contact patch of a triangle mesh) and
+:func:`~asperity.bodies.pressure.from_pressure` (points with a pressure each: a contact
+solution, a pressure film, a file read by :func:`~asperity.bodies.pressure.read_pressure`)
+sit in :mod:`asperity.bodies.pressure`.
 
 Pressure profiles (``profile``): "uniform"; "hertz" (a disc: p ~ sqrt(1 - r^2/R^2)); and
 "linear" (p = a + b x + c y: the pressure of a rigid flat body under an eccentric or tilted
@@ -75,17 +58,59 @@ GOLDEN_ANGLE = math.pi * (3.0 - math.sqrt(5.0))
 class Footprint:
     """Contact points of a planar rigid body and the share of the load each carries.
 
-    kind             : "point", "disc", "ring", "rectangle", "polygon", "mesh" or "pressure"
-    points           : (n, 2) float, m, body frame (origin: the footprint's centroid)
-    weights          : (n,) float > 0, sum 1: share of the normal load of each point
-    outline          : (k, 2) float, m: the footprint's boundary for drawing (a disc or
-                       ring: its circle; a mesh patch: its boundary edges end to end, NaN
-                       rows between separate loops)
-    area             : m^2 (0 for a point and the thin ring)
-    radius           : m for a disc or ring, else None
-    profile          : the pressure profile: "uniform", "hertz", "linear" or "file"
-    inertia_per_mass : m^2, I / m of the uniform lamina (the thin ring: R^2) about the
-                       centroid -- the body's inertia when none is given
+    The body solver (:func:`asperity.slide_body`) applies the friction law at every point
+    with the normal load ``weight * N``.  Build one with a constructor
+    (:func:`asperity.disc_footprint` and the others below) rather than by hand; the fields
+    are checked and the arrays made read-only.
+
+    Parameters
+    ----------
+    kind : str
+        "point", "disc", "ring", "rectangle", "polygon", "mesh" or "pressure".
+    points : (n, 2) array_like of float
+        Contact points, m, in the body frame (origin: the footprint's centroid).
+    weights : (n,) array_like of float
+        Share of the normal load each point carries: each > 0, their sum 1 (to 1e-9).
+    outline : (k, 2) array_like of float
+        The footprint's boundary for drawing, m (a disc or ring: its circle; a mesh patch:
+        its boundary edges end to end, NaN rows between separate loops).
+    area : float
+        Area, m^2, >= 0 (0 for a point and the thin ring).
+    radius : float or None, optional
+        Radius of a disc or ring, m, in [1e-9, 1e3]; None for other shapes.
+    profile : str, optional
+        The pressure profile: "uniform" (default), "hertz", "linear" or "file".
+    inertia_per_mass : float, optional
+        I / m of the uniform lamina about the centroid, m^2, >= 0 (the thin ring: R^2): the
+        body's inertia when none is given.
+    info : dict, optional
+        How the footprint was made (e.g. ``centroid_shift``: by how much, m, the given
+        shape was moved to put its centroid at the origin); not compared.
+
+    Raises
+    ------
+    InputError
+        A field outside its range, or weights that are not positive shares summing to 1.
+
+    See Also
+    --------
+    asperity.disc_footprint, asperity.ring_footprint, asperity.rectangle_footprint,
+    asperity.polygon_footprint, asperity.mesh_patch, asperity.pressure_footprint,
+    asperity.contact_footprint, asperity.slide_body
+
+    Notes
+    -----
+    ``fp.n`` is the number of points and ``fp.centre_of_pressure`` (m) the load-weighted
+    mean of the points (0 for a uniform pressure).
+
+    Examples
+    --------
+    Two points carrying a quarter and three quarters of the load:
+
+    >>> fp = asperity.Footprint("pressure", [[-0.01, 0.0], [0.01, 0.0]], [0.25, 0.75],
+    ...                         [[-0.01, 0.0], [0.01, 0.0]], 0.0)
+    >>> fp.n, [round(float(c), 4) for c in fp.centre_of_pressure]      # m
+    (2, [0.005, 0.0])
     """
 
     kind: str
@@ -212,9 +237,59 @@ def _disc_rule(n: int, profile: str):
 
 def disc(radius: float, *, contact_points: int | None = None, profile: str = "uniform",
          centre_of_pressure=(0.0, 0.0)) -> Footprint:
-    """A disc of radius R (m) sampled at ``contact_points`` points (see the module
-    docstring for the rule); ``profile`` "uniform", "hertz" or "linear" (with
-    ``centre_of_pressure`` inside the core |c| <= R/4)."""
+    """A disc of radius R sampled by a polar product rule (public as ``disc_footprint``).
+
+    Parameters
+    ----------
+    radius : float
+        R, m, in [1e-9, 1e3].
+    contact_points : int or None, optional
+        About how many points, in [1, 1e6]; None: 1024.
+    profile : str, optional
+        The pressure: "uniform" (default), "hertz" (p ~ sqrt(1 - r^2/R^2)) or "linear"
+        (p = a + b x + c y, fixed by ``centre_of_pressure``).
+    centre_of_pressure : (2,) array_like of float, optional
+        (x, y), m, of a "linear" profile, inside the core ``|c| <= R/4`` (default (0, 0));
+        other profiles take (0, 0) only.
+
+    Returns
+    -------
+    Footprint
+        kind "disc", the points centred on the disc's centre, ``inertia_per_mass`` R^2/2,
+        ``info['rings']`` the number of rings.
+
+    Raises
+    ------
+    InputError
+        A value outside its range; a centre of pressure outside the core (the linear
+        pressure would be negative at the rim: it does not carry the load).
+
+    See Also
+    --------
+    asperity.ring_footprint, asperity.disc_f_m, asperity.slide_body
+
+    Notes
+    -----
+    n_r ~ 0.7 sqrt(N) rings at the nodes of Gauss's rule in the radius: Gauss-Legendre for
+    uniform pressure, exact for the integrals of r^k r dr, k = -1 .. 2 n_r - 2, so that the
+    slow-slide force and the pure-spin torque are exact; Gauss-Jacobi with the weight
+    sqrt(1 - r/R) for Hertz's pressure.  Each ring holds equally spaced points, their
+    number ~ r^(1/4) (more points, hence smaller cells, near the centre than cells of equal
+    size would give: a point's error near the instantaneous centre is about its weight, and
+    the force there is ~ eps), turned by the golden angle from ring to ring; a point's
+    weight is its ring's weight over the points on the ring (times the profile).
+
+    Examples
+    --------
+    The pure-spin torque arm, the load-weighted mean of ``|r|``, is 2R/3 (m(0) = 2/3 of
+    SPEC.md 8), exactly:
+
+    >>> fp = asperity.disc_footprint(0.05)
+    >>> fp.n, fp.info["rings"]
+    (1024, 22)
+    >>> print(f"{fp.weights @ np.hypot(*fp.points.T) / 0.05:.12f}")
+    0.666666666667
+    """
     R = _length("radius", radius)
     n = _count("disc", contact_points)
     profile = _profile(profile)
@@ -241,8 +316,36 @@ def disc(radius: float, *, contact_points: int | None = None, profile: str = "un
 
 
 def ring(radius: float, *, contact_points: int | None = None) -> Footprint:
-    """A thin ring of radius R (m): N equally spaced points on the circle, equal weights
-    (uniform pressure along the ring); I/m = R^2."""
+    """A thin ring of radius R: equally spaced points on the circle, equal weights
+    (public as ``ring_footprint``).
+
+    Parameters
+    ----------
+    radius : float
+        R, m, in [1e-9, 1e3].
+    contact_points : int or None, optional
+        Number of points, in [3, 1e6]; None: 512.
+
+    Returns
+    -------
+    Footprint
+        kind "ring", uniform pressure along the ring, area 0, ``inertia_per_mass`` R^2.
+
+    Raises
+    ------
+    InputError
+        A value outside its range.
+
+    See Also
+    --------
+    asperity.disc_footprint, asperity.ring_f_m
+
+    Examples
+    --------
+    >>> fp = asperity.ring_footprint(0.02, contact_points=8)
+    >>> fp.n, [round(float(c), 5) for c in fp.points[1]], round(fp.inertia_per_mass, 6)
+    (8, [0.01414, 0.01414], 0.0004)
+    """
     R = _length("radius", radius)
     n = _count("ring", contact_points)
     if n < 3:
@@ -304,10 +407,51 @@ def _grid_counts(n: int, a: float, b: float) -> tuple[int, int]:
 
 def rectangle(a: float, b: float, *, contact_points: int | None = None,
               profile: str = "uniform", centre_of_pressure=(0.0, 0.0)) -> Footprint:
-    """A rectangle a x b (m; a along the body's x axis) centred on the origin: the
-    midpoints of an n_a x n_b grid of equal cells (n_a n_b <= N, cells about square).
-    ``profile`` "uniform" or "linear" (``centre_of_pressure`` inside the core, the rhombus
-    |x|/(a/6) + |y|/(b/6) <= 1)."""
+    """A rectangle a x b centred on the origin, sampled at the midpoints of a grid of
+    equal cells (public as ``rectangle_footprint``).
+
+    Parameters
+    ----------
+    a : float
+        Side along the body's x axis, m, in [1e-9, 1e3].
+    b : float
+        Side along the body's y axis, m, in [1e-9, 1e3].
+    contact_points : int or None, optional
+        At most this many points, in [1, 1e6]: an n_a x n_b grid, n_a n_b <= N, cells
+        about square; None: 1024.
+    profile : str, optional
+        "uniform" (default) or "linear" (p = a + b x + c y, fixed by
+        ``centre_of_pressure``).
+    centre_of_pressure : (2,) array_like of float, optional
+        (x, y), m, of a "linear" profile, inside the core, the rhombus
+        ``|x|/(a/6) + |y|/(b/6) <= 1`` (default (0, 0)).
+
+    Returns
+    -------
+    Footprint
+        kind "rectangle", ``inertia_per_mass`` (a^2 + b^2)/12, ``info['cell']`` the cell's
+        sides (m).
+
+    Raises
+    ------
+    InputError
+        A value outside its range; a centre of pressure outside the core; profile "hertz"
+        (a disc's).
+
+    See Also
+    --------
+    asperity.polygon_footprint, asperity.read_body
+
+    Examples
+    --------
+    An 80 x 30 mm plate on 12 points, a 6 x 2 grid of 13.3 x 15 mm cells:
+
+    >>> fp = asperity.rectangle_footprint(0.08, 0.03, contact_points=12)
+    >>> fp.n, [round(c, 4) for c in fp.info["cell"]], round(fp.area, 6)
+    (12, [0.0133, 0.015], 0.0024)
+    >>> print(f"{fp.inertia_per_mass:.4e}")           # m^2, (a^2 + b^2) / 12
+    6.0833e-04
+    """
     a = _length("a", a)
     b = _length("b", b)
     n = _count("rectangle", contact_points)
@@ -323,9 +467,50 @@ def rectangle(a: float, b: float, *, contact_points: int | None = None,
 
 def polygon(vertices, *, contact_points: int | None = None, profile: str = "uniform",
             centre_of_pressure=(0.0, 0.0)) -> Footprint:
-    """A simple polygon (vertices (k, 2) in m, either orientation, in any frame: the
-    footprint is moved so that its centroid is the origin; ``info['centroid_shift']`` says
-    by how much).  About N points, the covered cells of a square grid."""
+    """A simple polygon sampled at the covered cells of a square grid (public as
+    ``polygon_footprint``).
+
+    Parameters
+    ----------
+    vertices : (k, 2) array_like of float
+        The polygon's corners, m, in either orientation and any frame; zero area or a
+        boundary that crosses itself is refused.  The footprint is moved so that its
+        centroid is the origin (``info['centroid_shift']`` says by how much).
+    contact_points : int or None, optional
+        About how many points, in [1, 1e6] (the grid is sized so); None: 1024.
+    profile : str, optional
+        "uniform" (default) or "linear" (p = a + b x + c y, fixed by
+        ``centre_of_pressure``).
+    centre_of_pressure : (2,) array_like of float, optional
+        (x, y), m, of a "linear" profile in the centred frame, inside the polygon's core
+        (the pressure >= 0 at every vertex); default (0, 0).
+
+    Returns
+    -------
+    Footprint
+        kind "polygon": each point at the centroid of the covered part of its cell, its
+        weight that part's area (times the profile).
+
+    Raises
+    ------
+    InputError
+        A bad polygon, a value outside its range, a centre of pressure outside the core,
+        profile "hertz".
+
+    See Also
+    --------
+    asperity.rectangle_footprint, asperity.mesh_patch, asperity.read_body
+
+    Examples
+    --------
+    A right triangle 60 x 30 mm: centroid at (20, 10) mm, I/m = (a^2 + b^2)/18:
+
+    >>> fp = asperity.polygon_footprint([[0, 0], [0.06, 0], [0, 0.03]], contact_points=200)
+    >>> [round(c, 4) for c in fp.info["centroid_shift"]], round(fp.area, 6)
+    ([0.02, 0.01], 0.0009)
+    >>> print(f"{fp.inertia_per_mass:.6f}")           # m^2
+    0.000250
+    """
     v = check_polygon(vertices)
     n = _count("polygon", contact_points)
     profile = _profile(profile, ("uniform", "linear"))

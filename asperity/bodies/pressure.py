@@ -49,21 +49,59 @@ def _bin_points(p: np.ndarray, w: np.ndarray, n: int):
 
 def from_pressure(points, pressures, *, shape: Footprint | None = None,
                   cell_areas=None, contact_points: int | None = None) -> Footprint:
-    """A footprint of given points (n, 2) m and their pressures (n,) Pa (>= 0, some > 0):
-    a contact solution or a measured pressure film.  Each point carries pressure x area of
-    its cell (``cell_areas`` (n,) m^2; None: equal cells, the points of a regular grid);
-    only the shape of the pressure matters, the weights are normalised (the body's weight
-    is the load).  Points of zero pressure are dropped.
+    """A footprint of given points and their pressures: a contact solution or a measured
+    pressure film (public as ``pressure_footprint``).
 
-    ``shape``: the footprint the pressure acts on (its outline, area and inertia; the
-    points are in its frame before it was centred, i.e. its ``info['centroid_shift']`` is
-    subtracted; points outside it are refused).  None: the points' own (their convex hull
-    as outline and area, the uniform lamina of the points for the inertia, centred on
-    their area-weighted mean).
+    Each point carries pressure x area of its cell; only the shape of the pressure
+    matters, the weights are normalised (the body's weight is the load).  Points of zero
+    pressure are dropped.
 
-    ``contact_points``: None keeps every point of positive pressure; a number merges them
-    into about that many (the cells of a square grid, each at the load centroid of its
-    points: the load and the centre of pressure are kept) -- for a fine contact map."""
+    Parameters
+    ----------
+    points : (n, 2) array_like of float
+        The points, m, within 1e3 m of the origin; n <= 1e6.
+    pressures : (n,) array_like of float
+        Pa, each >= 0 and some > 0.
+    shape : Footprint or None, optional
+        The footprint the pressure acts on: its outline, area and inertia are kept, the
+        points are in its frame before it was centred (its ``info['centroid_shift']`` is
+        subtracted) and points outside it are refused.  None (default): the points' own
+        (their convex hull as outline and area, the uniform lamina of the points for the
+        inertia, centred on their area-weighted mean).
+    cell_areas : (n,) array_like of float or None, optional
+        Area of each point's cell, m^2, > 0; None (default): equal cells, the points of a
+        regular grid.
+    contact_points : int or None, optional
+        None (default) keeps every point of positive pressure; a number in [1, 1e6] merges
+        them into about that many (the cells of a square grid, each at the load centroid of
+        its points: the load and the centre of pressure are kept) -- for a fine contact map.
+
+    Returns
+    -------
+    Footprint
+        profile "file"; kind "pressure", or the kind of ``shape``.
+
+    Raises
+    ------
+    InputError
+        A negative pressure or all zero (a pressure that does not carry the load), a point
+        outside ``shape``, a value outside its range.
+
+    See Also
+    --------
+    asperity.read_pressure, asperity.contact_footprint, asperity.Footprint
+
+    Examples
+    --------
+    A 5 x 5 grid, 20 x 20 mm, whose pressure rises along x: the centre of pressure sits
+    1 mm towards +x (20 times the mean x^2 of the grid):
+
+    >>> x = np.linspace(-0.01, 0.01, 5)
+    >>> pts = np.column_stack([np.repeat(x, 5), np.tile(x, 5)])          # m
+    >>> fp = asperity.pressure_footprint(pts, 1e5 * (1 + 20 * pts[:, 0]))   # Pa
+    >>> fp.n, round(fp.area, 6), round(float(fp.centre_of_pressure[0]), 6)     # m^2, m
+    (25, 0.0004, 0.001)
+    """
     p = check_array("points", points, shape=(None, 2), min_size=2)
     q = check_array("pressures", pressures, shape=(p.shape[0],))
     if p.shape[0] > MAX_CONTACT_POINTS:
@@ -131,10 +169,47 @@ def from_pressure(points, pressures, *, shape: Footprint | None = None,
 
 
 def from_contact(result, *, contact_points: int | None = None) -> Footprint:
-    """The footprint of an elastic contact solution (:func:`asperity.solve_contact`: a
-    part's bottom, heights in m, pressed on a flat): the pixels in contact with their
-    pressure, merged into about ``contact_points`` points (default: the polygon's default;
-    see :func:`from_pressure`).  Pixel (i, j) is at (i dx, j dy)."""
+    """The footprint of an elastic contact solution: the pixels in contact with their
+    pressure (public as ``contact_footprint``).
+
+    Parameters
+    ----------
+    result : ContactResult
+        A solution of :func:`asperity.solve_contact` (a part's bottom, heights in m,
+        pressed on a flat); pixel (i, j) is at (i dx, j dy).
+    contact_points : int or None, optional
+        The pixels are merged into about this many points, in [1, 1e6] (see
+        :func:`asperity.pressure_footprint`); None (default): 1024.
+
+    Returns
+    -------
+    Footprint
+        kind "pressure", profile "file", centred on the contact pixels' centroid;
+        ``info['contact_area_m2']`` the area of the pixels in contact.
+
+    Raises
+    ------
+    InputError
+        A result whose pressure is negative, infinite or nowhere > 0.
+
+    See Also
+    --------
+    asperity.solve_contact, asperity.pressure_footprint, asperity.slide_body
+
+    Examples
+    --------
+    A sphere's cap of radius 10 mm on E* = 1 GPa under the load that gives Hertz's contact
+    radius a = 0.1 mm (SPEC.md 7): the contact area is pi a^2 to 1 %:
+
+    >>> R, E, a, n, dx = 0.01, 1e9, 1e-4, 32, 1e-5
+    >>> x = (np.arange(n) - (n - 1) / 2) * dx
+    >>> h = -(x[:, None] ** 2 + x[None, :] ** 2) / (2 * R)             # m, cap up
+    >>> P = 4 * E * a**3 / (3 * R)                                     # N
+    >>> res = asperity.solve_contact(h, (dx, dx), E, P / (n * dx) ** 2, boundary="free")
+    >>> fp = asperity.contact_footprint(res)
+    >>> print(f"{fp.info['contact_area_m2']:.3e} {np.pi * a**2:.3e}")   # m^2
+    3.160e-08 3.142e-08
+    """
     from ..contact.solver import ContactResult
     from ..errors import check_array, check_instance
     check_instance("result", result, ContactResult)
@@ -156,9 +231,41 @@ def from_contact(result, *, contact_points: int | None = None) -> Footprint:
 
 
 def read_pressure(path) -> tuple[np.ndarray, np.ndarray]:
-    """(points (n, 2) m, pressures (n,) Pa) of a pressure file: CSV with the header
-    ``x_m,y_m,p_Pa`` (commas, one point a line) or a ``.npy`` array (n, 3) of the same
-    columns."""
+    """Read a pressure file: points and their pressure.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A CSV file with the header ``x_m,y_m,p_Pa`` (commas, one point a line, ``#``
+        comments) or a ``.npy`` array (n, 3) of the same columns.
+
+    Returns
+    -------
+    points : (n, 2) numpy.ndarray
+        m.
+    pressures : (n,) numpy.ndarray
+        Pa (checked by :func:`asperity.pressure_footprint`, not here).
+
+    Raises
+    ------
+    InputError
+        A missing or unreadable file, a wrong header, a line that is not three numbers.
+
+    See Also
+    --------
+    asperity.pressure_footprint, asperity.read_body
+
+    Examples
+    --------
+    >>> np.savetxt("pressure.csv", [[-0.01, 0, 1e5], [0.01, 0, 3e5]], delimiter=",",
+    ...            header="x_m,y_m,p_Pa", comments="")
+    >>> points, pressures = asperity.read_pressure("pressure.csv")
+    >>> points.shape, pressures.tolist()
+    ((2, 2), [100000.0, 300000.0])
+    >>> fp = asperity.pressure_footprint(points, pressures)
+    >>> fp.weights.tolist(), round(float(fp.centre_of_pressure[0]), 4)      # m
+    ([0.25, 0.75], 0.005)
+    """
     from os import PathLike
     from pathlib import Path
 
@@ -205,18 +312,70 @@ def read_pressure(path) -> tuple[np.ndarray, np.ndarray]:
 def mesh_patch(mesh, *, unit: str | None = None, tolerance: float | None = None,
                contact_points: int | None = None, profile: str = "uniform",
                centre_of_pressure=(0.0, 0.0)) -> Footprint:
-    """The contact patch of a triangle mesh resting on a plane: the triangles whose three
-    vertices lie within ``tolerance`` (m; None: 1e-3 of the mesh's largest extent) of its
-    lowest point, projected on the x-y plane -- a flat bottom, a rim, several feet.  Their
-    union is sampled as a polygon (the boundary edges of the projected triangles, so that
-    edges shared by two triangles cancel); triangles standing on edge (no projected area)
-    add nothing, and where the selected triangles face both ways (a closed mesh, normals
-    outward) only those facing down are kept.  Triangles that overlap seen from below
-    (a mesh that is not a single surface) would count twice.  ``mesh``: a file read as :func:`asperity.read_surface` reads meshes
-    (``.stl .obj .ply``; ``unit`` required, the files carry none) or a TriangleMesh.
+    """The contact patch of a triangle mesh resting on a plane, sampled as a polygon.
+
+    The patch is made of the triangles whose three vertices lie within ``tolerance`` of
+    the mesh's lowest point, projected on the x-y plane -- a flat bottom, a rim, several
+    feet.  Their union is sampled as :func:`asperity.polygon_footprint` samples a polygon
+    (the boundary edges of the projected triangles, so that edges shared by two triangles
+    cancel).
+
+    Parameters
+    ----------
+    mesh : str, os.PathLike or TriangleMesh
+        A file read as :func:`asperity.read_surface` reads meshes (``.stl .obj .ply``), or
+        a ``TriangleMesh`` (m).
+    unit : str or None, optional
+        Length unit of a mesh file (required for a file: the files carry none).
+    tolerance : float or None, optional
+        m, in [0, 1e3]; None (default): 1e-3 of the mesh's largest extent.
+    contact_points : int or None, optional
+        About how many points, in [1, 1e6]; None: 1024.
+    profile : str, optional
+        "uniform" (default) or "linear" (fixed by ``centre_of_pressure``).
+    centre_of_pressure : (2,) array_like of float, optional
+        (x, y), m, of a "linear" profile in the centred frame, inside the patch's core;
+        default (0, 0).
+
+    Returns
+    -------
+    Footprint
+        kind "mesh", its outline the patch's boundary edges (NaN rows between loops);
+        ``info`` holds ``faces`` (triangles in the patch), ``tolerance_m``, ``lowest_z_m``
+        and ``source``.
+
+    Raises
+    ------
+    InputError
+        A file that is not a triangle mesh, no triangle with an area seen from below within
+        ``tolerance`` of the lowest point (raise ``tolerance``), a value outside its range.
+
+    See Also
+    --------
+    asperity.polygon_footprint, asperity.read_surface, asperity.read_body
+
+    Notes
+    -----
+    Triangles standing on edge (no projected area) add nothing, and where the selected
+    triangles face both ways (a closed mesh, normals outward) only those facing down are
+    kept.  Triangles that overlap seen from below (a mesh that is not a single surface)
+    would count twice.
 
     What it is not: a contact solution.  It assumes the part rests on the plane with the
-    patch flat on it (rigid part, rigid support), pressure by ``profile``."""
+    patch flat on it (rigid part, rigid support), pressure by ``profile``.
+
+    Examples
+    --------
+    A pyramid on its 20 x 20 mm base: the patch is the base (two triangles), centred on
+    its centroid, I/m = (a^2 + b^2)/12:
+
+    >>> from asperity.surface.topography import TriangleMesh
+    >>> v = [[0, 0, 0], [0.02, 0, 0], [0.02, 0.02, 0], [0, 0.02, 0], [0.01, 0.01, 0.01]]
+    >>> f = [[0, 2, 1], [0, 3, 2], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]
+    >>> fp = asperity.mesh_patch(TriangleMesh(v, f, "pyramid"), contact_points=100)
+    >>> fp.n, fp.info["faces"], round(fp.area, 6), f"{fp.inertia_per_mass:.4e}"
+    (100, 2, 0.0004, '6.6667e-05')
+    """
     from os import PathLike
 
     from ..errors import check_instance

@@ -54,7 +54,33 @@ SIDES = ("body", "ground")
 
 @dataclass(frozen=True)
 class CrawlSettings:
-    """tol: relative tolerance of a step's equation; max_iterations: of each Newton solve."""
+    """The step solver's settings of a crawl.
+
+    Parameters
+    ----------
+    tol : float, optional
+        Relative tolerance of a step's equation, in [1e-15, 1e-3] (default 1e-12).
+    max_iterations : int, optional
+        Most iterations of each Newton solve, in [1, 1e6] (default 200); a step that does
+        not converge stops the run (``status`` "not-converged").
+
+    Raises
+    ------
+    InputError
+        A value outside its range.
+
+    See Also
+    --------
+    asperity.crawl
+
+    Examples
+    --------
+    >>> settings = asperity.CrawlSettings(tol=1e-10)
+    >>> run = asperity.crawl(mu_f=0.11, mu_b=0.19, mu_t=0.2, quasi_static=True,
+    ...                      settings=settings)
+    >>> run.status, run.max_iterations_used <= settings.max_iterations
+    ('ok', True)
+    """
 
     tol: float = 1e-12
     max_iterations: int = 200
@@ -66,12 +92,53 @@ class CrawlSettings:
 
 def coefficient_law(mu_f: float, mu_b: float, mu_t: float, rule: str = "componentwise"
                     ) -> PlanarLaw:
-    """The law of three coefficients as the snake literature states them (forward = +x,
-    towards the head for a texture on the body; backward; transverse), by ``rule``:
-    ``componentwise`` (Hu et al.: each component of the unit slip scaled by its own
-    coefficient), ``associated`` (maximum dissipation on the two half-ellipses of semi-axes
-    (mu_f | mu_b, mu_t): Antoni et al.'s truncated ellipse) or ``colinear`` (the force
-    opposite to the slip, its size the radius of that set)."""
+    """The friction law of three coefficients as the snake literature states them.
+
+    Forward is +x: towards the head for a texture on the body.  The set of admissible
+    forces is two half-ellipses of semi-axes (mu_f or mu_b, mu_t); the rules agree for pure
+    forward, backward and transverse slip and differ in between (SPEC.md 9).
+
+    Parameters
+    ----------
+    mu_f : float
+        Forward coefficient (+x), in [1e-6, 100].
+    mu_b : float
+        Backward coefficient (-x), in [1e-6, 100].
+    mu_t : float
+        Transverse coefficient (+-y), in [1e-6, 100].
+    rule : str, optional
+        "componentwise" (default; Hu et al.: each component of the unit slip scaled by
+        its own coefficient), "associated" (maximum dissipation on the half-ellipses:
+        Antoni et al.'s truncated ellipse) or "colinear" (the force opposite to the slip,
+        its size the radius of that set).
+
+    Returns
+    -------
+    PlanarLaw
+        The law, as :func:`asperity.componentwise_law`,
+        :func:`asperity.truncated_ellipse_law` or :func:`asperity.collinear_law` build it.
+
+    Raises
+    ------
+    InputError
+        A coefficient outside its range, an unknown rule.
+
+    See Also
+    --------
+    asperity.crawl, asperity.componentwise_law, asperity.truncated_ellipse_law
+
+    Examples
+    --------
+    Sliding at 45 deg to the body's axis, the three rules give three forces (per unit
+    load, the force of slip direction psi):
+
+    >>> for rule in ("componentwise", "associated", "colinear"):
+    ...     law = asperity.coefficient_law(0.11, 0.19, 0.2, rule)
+    ...     print(rule, law.force(np.array([np.pi / 4]))[0].round(4).tolist())
+    componentwise [0.0778, 0.1414]
+    associated [0.053, 0.1752]
+    colinear [0.0964, 0.0964]
+    """
     from ..laws.planar import collinear_law, componentwise_law, truncated_ellipse_law
     rule = check_choice("rule", rule, RULES)
     if rule == "componentwise":
@@ -220,11 +287,107 @@ def crawl(law: PlanarLaw | None = None, *, mu_f=None, mu_b=None, mu_t=None,
           steps_per_period: int = STEPS_PER_PERIOD, texture_on: str = "body",
           texture_angle_deg: float = 0.0, weights=None, mass: float = 1.0,
           settings: CrawlSettings = CrawlSettings()) -> CrawlResult:
-    """Crawl a body with ``gait`` (default: the curvature wave of ``amplitude``, ``waves``,
-    ``length``, ``period``: 7, 1, 1 m, 1 s) on ``law`` (or the law of mu_f, mu_b, mu_t by ``rule``) from
-    rest at the origin, heading +x, for ``periods`` periods (default 1 quasi-static, 8
-    dynamic; a dynamic run averages its speed over the second half, the first is its
-    transient).  Returns a :class:`CrawlResult`."""
+    """Crawl a slender body that changes shape on direction-dependent friction (SPEC.md 9).
+
+    The body starts from rest at the origin, heading +x, and moves its shape by ``gait``
+    (default: Hu et al.'s curvature wave) on ``law`` (or the law of ``mu_f``, ``mu_b``,
+    ``mu_t`` by ``rule``), for ``periods`` periods.
+
+    Parameters
+    ----------
+    law : PlanarLaw or None, optional
+        The friction law of each contact point, in the point's frame (t_a along the body's
+        tangent towards the head for a texture on the body); or None and the three
+        coefficients.
+    mu_f, mu_b, mu_t : float or None, optional
+        Forward, backward and transverse coefficients (see
+        :func:`asperity.coefficient_law`); all three, or a ``law``.
+    rule : str, optional
+        How the three coefficients make a law: "componentwise" (default), "associated" or
+        "colinear".
+    gait : Gait or None, optional
+        A prescribed gait (``asperity.crawling.gait``, or a gait file read by
+        ``asperity.crawling.gait_file.read_gait``); None: the curvature wave
+        kappa L = A cos 2 pi (k s / L + t / T) of the four numbers below.
+    amplitude : float or None, optional
+        A = kappa L of the default wave, in [0, 100] (default 7); not with ``gait``.
+    waves : float or None, optional
+        k, waves on the body, in (0, 20] (default 1); not with ``gait``.
+    length : float or None, optional
+        L, m, in [1e-6, 1e6] (default 1); not with ``gait``.
+    period : float or None, optional
+        T, s, in [1e-6, 1e6] (default 1); not with ``gait``.
+    points : int, optional
+        Contact points along the body, at s_i = (i + 1/2) L / N, in [3, 1e5] (default 100).
+    periods : int or None, optional
+        Periods to run, in [1, 1e5]; None: 1 quasi-static, 8 dynamic (a dynamic run averages
+        its speed over the second half, the first is its transient).
+    quasi_static : bool, optional
+        No inertia: the net friction force and torque vanish at every instant (default
+        False: Newton-Euler).
+    g : float, optional
+        Gravity, m/s^2, in [1e-6, 1e4] (default 9.81).
+    steps_per_period : int, optional
+        Time steps per period, in [8, 1e7] (default 200).
+    texture_on : str, optional
+        "body" (default: skin, scales; the law turns with the body's tangent) or "ground"
+        (the law stays in the world frame).
+    texture_angle_deg : float, optional
+        The law's t_a axis from the tangent (body) or from x (ground), deg, in
+        [-360, 360] (default 0).
+    weights : callable, array_like or None, optional
+        The points' mass shares: None (default) uniform, a callable of s (m) giving N
+        values, or N values; each > 0 (normalised).
+    mass : float, optional
+        kg, in [1e-9, 1e9] (default 1).
+    settings : CrawlSettings, optional
+        The step solver's tolerance and iteration limit.
+
+    Returns
+    -------
+    CrawlResult
+        The recorded states ``t``, ``q`` (x, y, theta: the centre of mass and the mean
+        tangent angle), ``u`` (vx, vy, omega), SI, world frame; ``work`` of the gait and
+        ``dissipated`` by friction (J); per period ``speed_per_period`` (body lengths,
+        head-ward positive) and ``drift_per_period`` (rad);
+        ``speed_body_lengths_per_period`` their mean over the averaged periods;
+        ``status`` ("ok", "not-converged" or "non-finite": the run stops at that step,
+        ``message`` says where); ``summary()`` the JSON object of
+        ``asperity crawl --json``.
+
+    Raises
+    ------
+    InputError
+        Neither a law nor all three coefficients, or both; a wave parameter with a
+        ``gait``; a gait that crosses itself; a value outside its range; a run too large.
+
+    See Also
+    --------
+    asperity.coefficient_law, asperity.CrawlSettings, asperity.slide_body
+
+    Notes
+    -----
+    The body frame has its origin at the centre of mass and its orientation at the mean
+    tangent angle; each point carries the load w_i m g and obeys the law turned by its
+    own angle.  Newton-Euler with Moreau's midpoint scheme, exact stick, no
+    regularisation (SPEC.md 4; ``asperity.crawling.solver``'s docstring has the step).
+    Quasi-static: the momentum weighted by 1e-12 against the friction impulse, so the
+    balance holds to 1e-12 of the friction scale; the speed then depends only on the gait
+    and the law (not on g, m or T).
+
+    Examples
+    --------
+    Quasi-static, on a law whose transverse coefficient is far above the forward one, the
+    body follows its own track: the speed approaches J0(A / (2 pi k)) / k = 0.7130 body
+    lengths per period (SPEC.md 9):
+
+    >>> run = asperity.crawl(mu_f=0.1, mu_b=0.1, mu_t=100.0, quasi_static=True)
+    >>> print(f"{run.speed_body_lengths_per_period:.4f}")
+    0.7107
+    >>> run = asperity.crawl(mu_f=0.11, mu_b=0.19, mu_t=0.2, quasi_static=True)
+    >>> print(f"{run.speed_body_lengths_per_period:.4f}", run.status)
+    0.1371 ok
+    """
     from .gait import CurvatureWave, Gait
     law = _check_law(law, mu_f, mu_b, mu_t, rule)
     check_instance("settings", settings, CrawlSettings)

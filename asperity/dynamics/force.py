@@ -17,18 +17,38 @@ class Force:
     """An external load on a sliding body: f(t) = constant + amplitude w(t), evaluated at
     the step midpoints.
 
-    constant, amplitude : 1 to 3 numbers (fx, fy, torque), missing ones 0: the force in N
-        along the world x and y axes (not the texture's: a ``texture_angle_deg`` turns the
-        law, not the force) and the torque in N m about the body's centre, counter-clockwise
-        positive; each within +-1e12
-    period : T in s, in [1e-9, 1e9]
-    waveform : "none" (w = 0: the constant alone), "square" (w = +1 on the first half of
-        each period, -1 on the second) or "sine" (w = sin(2 pi t / T))
-
     Passed as ``force=`` to :func:`asperity.slide_body` and :func:`asperity.simulate_body`
-    (which then need ``t_end``: a loaded body need not come to rest).  A disc of 2 kg at
-    rest on Coulomb friction mu = 0.3, pushed along x by 1.5 times what friction holds,
-    accelerates at F / m - mu g = 1.4715 m/s^2:
+    (which then need ``t_end``: a loaded body need not come to rest).  Calling it,
+    ``force(t)``, gives the (k, 3) load at the times t.
+
+    Parameters
+    ----------
+    constant : array_like of float, optional
+        1 to 3 numbers (fx, fy, torque), missing ones 0 (default all 0): the force in N
+        along the world x and y axes (not the texture's: a ``texture_angle_deg`` turns the
+        law, not the force) and the torque in N m about the body's centre,
+        counter-clockwise positive; each within +-1e12.
+    amplitude : array_like of float, optional
+        The periodic part's amplitude, as ``constant`` (default all 0).
+    period : float, optional
+        T, s, in [1e-9, 1e9] (default 1).
+    waveform : str, optional
+        "none" (default; w = 0: the constant alone), "square" (w = +1 on the first half of
+        each period, -1 on the second) or "sine" (w = sin(2 pi t / T)).
+
+    Raises
+    ------
+    InputError
+        A value outside its range, an unknown waveform.
+
+    See Also
+    --------
+    asperity.slide_body, asperity.simulate_body
+
+    Examples
+    --------
+    A disc of 2 kg at rest on Coulomb friction mu = 0.3, pushed along x by 1.5 times what
+    friction holds, accelerates at F / m - mu g = 1.4715 m/s^2:
 
     >>> from asperity import Force, coulomb_law, disc_footprint, slide_body
     >>> push = Force(constant=(1.5 * 0.3 * 2.0 * 9.81, 0.0))          # N; torque 0

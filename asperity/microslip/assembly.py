@@ -185,10 +185,47 @@ def _field(where: str, check, *args):
 
 
 def load_assembly(path) -> Assembly:
-    """Read an assembly TOML file; one-line AssemblyFileError naming the field.
+    """Read an assembly TOML file: the model, its friction and its load cycle.
 
-    Every number is checked against its physical range (:mod:`asperity.microslip.limits`);
-    ``alpha_T`` is signed (< 0: the part expands less than its support), never 0."""
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The assembly file (layout: the module's docstring, ``asperity.microslip.assembly``;
+        lengths in m, forces in N, temperature changes in K, the strip per metre of width).
+        The files it names (gauge, texture) are relative to its folder.
+
+    Returns
+    -------
+    Assembly
+        A frozen record: ``name``, ``description``, ``model`` ("strip" or "two-node"),
+        ``params`` (the model's numbers, SI), ``friction_table`` (the ``[friction]`` table,
+        unresolved: :func:`asperity.assembly_friction` reads its gauge or texture),
+        ``loading`` (:class:`asperity.Loading`), ``force_at``, ``cycles`` and ``tolerance``
+        (None when the file gives none) and ``folder``.  ``dT_c_closed_form(mu_plus,
+        mu_minus)`` gives the elastic limit of SPEC.md 5, K.
+
+    Raises
+    ------
+    InputError
+        An ``AssemblyFileError`` (an InputError) naming the file and the field: every
+        number is checked against its physical range (``asperity.microslip.limits``);
+        ``alpha_T`` is signed (< 0: the part expands less than its support), never 0.
+
+    See Also
+    --------
+    asperity.assembly_friction, asperity.assess_assembly, asperity.risk_map
+
+    Examples
+    --------
+    The two-node bar of SPEC.md 5, whose elastic limit is
+    dT_c = mu- N (1/k + 2/k_t) / (alpha_T l0) = 41.67 K:
+
+    >>> asm = asperity.load_assembly("surfaces/two-node-spec.toml")
+    >>> asm.name, asm.model, asm.params["k"], asm.friction_table
+    ('two-node-spec', 'two-node', 1000000.0, {'mu_plus': 0.2, 'mu_minus': 0.1})
+    >>> print(f"{asm.dT_c_closed_form(0.2, 0.1):.2f}")                  # K
+    41.67
+    """
     if not isinstance(path, (str, os.PathLike)) or not str(path):
         raise AssemblyFileError(f"an assembly file must be a path, got {_short(path)}")
     p = Path(path)

@@ -44,12 +44,65 @@ def check_axis_and_face(slip_axis_deg, textured):
 def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
                       contact: str = "all-faces", slip_axis_deg: float | None = None,
                       textured: str | None = None) -> Friction:
-    """mu+ and mu- along the slip axis of ``asm``.
+    """The friction coefficients mu+ and mu- along an assembly's slip axis.
 
-    With ``texture`` (a wedge texture or a surface) its friction replaces the source of the
-    file's ``[friction]`` table, whose ``slip_axis_deg`` and ``textured`` still apply unless
-    given here; without it the table's source is used (explicit coefficients, a gauge or a
-    texture file).  ``slip_axis_deg`` and ``textured`` override the table's.
+    Parameters
+    ----------
+    asm : Assembly
+        An assembly read by :func:`asperity.load_assembly`.
+    texture : texture, surface or None, optional
+        A wedge texture or a surface (:func:`asperity.load_texture`,
+        :func:`asperity.load_surface`) whose friction replaces the source of the file's
+        ``[friction]`` table (whose ``slip_axis_deg`` and ``textured`` still apply unless
+        given here).  None (default): the table's source (explicit coefficients, a gauge
+        or a texture file).
+    texture_name : str, optional
+        The texture's name in the result's ``detail`` (default: its kind).
+    contact : str, optional
+        Contact regime of ``texture``: "all-faces" (default) or "windward".  It applies to
+        ``texture`` only; a texture file of the table takes the table's ``contact``.
+    slip_axis_deg : float or None, optional
+        The assembly's +x in the texture's (or gauge's) frame, deg, in [-360, 360]; None:
+        the table's, else the principal direction t_a.  Not with explicit coefficients.
+    textured : str or None, optional
+        Which face carries the texture: "support" or "part" (mu+ and mu- swap); None: the
+        table's, else "support".
+
+    Returns
+    -------
+    Friction
+        ``mu_plus`` (resists sliding of the assembly towards +x over the support),
+        ``mu_minus`` (towards -x), ``source`` ("explicit", "gauge" or "texture") and
+        ``detail``; ``to_dict()`` is the ``friction`` object of ``asperity risk --json``.
+
+    Raises
+    ------
+    InputError
+        A value outside its range; a slip axis or textured face with explicit
+        coefficients; an unreadable gauge or texture file.
+
+    See Also
+    --------
+    asperity.load_assembly, asperity.assess_assembly, asperity.compute_reservoir
+
+    Notes
+    -----
+    With a texture on the support, mu+ = T(psi) and mu- = T(psi + 180 deg), psi the slip
+    axis and T = p . s the tangential friction of the texture; with the texture on the
+    part the two swap (the support slides the other way over it).
+
+    Examples
+    --------
+    The bushing's file names the SPEC.md wedge on its housing (mu_a+ = 0.185697,
+    mu_a- = 0.193238); on the bushing itself the two swap:
+
+    >>> asm = asperity.load_assembly("surfaces/bushing-strip.toml")
+    >>> f = asperity.assembly_friction(asm)
+    >>> print(f.source, f"{f.mu_plus:.6f} {f.mu_minus:.6f}")
+    texture 0.185697 0.193238
+    >>> f = asperity.assembly_friction(asm, textured="part")
+    >>> print(f"{f.mu_plus:.6f} {f.mu_minus:.6f}")
+    0.193238 0.185697
     """
     check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
     check_risk_texture(texture)
@@ -91,16 +144,66 @@ def life_settings(asm: Assembly, cycles, tolerance) -> tuple[float, float | None
 def assess_assembly(asm: Assembly, friction: Friction, *, cycles: float | None = None,
                     tolerance: float | None = None, max_marched: int = 200,
                     dynamic_steps: int | None = None) -> dict:
-    """The verdict of ``asm`` with ``friction``: the JSON object of ``asperity risk --json``.
+    """The ratchet verdict of an assembly with given friction: the JSON object of
+    ``asperity risk --json``.
 
-    cycles        : life to assess (default: the file's ``loading.cycles``, else 1e6)
-    tolerance     : displacement the assembly may drift, m (default: the file's)
-    max_marched   : cycles marched at most while looking for the stabilised cycle
-    dynamic_steps : also solve the assembly by Moreau time-stepping with this many steps
-                    per load segment and report it under ``dynamic``
+    Parameters
+    ----------
+    asm : Assembly
+        An assembly read by :func:`asperity.load_assembly`.
+    friction : Friction
+        Its friction along the slip axis, from :func:`asperity.assembly_friction`.
+    cycles : float or None, optional
+        Life to assess, in [1, 1e15]; None: the file's ``loading.cycles``, else 1e6.
+    tolerance : float or None, optional
+        Displacement the assembly may drift, m, in [1e-9, 1e3]; None: the file's (or
+        none).
+    max_marched : int, optional
+        Cycles marched at most while looking for the stabilised cycle, in [2, 1e6]
+        (default 200).
+    dynamic_steps : int or None, optional
+        Also solve the assembly by Moreau time-stepping (3 cycles) with this many steps
+        per load segment, in [100, 1e7], and report it under ``dynamic``; None (default):
+        not.
 
-    The private key ``_chain`` holds the slider chain (for plots); drop the keys starting
-    with ``_`` before writing JSON.
+    Returns
+    -------
+    dict
+        ``verdict`` ("shakedown", "alternating-slip", "ratchet" or "slides-off"),
+        ``dT_c_K`` and ``dT_c_closed_form_K`` (the elastic limit, K), ``margin``,
+        ``drift_per_cycle_m`` (m, positive towards +x), ``drift_after_cycles_m``,
+        ``cycles_to_tolerance``, the ``assembly``, ``loading`` and ``friction`` it was
+        given and the ``sign_convention``; keys documented in the README.  The private
+        key ``_chain`` holds the slider chain (for plots): drop the keys starting with
+        ``_`` before writing JSON.
+
+    Raises
+    ------
+    InputError
+        A value outside its range.
+
+    See Also
+    --------
+    asperity.load_assembly, asperity.assembly_friction, asperity.assess,
+    asperity.risk_map
+
+    Notes
+    -----
+    The quasi-static ratchet analysis of SPEC.md 5 (:func:`asperity.assess` on the
+    assembly's slider chain).  With mu+ > mu- the assembly creeps towards -x: the two-node
+    bar iff the temperature range exceeds 2 dT_c; for a strip that is necessary, not
+    sufficient (its ends may slip back and forth while its middle sticks).
+
+    Examples
+    --------
+    The two-node bar of SPEC.md 5 cycled over 3 dT_c drifts -5.0e-5 m per cycle:
+
+    >>> asm = asperity.load_assembly("surfaces/two-node-spec.toml")
+    >>> out = asperity.assess_assembly(asm, asperity.assembly_friction(asm), cycles=1000)
+    >>> out["verdict"], round(out["dT_c_K"], 2), round(out["margin"], 3)
+    ('ratchet', 41.67, 1.5)
+    >>> print(f"{out['drift_per_cycle_m']:.4e} m per cycle, towards {out['drift_direction']}")
+    -5.0000e-05 m per cycle, towards -x
     """
     from .. import __version__
     from .verdict import assess

@@ -27,15 +27,79 @@ def risk_map(asm: Assembly, x: tuple[str, object], y: tuple[str, object], textur
              textured: str | None = None, cycles: float | None = None,
              max_marched: int = 200, workers: int | None = 0,
              scheduler: str | None = None, folder=None) -> dict:
-    """Verdict and drift per cycle over a grid of two wedge parameters.
+    """The ratchet verdict and drift per cycle of an assembly over a grid of two wedge
+    parameters (``asperity risk --map``).
 
-    x, y    : (parameter, values), parameter one of :data:`MAP_PARAMS`
-    texture : the wedge texture whose other parameters stay fixed (default: the texture
-              of the assembly file's ``[friction]`` table, with its contact regime)
-    The other arguments as :func:`assembly_friction` and :func:`assess_assembly`.
-    The grid is a study (:mod:`asperity.study`) run by the study engine: ``workers`` 0
-    (default) in this process, N on a local Dask cluster, or ``scheduler`` an existing
-    one; ``folder`` keeps its store (resumable), else a temporary one is used.
+    Parameters
+    ----------
+    asm : Assembly
+        An assembly read by :func:`asperity.load_assembly`.
+    x, y : tuple
+        (parameter, values) of each axis: parameter one of "alpha", "beta" (deg),
+        "mu_alpha", "mu_beta"; 2 to 200 values; two different parameters.
+    texture : WedgeTexture, GaussianWedgeTexture or None, optional
+        The wedge texture whose other parameters stay fixed; None (default): the texture
+        of the assembly file's ``[friction]`` table, with its contact regime.
+    contact : str or None, optional
+        "all-faces" or "windward"; None: the table's, else "all-faces".
+    slip_axis_deg : float or None, optional
+        As :func:`asperity.assembly_friction`.
+    textured : str or None, optional
+        As :func:`asperity.assembly_friction`.
+    cycles : float or None, optional
+        As :func:`asperity.assess_assembly`.
+    max_marched : int, optional
+        As :func:`asperity.assess_assembly` (default 200).
+    workers : int or None, optional
+        0 (default): the cells run in this process; N in [1, 4096]: on a local Dask
+        cluster of N workers; None: the scheduler of ``$ASPERITY_SCHEDULER``, else a local
+        cluster.
+    scheduler : str or None, optional
+        An existing Dask scheduler (its address or scheduler file) to run the cells on.
+    folder : str, os.PathLike or None, optional
+        Keeps the study's store there (a rerun resumes); None (default): a temporary one,
+        removed.
+
+    Returns
+    -------
+    dict
+        The JSON object of ``asperity risk --map --json``: ``map`` holds the axes (``x``,
+        ``y``: parameter and values) and the grids (rows along y, columns along x)
+        ``verdict``, ``drift_per_cycle_m`` (m, positive towards +x), ``mu_plus`` and
+        ``mu_minus`` (None where undefined); besides ``drift_after_cycles_m``, ``cycles``,
+        ``base_texture``, ``assembly``, ``loading`` and the ``sign_convention``.
+
+    Raises
+    ------
+    InputError
+        A bad axis, no wedge texture (a surface cannot be varied), a value outside its
+        range, a cell that fails (named by its parameters).
+
+    See Also
+    --------
+    asperity.assess_assembly, asperity.assembly_friction, asperity.WedgeTexture
+
+    Notes
+    -----
+    The grid is a study (``asperity.study``) run by the study engine, the one code path
+    for sweeps.
+
+    Examples
+    --------
+    The bushing's housing texture over its steep face's angle and its gentle face's
+    coefficient: at alpha = 30 deg, mu_beta = 0.2 it is the SPEC.md wedge
+    (mu_a+ = 0.185697):
+
+    >>> asm = asperity.load_assembly("surfaces/bushing-strip.toml")
+    >>> out = asperity.risk_map(asm, ("alpha", [20.0, 30.0, 40.0]), ("mu_beta", [0.1, 0.2]))
+    >>> for row in out["map"]["verdict"]:
+    ...     print(row)
+    ['alternating-slip', 'alternating-slip', 'ratchet']
+    ['ratchet', 'ratchet', 'ratchet']
+    >>> print(f"{out['map']['mu_plus'][1][1]:.6f}")
+    0.185697
+    >>> print(f"{out['map']['drift_per_cycle_m'][1][1]:.3e}")        # m per cycle
+    2.748e-07
     """
     import numpy as np
 
