@@ -125,7 +125,7 @@ def run(args) -> tuple[dict, object, dict]:
 
 
 def _core(res) -> dict:
-    """The contact's keys (README): ContactResult.to_dict (derive's elastic_contact
+    """The contact's keys (the documentation's file formats): ContactResult.to_dict (derive's elastic_contact
     block) and full_contact."""
     return {**res.to_dict(), "full_contact": res.full_contact}
 

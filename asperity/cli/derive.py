@@ -25,7 +25,7 @@ def add_parser(sub) -> None:
                     "from +x towards +y of the file), mu_a+/- and mu_b+/- (surfaces: along, "
                     "against and across the principal direction found), and the diagnostics "
                     "(self-locking, admissibility, associativity). Give a texture file (TOML, "
-                    "see README), the four wedge flags, or a surface file: a triangle mesh "
+                    "see the documentation's file formats), the four wedge flags, or a surface file: a triangle mesh "
                     "(.stl .obj .ply), a height map (.npy, text matrix) or an instrument file "
                     "(.x3p .mi .sur .opd .datx ..., needs pip install 'asperity[metrology]'); "
                     "a trailing .gz is read too.",

@@ -25,13 +25,13 @@ def add_parser(sub) -> None:
                     "are made from the gauge file by `asperity law`. With --elastic and several "
                     "--pressure values (strictly increasing) one law is fitted a pressure, "
                     "the same kind for each: a law family, written as a version-2 gauge file "
-                    "(README); --plot then draws the members' reservoirs coloured by pressure.",
+                    "(the documentation's file formats); --plot then draws the members' reservoirs coloured by pressure.",
         formatter_class=DefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
     p.add_argument("--law", choices=sorted(LAWS), default="star", help="law to fit")
     p.add_argument("-o", "--output", metavar="GAUGE.json",
-                   help="write the gauge file (versioned JSON, see README); without it only the "
+                   help="write the gauge file (versioned JSON, see the documentation's file formats); without it only the "
                         "fit quality is printed")
     p.add_argument("--directions", type=int, default=720, metavar="N",
                    help="sliding directions fitted (8 to 100000); the law is checked at N more")

@@ -26,7 +26,7 @@ def add_parser(sub) -> None:
         "risk", help="ratchet verdict of an assembly under load cycles, from a texture",
         description="Cumulative microslip check (SPEC.md 5): the texture's friction along the "
                     "assembly's slip axis (mu+ resists sliding towards +x, mu- towards -x), "
-                    "the assembly (two-node model or strip, see README) marched through its "
+                    "the assembly (two-node model or strip, see the documentation's file formats) marched through its "
                     "load cycles until the cycle is stabilised, and the verdict: shakedown (no "
                     "slip after the first cycles), alternating-slip (slip back and forth every "
                     "cycle, no drift), ratchet (a drift every cycle) or slides-off, with dT_c, the margin dT_range/(2 dT_c), the drift per cycle "
@@ -39,7 +39,7 @@ def add_parser(sub) -> None:
         formatter_class=DefaultsHelpFormatter)
     add_source_arguments(p)
     add_elastic_arguments(p)
-    p.add_argument("assembly", metavar="ASSEMBLY.toml", help="assembly file (see README)")
+    p.add_argument("assembly", metavar="ASSEMBLY.toml", help="assembly file (see the documentation's file formats)")
     p.add_argument("--cycles", type=float, default=None, metavar="N",
                    help="load cycles to assess (e.g. 1e6; default: the file's loading.cycles, "
                         "else 1e6)")

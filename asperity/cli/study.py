@@ -12,7 +12,7 @@ from . import add_cluster_arguments, emit, whole_flag
 def add_parser(sub) -> None:
     p = sub.add_parser(
         "study", help="run a study (Monte Carlo, Sobol, grid, scan library) on a Dask cluster",
-        description="Run the cases of a study file (see README, 'Studies') -- derive, fit "
+        description="Run the cases of a study file (see the documentation: the creep-risk tutorial and the file formats) -- derive, fit "
                     "and/or the risk verdict for every sample of the parameters or every "
                     "file of a scan library -- in batches on an embedded local Dask cluster "
                     "(one worker per core) or an existing one (--scheduler), into a SQLite "

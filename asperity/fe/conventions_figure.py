@@ -1,4 +1,4 @@
-"""The README's figure of the Abaqus routines' sign and side conventions
+"""The figure of the Abaqus routines' sign and side conventions
 (``reports/fe_abaqus_conventions.png``): which body carries the texture, the slip of the
 secondary surface, the force on it, and the law's frame in the tangent plane.
 

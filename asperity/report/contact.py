@@ -275,7 +275,7 @@ def section(folder: Path) -> list[str]:
             "along +x and -x; the area-weighted values in the last row). The sawtooth keeps "
             "its area-weighted friction at every load (a sharp crest puts the flanks' area "
             "shares on them; the issue's 0.056 / 0.253 at 1e-3 is an under-resolved contact, "
-            "see README *Load shares from an elastic contact*); the rounded ridge starts at "
+            "see the documentation's elastic-contact tutorial); the rounded ridge starts at "
             "its crest's mu and rises towards the area's values with the load:", "",
             "| case | p/E* | contact | mu(+x) | mu(-x) |", "|---|---|---|---|---|"]
     for name, c in cases.items():

@@ -99,7 +99,7 @@ def section(folder) -> list[str]:
     from ..fe.checks import drag_check
     from ..fe.strip import run_strip_fe
     out += [(f"GetFEM {why} under the system Python (`asperity risk ASSEMBLY --fe getfem`, "
-            "`asperity law GAUGE --gwfl FILE`; README, FE users)."), "",
+            "`asperity law GAUGE --gwfl FILE`; the documentation's gauge-export tutorial)."), "",
             "### Plate dragged in 24 directions (plan view)", "",
             ("A 10 mm square plate (6 x 6 Q1, E = 200 GPa) on the textured support, the "
             "friction an area term written by `law --gwfl` (p(psi) a piecewise-linear table "
