@@ -250,7 +250,8 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
     tiles: K representative windows of W x W pixels are each solved on their own, as if each
     were the whole scan pressed at the nominal pressure, and derived (:func:`asperity.derive`
     with the facets weighted by the contact force).  An estimate from K windows of W,
-    never the whole scan's solution (the module's docstring gives the placement rules).
+    never the whole scan's solution (the placement rules: the docstring of
+    ``asperity.friction.elastic_windows``).
 
     Parameters
     ----------

@@ -124,8 +124,9 @@ def simulate_sliding(texture, psi: float, model: SpringModel = SpringModel(),
                      contact: str = "all-faces") -> SlidingResult:
     """Steady quasi-static sliding of the spring model over a wedge texture in one direction.
 
-    The micro-model behind the closed form (SPEC.md section 2; this module's docstring gives
-    the model, the Coulomb law per tip and the sampling): the reservoir point is
+    The micro-model behind the closed form (SPEC.md section 2; the docstring of
+    ``asperity.texture.springs`` gives the model, the Coulomb law per tip and the
+    sampling): the reservoir point is
     ``p = -lambda_T / lambda_N`` from the spring forces summed over a window of steady
     sliding (eq. 2 there).
 
