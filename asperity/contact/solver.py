@@ -190,7 +190,7 @@ def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
         A perfectly plastic cap H, Pa, above the mean pressure over the defined pixels.
     tol : float, default 1e-8
         The iteration stops when the relative change of the pressure field
-        (sum |dp| / sum p) falls below it, in [1e-15, 0.1]; reported as ``residual``.
+        (``sum |dp| / sum p``) falls below it, in [1e-15, 0.1]; reported as ``residual``.
     max_iterations : int or None, default None
         Iteration limit, in [1, 1e7]; None: 10000.
     initial : (nx, ny) array_like of float or None, default None

@@ -155,7 +155,7 @@ class FacetSurface:
         return int(self.info.get("n_undefined", 0))
 
     def faces(self) -> Faces:
-        """The facets as :class:`~asperity.friction.reservoir.Faces` (views, no copies)."""
+        """The facets as the homogenisation's ``Faces`` (views, no copies)."""
         n = self.gx.size
         mu = np.broadcast_to(np.asarray(self.mu, dtype=float), (n,))
         return Faces(gradient=grid.columns(self.gx, self.gy), mu=mu, weight=self.weight,
