@@ -87,8 +87,8 @@ def solve_load_curve(heights, pixel_size, E_star, pressures, *, boundary="period
     heights, pixel_size, E_star : array_like, float
         As for :func:`asperity.solve_contact`.
     pressures : sequence of float
-        Nominal pressures, Pa, each > 0, 1 to 1000 of them, with the smallest over
-        ``E_star`` in [1e-12, 10].
+        Nominal pressures, Pa, 1 to 1000 of them, each > 0 with ``pressure / E_star`` in
+        [1e-12, 10].
     boundary, hardness, tol, max_iterations, progress, workers : optional
         As for :func:`asperity.solve_contact` (the hardness must exceed the largest
         pressure's mean over the defined pixels).
