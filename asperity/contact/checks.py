@@ -16,7 +16,43 @@ E_RANGE = (1.0, 1e13)
 
 
 def effective_modulus(E1, nu1, E2=None, nu2=None) -> float:
-    """E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2); E2 None: a rigid counterface."""
+    r"""Effective modulus E* of two elastic bodies in contact (SPEC.md section 7).
+
+    Parameters
+    ----------
+    E1 : float
+        Young's modulus of the first body, Pa, > 0.
+    nu1 : float
+        Poisson's ratio of the first body, in (-1, 0.5].
+    E2 : float or None, default None
+        Young's modulus of the second body, Pa, > 0; None (with ``nu2``): a rigid
+        counterface.
+    nu2 : float or None, default None
+        Poisson's ratio of the second body, in (-1, 0.5].
+
+    Returns
+    -------
+    float
+        :math:`E^* = 1 / ((1 - \nu_1^2)/E_1 + (1 - \nu_2^2)/E_2)`, Pa.
+
+    Raises
+    ------
+    asperity.InputError
+        A value out of range, or one of ``E2`` and ``nu2`` without the other.
+
+    See Also
+    --------
+    asperity.solve_contact, asperity.ElasticContact
+
+    Examples
+    --------
+    Steel on a rigid counterface, and steel on aluminium:
+
+    >>> print(f"{asperity.effective_modulus(210e9, 0.3) / 1e9:.2f} GPa")
+    230.77 GPa
+    >>> print(f"{asperity.effective_modulus(210e9, 0.3, 70e9, 0.33) / 1e9:.2f} GPa")
+    58.61 GPa
+    """
     E1 = check_range("E1", E1, 0.0, None, low_open=True, unit="Pa")
     nu1 = check_range("nu1", nu1, -1.0, 0.5, low_open=True)
     c = (1.0 - nu1 * nu1) / E1

@@ -76,14 +76,53 @@ def iter_load_curve(heights, pixel_size, E_star, pressures, *, boundary="periodi
 def solve_load_curve(heights, pixel_size, E_star, pressures, *, boundary="periodic",
                      hardness=None, tol=1e-8, max_iterations=None, progress=None,
                      workers=None) -> list[ContactResult]:
-    """One :class:`ContactResult` per pressure of ``pressures`` (Pa, nominal, as
-    :func:`solve_contact`'s ``pressure``), in the order given.
+    """Contacts at several pressures: a load curve, each solve started from the previous one.
 
-    The pressures are solved in increasing order, each from the previous solution (scaled
-    to its load) on one half-space; the other arguments are :func:`solve_contact`'s (the
-    hardness must exceed the largest pressure's mean over the defined pixels).  A solve
-    that reaches its iteration limit raises :class:`ContactNotConverged` (its pressure in
-    ``.result.pressure_asked``).
+    The pressures are solved in increasing order on one half-space (its spectrum computed
+    once), each from the previous pressure field scaled to its load; the results come back
+    in the order the pressures were given.
+
+    Parameters
+    ----------
+    heights, pixel_size, E_star : array_like, float
+        As for :func:`asperity.solve_contact`.
+    pressures : sequence of float
+        Nominal pressures, Pa, 1 to 1000 of them, each > 0 with ``pressure / E_star`` in
+        [1e-12, 10].
+    boundary, hardness, tol, max_iterations, progress, workers : optional
+        As for :func:`asperity.solve_contact` (the hardness must exceed the largest
+        pressure's mean over the defined pixels).
+
+    Returns
+    -------
+    list of ContactResult
+        One result per pressure, in the order given (see :func:`asperity.solve_contact`).
+
+    Raises
+    ------
+    asperity.InputError
+        An argument out of range (one line naming it).
+    asperity.AsperityError
+        ``ContactNotConverged`` when a solve reaches its iteration limit (its pressure in
+        ``.result.pressure_asked``).
+
+    See Also
+    --------
+    asperity.solve_contact, asperity.ElasticContact
+
+    Examples
+    --------
+    Westergaard's wavy surface (:func:`asperity.solve_contact`): the contact fraction
+    ``(2/pi) asin(sqrt(p/p*))`` is 1/3, 1/2 and full contact at p/p* = 0.25, 0.5, 1.2:
+
+    >>> n, lam, delta, E = 128, 128e-6, 1e-7, 1e9
+    >>> x = np.arange(n) * lam / n
+    >>> h = np.tile(delta * np.cos(2 * np.pi * x / lam)[:, None], (1, 4))
+    >>> p_star = np.pi * E * delta / lam
+    >>> curve = asperity.solve_load_curve(h, lam / n, E, [0.25 * p_star, 0.5 * p_star,
+    ...                                                   1.2 * p_star])
+    >>> print(" ".join(f"{r.area_fraction:.4f}" for r in curve))
+    0.3359 0.5078 1.0000
     """
     if pressures is None or isinstance(pressures, (str, bytes)):
         raise InputError(f"pressures must be a sequence of pressures in Pa, got "

@@ -165,22 +165,78 @@ class ContactResult:
 def solve_contact(heights, pixel_size, E_star, pressure, *, boundary="periodic",
                   hardness=None, tol=1e-8, max_iterations=None, initial=None,
                   progress=None, workers=None) -> ContactResult:
-    """Contact of the rigid surface ``heights`` (m, (nx, ny), axis 0 along x, NaN
-    undefined) pressed at nominal pressure ``pressure`` (Pa, over the whole map's
-    projected area nx dx x ny dy) onto an elastic half-space of effective modulus
-    ``E_star`` (Pa).  See the module's docstring for the problem and the algorithm.
+    """Normal contact of a rigid rough surface pressed onto an elastic half-space (SPEC.md 7).
 
-    boundary       : "periodic" (the map is one period) or "free" (non-periodic)
-    hardness       : None, or a perfectly plastic cap H (Pa), above the mean pressure
-                     over the defined pixels
-    tol            : the iteration stops when the relative change of the pressure field
-                     (sum |dp| / sum p) falls below it; reported as ``residual``
-    max_iterations : iteration limit (default :data:`MAX_ITERATIONS`); reached, it raises
-                     :class:`ContactNotConverged` with the last iterate as ``.result``
-    initial        : None, or a pressure field (nx, ny) to start from (a previous
-                     result's pressure: load curves); scaled to the load
-    progress       : callable(fraction, text), else the active progress bar
-    workers        : threads of the transforms (default: the cores this process may use)
+    Frictionless; the highest points touch first.  Polonsky-Keer constrained conjugate
+    gradient with exact load control (the docstring of ``asperity.contact.solver`` gives
+    the problem and the algorithm).
+
+    Parameters
+    ----------
+    heights : (nx, ny) array_like of float
+        The rigid surface, m, axis 0 along x, NaN undefined (carries no pressure); at
+        least 2 x 2 pixels.
+    pixel_size : float or (float, float)
+        Grid spacing, m: one number or (dx, dy).
+    E_star : float
+        Effective modulus of the half-space, Pa, in [1, 1e13]
+        (:func:`asperity.effective_modulus`).
+    pressure : float
+        Nominal pressure over the whole map's projected area nx dx x ny dy, Pa, > 0 with
+        ``pressure / E_star`` in [1e-12, 10].
+    boundary : {"periodic", "free"}, default "periodic"
+        The map is one period, or a non-periodic scan (zero-padded transforms).
+    hardness : float or None, default None
+        A perfectly plastic cap H, Pa, above the mean pressure over the defined pixels.
+    tol : float, default 1e-8
+        The iteration stops when the relative change of the pressure field
+        (``sum |dp| / sum p``) falls below it, in [1e-15, 0.1]; reported as ``residual``.
+    max_iterations : int or None, default None
+        Iteration limit, in [1, 1e7]; None: 10000.
+    initial : (nx, ny) array_like of float or None, default None
+        A pressure field to start from (a previous result's ``pressure``), scaled to the
+        load.
+    progress : callable or None, default None
+        ``progress(fraction, text)``; None: the active progress bar.
+    workers : int or None, default None
+        Threads of the transforms; None: the cores this process may use.
+
+    Returns
+    -------
+    ContactResult
+        ``pressure``, ``gap``, ``displacement`` (nx, ny) and ``contact`` (bool) fields;
+        ``area_fraction`` of the defined pixels in contact; ``mean_pressure`` and
+        ``max_pressure``, Pa; ``mean_gap`` and ``approach``, m; ``iterations``,
+        ``residual``, ``converged``; ``plastic_fraction``; ``to_dict()`` the keys of
+        ``asperity contact --json``.
+
+    Raises
+    ------
+    asperity.InputError
+        An argument out of range (one line naming it), or a map too large for the memory.
+    asperity.AsperityError
+        ``ContactNotConverged`` when the iteration limit is reached (the last iterate in
+        its ``result``).
+
+    See Also
+    --------
+    asperity.solve_load_curve, asperity.effective_modulus, asperity.ElasticContact
+
+    Examples
+    --------
+    Westergaard's wavy surface ``h = Delta cos(2 pi x / lambda)`` (SPEC.md section 7): below
+    ``p* = pi E* Delta / lambda`` the contact width 2a satisfies
+    ``sin^2(pi a / lambda) = p / p*``, so at ``p = p*/2`` half the period touches, and the
+    peak pressure is ``2 sqrt(p p*)`` = 1.4142 p*:
+
+    >>> n, lam, delta, E = 128, 128e-6, 1e-7, 1e9
+    >>> x = np.arange(n) * lam / n
+    >>> h = np.tile(delta * np.cos(2 * np.pi * x / lam)[:, None], (1, 4))
+    >>> p_star = np.pi * E * delta / lam
+    >>> r = asperity.solve_contact(h, lam / n, E, 0.5 * p_star)
+    >>> print(f"contact {r.area_fraction:.4f}, peak {r.max_pressure / p_star:.4f} p*, "
+    ...       f"converged {r.converged}")
+    contact 0.5078, peak 1.4142 p*, converged True
     """
     z, (dx, dy), E, pbar, boundary, H, n_def = check_inputs(heights, pixel_size, E_star,
                                                             pressure, boundary, hardness)

@@ -50,23 +50,83 @@ class Derivation:
 
 def derive(texture, contact: str = "all-faces", method: str = "closed-form",
            n_directions: int = 72, model=None, progress=None, elastic=None) -> Derivation:
-    """Directional friction of ``texture`` over ``n_directions`` sliding directions.
+    """Directional friction of a texture or surface over equally spaced sliding directions.
 
-    ``texture``: a wedge texture (frame t_a, t_b given: the principal direction is 0) or a
-    :class:`~asperity.surface.facets.FacetSurface` (frame x, y of the file: the principal
-    direction is found, see :func:`principal_direction`, and mu_a+/- are taken along and
-    against it, mu_b+/- at +90 deg from it).
+    The computation behind ``asperity derive``: the reservoir p(psi) at ``n_directions``
+    directions psi_k = 2 pi k / n by the closed form (or the spring simulation), the axis
+    coefficients, and the diagnostics: admissibility, associativity, self-locking.
 
-    method "springs" (wedge textures only) runs the spring-on-wedge simulation
-    (``model``: a SpringModel, the default one if None) for every direction and for the
-    four axis directions, and reports its largest relative deviation from the closed form.
-    ``progress(fraction)`` is called during long facet computations.  A HeightMap or
-    TriangleMesh is taken as its facets (default friction, mean slope removed).
+    Parameters
+    ----------
+    texture : WedgeTexture, GaussianWedgeTexture, FacetSurface, HeightMap or TriangleMesh
+        A wedge texture (frame ``t_a``, ``t_b`` given: the principal direction is 0) or a
+        surface (:func:`asperity.load_surface`; frame x, y of the file: the principal
+        direction is found, and mu_a+/- are taken along and against it, mu_b+/- at +90 deg
+        from it).  A HeightMap or TriangleMesh is taken as its facets (default friction
+        0.1, mean slope removed).
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+    method : {"closed-form", "springs"}, default "closed-form"
+        "springs" (wedge textures only) runs the spring-on-wedge simulation for every
+        direction and the four axis directions, and reports its largest relative deviation
+        from the closed form.
+    n_directions : int, default 72
+        Number of sliding directions, in [8, 100000].
+    model : SpringModel or None, default None
+        The springs of ``method="springs"``; None: ``SpringModel()``.
+    progress : callable or None, default None
+        ``progress(fraction)``, called during long facet computations.
+    elastic : ElasticContact or None, default None
+        One pressure: each face (facet) of a HeightMap or wedge texture weighs the normal
+        force it carries in that elastic contact (SPEC.md section 7); closed form only.
+        Several pressures: :func:`asperity.derive_family`.
 
-    ``elastic``: an :class:`~asperity.surface.contact_facets.ElasticContact` of one
-    pressure: each face (facet) of a HeightMap or wedge texture weighs the normal force it
-    carries in that elastic contact (:mod:`asperity.friction.elastic`); several pressures:
-    :func:`asperity.friction.family.derive_family`.
+    Returns
+    -------
+    Derivation
+        ``reservoir`` (a Reservoir over the directions); ``axes``, the dict of
+        ``mu_a_plus``, ``mu_a_minus``, ``mu_b_plus``, ``mu_b_minus`` (``inf`` where
+        self-locking); ``principal_direction_deg`` (``t_a`` from +x); ``anisotropy``,
+        (max T - min T) / mean T; ``admissibility`` (``p . s >= 0`` everywhere: ``admissible``,
+        ``min_dissipation``); ``associativity`` (``L = dT/dpsi``: ``associated``,
+        ``max_deviation``, ``max_lateral``); ``self_locking``, a list of ``{"psi_deg",
+        "face"}``; ``locking_share``; ``springs`` (method springs); ``texture``,
+        ``contact``, ``method``.
+
+    Raises
+    ------
+    asperity.InputError
+        A texture of another kind, an option out of range, ``method="springs"`` on a
+        surface or with ``elastic``, or several pressures in ``elastic``.
+
+    See Also
+    --------
+    asperity.compute_reservoir, asperity.derive_scan, asperity.derive_family,
+    asperity.fit_derivation
+
+    Notes
+    -----
+    The principal direction of a surface is the axis of the second Fourier harmonic of
+    T(psi) = p . s (a direction and its reverse count alike): the axis along which
+    forwards and backwards together rub most.  A law of maximum dissipation has
+    ``L = dT/dpsi`` (SPEC.md section 1); the wedge models break it.
+
+    Examples
+    --------
+    SPEC.md: the symmetric 30 deg wedge with mu = 0.3 is admissible but not associated
+    (max ``|L - dT/dpsi|`` = 0.012 while max ``|L|`` = 0.055):
+
+    >>> d = asperity.derive(asperity.WedgeTexture(30.0, 30.0, 0.3, 0.3), n_directions=360)
+    >>> a = d.associativity
+    >>> print(d.admissibility.admissible, a.associated,
+    ...       f"{a.max_deviation:.4f} {a.max_lateral:.4f}")
+    True False 0.0116 0.0545
+
+    A face too steep to climb self-locks in a range of directions:
+
+    >>> d = asperity.derive(asperity.load_texture("surfaces/self-locking.toml"))
+    >>> print(len(d.self_locking), d.self_locking[0], f"{d.axes['mu_a_minus']:.4f}")
+    33 {'psi_deg': 0.0, 'face': 'alpha'} 0.3184
     """
     if elastic is not None:
         texture = _elastic_texture(texture, elastic, method)

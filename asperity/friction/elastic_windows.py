@@ -244,13 +244,71 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
                    unit=None, pixel_size=None, height_scale=1.0, detrend="slope", mu=None,
                    friction_map=None, despike=None, despike_window=None, max_slope=None,
                    contact="all-faces", n_directions=72, client=None, source=None) -> dict:
-    """The contact-weighted friction of a height-map file estimated from ``windows``
-    windows of ``window`` x ``window`` pixels (see the module's docstring): the JSON object
-    of ``asperity derive --window`` (README).  ``elastic``: an ElasticContact (boundary
-    None: free) of one pressure, or of several (each window solved as a load curve; the
-    spread given per pressure); ``client``: a dask.distributed Client whose workers solve
-    the windows (reading them from the file's path); ``source``: the file already opened
-    by :func:`asperity.surface.tiles.open_scan`."""
+    """Contact-weighted friction of a height-map file estimated from windows of the scan.
+
+    The elastic contact is long-range, so a scan too large for one solve does not split into
+    tiles: K representative windows of W x W pixels are each solved on their own, as if each
+    were the whole scan pressed at the nominal pressure, and derived (:func:`asperity.derive`
+    with the facets weighted by the contact force).  An estimate from K windows of W,
+    never the whole scan's solution (the placement rules: the docstring of
+    ``asperity.friction.elastic_windows``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The height-map file.
+    elastic : ElasticContact
+        One pressure, or several (each window solved as a load curve; the spread given per
+        pressure); boundary None: free.
+    window : int
+        Window side, pixels, >= 16 and at most the scan's smaller side.
+    windows : int, default 8
+        Number of windows K, in [1, 10000] (at most one a distinct position is solved).
+    placement : {"grid", "random"}, default "grid"
+        A regular grid from edge to edge, or a uniform origin in each of K strata.
+    seed : int, default 0
+        Seed of the random placement, >= 0.
+    unit, pixel_size, height_scale, detrend, mu, friction_map : optional
+        As for :func:`asperity.load_surface` (each window is prepared as a scan of its own).
+    despike, despike_window, max_slope : optional
+        As for :func:`asperity.load_surface`.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+    n_directions : int, default 72
+        Number of sliding directions, in [8, 100000].
+    client : distributed.Client or None, default None
+        A dask.distributed client whose workers solve the windows (reading them from the
+        file's path).
+    source : LineSource or None, default None
+        The file already opened by ``asperity.surface.tiles.open_scan``.
+
+    Returns
+    -------
+    dict
+        The JSON object of ``asperity derive --window`` (README): ``estimate`` (what it is),
+        ``windows`` (asked, solved, used, skipped, redrawn), and for ``area_fraction``,
+        ``mu_a_plus``, ``mu_a_minus``, ``mu_b_plus``, ``mu_b_minus`` the ``mean``, ``sd``,
+        ``min``, ``max`` and ``n`` over the windows; ``directions`` the same per direction.
+
+    Raises
+    ------
+    asperity.InputError
+        An option out of range, a window larger than the scan, too little memory for a
+        window, or no window with 80 % of its pixels defined.
+
+    See Also
+    --------
+    asperity.load_elastic, asperity.derive_scan, asperity.ElasticContact
+
+    Examples
+    --------
+    >>> w = asperity.derive_windows("surfaces/scan-ridges.txt",
+    ...                             asperity.ElasticContact(E_star=1e9, pressure=1e7),
+    ...                             window=32, windows=4, mu=0.15)
+    >>> print(w["windows"]["used"], "windows:", f"contact {w['area_fraction']['mean']:.4f},",
+    ...       f"mu_a+ {w['mu_a_plus']['mean']:.4f} +- {w['mu_a_plus']['sd']:.4f}")
+    4 windows: contact 0.1338, mu_a+ 0.1408 +- 0.0023
+    """
     from .window_summary import summarise_family
     plan, results = _run(path, elastic, True, window, windows, placement, seed, unit,
                          pixel_size, height_scale, detrend, mu, friction_map, despike,

@@ -142,16 +142,139 @@ def faces_source(texture):
 
 
 def compute_reservoir(texture, psi, contact: str = "all-faces", progress=None) -> Reservoir:
-    """Reservoir points p(psi) of a texture or surface (anything with ``faces()``, or a
-    HeightMap/TriangleMesh), psi in radians."""
+    """Reservoir points p(psi) of a texture or surface for the sliding directions ``psi``.
+
+    The closed-form homogenisation of SPEC.md section 2: each face's reservoir point,
+    averaged over the faces in contact with their horizontal-area weights.  A few faces
+    (wedge textures) go through the NumPy reference, many (surfaces) through the streamed
+    numba kernel of :func:`asperity.compute_facet_reservoir`; both give the same result.
+
+    Parameters
+    ----------
+    texture : WedgeTexture, GaussianWedgeTexture, FacetSurface, HeightMap or TriangleMesh
+        Anything with ``faces()`` (a wedge texture, :func:`asperity.load_surface`'s
+        surface), or a height map or mesh of :func:`asperity.read_surface`, taken as its
+        facets (default local friction 0.1, mean slope removed as by ``load_surface``).
+    psi : float or array_like
+        Sliding directions, radians from ``t_a`` towards ``t_b`` (the file's x towards y
+        for a surface), a number or a 1-d array of finite angles within +-1e4.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime: compliant springs touch every face (Antoni et al.), or rigid
+        asperities load only the faces the motion climbs (Michalowski-Mroz).
+    progress : callable or None, default None
+        ``progress(fraction)`` called during long kernel runs.
+
+    Returns
+    -------
+    Reservoir
+        ``psi`` (m,) radians; ``p`` (m, 2), ``p = -lambda_T / lambda_N`` in the
+        (t_a, t_b) frame, dimensionless, ``inf`` in self-locking rows; ``locked`` (m,)
+        bool; ``locked_face`` (m,) int, the first self-locking face (-1: none);
+        ``set_valued`` (m,) bool; ``contact``.  Its properties ``tangential`` (T = p . s)
+        and ``lateral`` (L = p . s_perp) are (m,) arrays.
+
+    Raises
+    ------
+    asperity.InputError
+        A texture of another kind, a direction out of range or NaN, an unknown contact
+        regime, or (windward) a direction in which every face descends.
+
+    See Also
+    --------
+    asperity.compute_axis_coefficients : The four axis directions only.
+    asperity.derive : Every direction with the axis coefficients and the diagnostics.
+    asperity.compute_facet_reservoir : The same from arrays of facet gradients.
+    asperity.simulate_reservoir : The spring simulation behind the closed form.
+
+    Notes
+    -----
+    A tip sliding in the horizontal direction ``s`` on a face of gradient ``g``, upward
+    unit normal ``m`` and local friction ``mu`` moves with the lifted velocity
+    ``v = (s, g . s)``; the contact force on it is proportional to ``F = m - mu v/|v|``, and
+    the face's point is ``p_f = -F_h / F_z`` (horizontal over vertical part, the sign
+    making it resist the motion).  Where ``F_z <= 0`` on a loaded face the tip cannot
+    climb: the direction self-locks, flagged in ``locked`` and never returned as NaN.
+    Windward contact is set-valued when no face is climbed but some are level with the
+    motion (sliding exactly along the ridges): the point returned is the all-faces
+    average of the level faces, which lies on that segment, and ``set_valued`` is True.
+
+    Examples
+    --------
+    SPEC.md's windward check: the symmetric 30 deg wedge with mu = 0.3 has a non-convex,
+    star-shaped reservoir with a jump when sliding along the ridges:
+
+    >>> tex = asperity.WedgeTexture(30.0, 30.0, 0.3, 0.3)
+    >>> r = asperity.compute_reservoir(tex, np.radians([0.0, 89.0, 90.0, 91.0]),
+    ...                                contact="windward")
+    >>> print(f"|p| = {np.hypot(*r.p[0]):.3f} at psi = 0")
+    |p| = 1.061 at psi = 0
+    >>> r.p[1:].round(3)
+    array([[ 0.585,  0.348],
+           [ 0.   ,  0.346],
+           [-0.585,  0.348]])
+    >>> r.set_valued
+    array([False, False,  True, False])
+    """
     return compute_faces_reservoir(faces_source(texture).faces(), psi, contact, progress)
 
 
 def compute_axis_coefficients(texture, contact: str = "all-faces") -> dict:
-    """mu_a+, mu_a-, mu_b+, mu_b- = p . s for psi = 0, 180, 90, 270 deg (inf if self-locking).
+    """Friction coefficients along the axes: mu_a+, mu_a-, mu_b+, mu_b- of a texture.
 
-    Sliding exactly along the ridges in the windward regime is set-valued; the value
-    returned there is that of the level faces' average (see module docstring).
+    Each is ``T = p . s``, the friction force per unit normal load along the sliding
+    direction, for psi = 0, 180, 90 and 270 deg (sliding along ``+t_a``, ``-t_a``,
+    ``+t_b``, ``-t_b``), by the closed form of :func:`asperity.compute_reservoir`.
+
+    Parameters
+    ----------
+    texture : WedgeTexture, GaussianWedgeTexture, FacetSurface, HeightMap or TriangleMesh
+        As for :func:`asperity.compute_reservoir`.  A surface is read in its file's frame
+        (``t_a`` = +x); :func:`asperity.derive` finds a surface's principal direction.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+
+    Returns
+    -------
+    dict
+        ``{"mu_a_plus", "mu_a_minus", "mu_b_plus", "mu_b_minus"}``, floats,
+        dimensionless; ``inf`` in a self-locking direction.
+
+    Raises
+    ------
+    asperity.InputError
+        A texture of another kind or an unknown contact regime.
+
+    See Also
+    --------
+    asperity.compute_reservoir : Any set of sliding directions.
+    asperity.derive : Every direction, with a surface's principal direction found.
+    asperity.compute_H : The per-face ratio the wedge's closed form is built on.
+
+    Notes
+    -----
+    For the all-faces wedge these are SPEC.md section 2's closed forms, e.g.
+    ``mu_a+ = (H(mu_alpha, alpha) tan beta + H(mu_beta, -beta) tan alpha) /
+    (tan alpha + tan beta)`` and ``mu_b+ = mu_b- = (mu_alpha tan beta / cos alpha +
+    mu_beta tan alpha / cos beta) / (tan alpha + tan beta)``.  Sliding exactly along
+    the ridges in the windward regime is set-valued; the value returned there is that of
+    the level faces' average.
+
+    Examples
+    --------
+    SPEC.md's check values:
+
+    >>> mu = asperity.compute_axis_coefficients(asperity.WedgeTexture(30.0, 10.0, 0.1, 0.2))
+    >>> print(", ".join(f"{k} = {v:.6f}" for k, v in mu.items()))
+    mu_a_plus = 0.185697, mu_a_minus = 0.193238, mu_b_plus = 0.182587, mu_b_minus = 0.182587
+    >>> mu = asperity.compute_axis_coefficients(asperity.WedgeTexture(5.0, 5.0, 0.1, 0.1))
+    >>> print(f"{mu['mu_a_plus']:.6f} {mu['mu_a_minus']:.6f}")
+    0.100773 0.100773
+
+    A face too steep to climb (``mu_alpha tan alpha >= 1``) self-locks:
+
+    >>> locking = asperity.load_texture("surfaces/self-locking.toml")
+    >>> asperity.compute_axis_coefficients(locking)["mu_a_plus"]
+    inf
     """
     psi = np.array([0.0, np.pi, 0.5 * np.pi, 1.5 * np.pi])
     r = compute_reservoir(texture, psi, contact)

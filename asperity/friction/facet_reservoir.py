@@ -224,18 +224,56 @@ def _reduce(acc, first):
 
 def compute_facet_reservoir(gx, gy, mu, weight, psi, contact: str = "all-faces", *,
                             progress=None, batch=None) -> Reservoir:
-    """Reservoir points of n plane facets for the sliding directions ``psi`` (numba).
+    """Reservoir points of n plane facets for the sliding directions ``psi`` (numba kernel).
 
-    gx, gy   : (n,) float, facet gradients dz/dx, dz/dy
-    mu       : float (every facet) or (n,) float, local friction (>= 0)
-    weight   : (n,) float, horizontal-area weights (>= 0, not all zero)
-    psi      : (m,) float, sliding directions in radians
-    contact  : "all-faces" or "windward"
-    progress : optional callable(fraction_done) called after each batch of directions
-    batch    : directions per kernel call (default: about 1e9 facet-directions a call)
+    The same result as the NumPy reference of :func:`asperity.compute_reservoir` (to
+    rounding: the sums are taken in another order), without ever building an (n facets x m
+    directions) array: a parallel kernel streams cache-sized chunks of facets through every
+    direction of a batch; memory O(n + m x threads).
 
-    Same result as :func:`~asperity.friction.faces.compute_face_reservoir` (to rounding);
-    memory O(n + m * threads).
+    Parameters
+    ----------
+    gx, gy : (n,) array_like of float
+        Facet gradients dz/dx and dz/dy, finite.
+    mu : float or (n,) array_like of float
+        Local friction coefficient, the same for every facet or one a facet, in [0, 100].
+    weight : (n,) array_like of float
+        Horizontal-area weights, finite, >= 0 and not all zero.
+    psi : float or array_like
+        Sliding directions, radians from +x towards +y, a number or a 1-d array within
+        +-1e4.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+    progress : callable or None, default None
+        ``progress(fraction_done)``, called after each batch of directions.
+    batch : int or None, default None
+        Directions per kernel call, in [1, 2**31]; None: about 1e9 facet-directions a call.
+
+    Returns
+    -------
+    Reservoir
+        As :func:`asperity.compute_reservoir` returns it; ``locked_face`` is the first
+        self-locking facet in facet order.
+
+    Raises
+    ------
+    asperity.InputError
+        Arrays of mismatched shapes, non-finite values, weights all zero, a friction
+        coefficient or direction out of range, or an unknown contact regime.
+
+    See Also
+    --------
+    asperity.compute_reservoir, asperity.FacetSurface, asperity.derive
+
+    Examples
+    --------
+    The two faces of the SPEC.md wedge, along ``+t_a`` and ``-t_a``:
+
+    >>> ta, tb = np.tan(np.radians([30.0, 10.0]))
+    >>> r = asperity.compute_facet_reservoir([ta, -tb], [0.0, 0.0], [0.1, 0.2], [tb, ta],
+    ...                                      np.radians([0.0, 180.0]))
+    >>> print(" ".join(f"{t:.6f}" for t in r.tangential))
+    0.185697 0.193238
     """
     check_contact(contact)
     b = _check_callables(progress, batch)

@@ -32,9 +32,58 @@ class LawFamily:
 
 def derive_family(texture, elastic, contact: str = "all-faces", n_directions: int = 72,
                   progress=None) -> LawFamily:
-    """The derivation of ``texture`` (a HeightMap or a wedge texture) at every pressure of
-    ``elastic``; or ``texture`` a list of contact-weighted surfaces, one a pressure (what
-    :func:`asperity.surface.contact_facets.load_elastic` returns for ``elastic``)."""
+    """A law family mu(psi; p): the derivation of a texture at every pressure of an elastic contact.
+
+    At each nominal pressure the faces (facets) are weighted by the normal force they carry
+    in the elastic contact (SPEC.md section 7; each contact solve starts from the previous
+    pressure's solution), and derived by :func:`asperity.derive`.  Each member finds its
+    principal direction again (it may turn with the load).
+
+    Parameters
+    ----------
+    texture : HeightMap, WedgeTexture, GaussianWedgeTexture or list of FacetSurface
+        A height map (:func:`asperity.read_surface`) or a wedge texture, or the
+        contact-weighted surfaces, one a pressure, that :func:`asperity.load_elastic`
+        returns for ``elastic``.
+    elastic : ElasticContact
+        The contact; its pressures (Pa) are the family's.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+    n_directions : int, default 72
+        Number of sliding directions of each member, in [8, 100000].
+    progress : callable or None, default None
+        ``progress(fraction)``, called during long facet computations.
+
+    Returns
+    -------
+    LawFamily
+        ``pressures`` (Pa, as given), ``members`` (the :func:`asperity.derive` result at
+        each; ``member.texture.elastic`` holds the contact's figures) and ``elastic``.
+
+    Raises
+    ------
+    asperity.InputError
+        An option out of range, or a list that is not one contact-weighted surface a
+        pressure.
+
+    See Also
+    --------
+    asperity.derive, asperity.ElasticContact, asperity.load_elastic, asperity.GaugeFamily
+
+    Examples
+    --------
+    The sawtooth of flank slopes 0.1 and 0.5 (mu = 0.15) pressed onto E* = 1 GPa: the
+    contact spreads with the load, the friction stays near the area-weighted 0.15724:
+
+    >>> saw = asperity.WedgeTexture(5.71059, 26.5651, 0.15, 0.15)
+    >>> fam = asperity.derive_family(saw, asperity.ElasticContact(1e9, [1e7, 5e7]),
+    ...                              n_directions=8)
+    >>> for p, d in zip(fam.pressures, fam.members):
+    ...     print(f"{p:g} Pa: contact {d.texture.elastic['area_fraction']:.4f}, "
+    ...           f"mu_a+ {d.axes['mu_a_plus']:.5f}")
+    1e+07 Pa: contact 0.1318, mu_a+ 0.15737
+    5e+07 Pa: contact 0.5293, mu_a+ 0.15727
+    """
     from ..surface.contact_facets import check_elastic
     from .derive import derive
     from .elastic import elastic_textures

@@ -111,13 +111,67 @@ def derive_scan(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="
                 despike=None, despike_window=None, max_slope=None, contact="all-faces",
                 n_directions=72, tile_lines=None, client=None, other_contact=None,
                 source=None):
-    """The :class:`~asperity.friction.derive.Derivation` of a height-map file derived in
-    tiles of ``tile_lines`` file lines (default: about :data:`TILE_BYTES` of work each),
-    with the options of :func:`~asperity.surface.facets.load_surface` and
-    :func:`~asperity.friction.derive.derive`.  ``client``: a dask.distributed Client whose
-    workers run the tiles (reading the file themselves: a path they can open);
-    ``other_contact``: also the reservoir of that regime (``d.texture.other``);
-    ``source``: the file already opened by :func:`asperity.surface.tiles.open_scan`."""
+    """Directional friction of a height-map file of any size, derived in tiles of bounded memory.
+
+    The result of ``derive(load_surface(path, ...))`` without ever holding all the facets:
+    the map is read tile by tile in passes (spikes, form and slope; with a bearing fraction
+    the rest level; the reservoir sums of every direction; the axis directions of the
+    principal direction found), each reduced in tile order.  Results agree with the
+    in-memory path to rounding (sums in another order), wherever the tiles run: in this
+    process or as tasks on a Dask cluster.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The height-map file (``.npy``, ``.x3p`` and text matrices stream; other formats are
+        read whole).
+    unit, pixel_size, height_scale, detrend, mu, friction_map : optional
+        As for :func:`asperity.load_surface`.
+    rest_level, bearing_fraction, despike, despike_window, max_slope : optional
+        As for :func:`asperity.load_surface`.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+    n_directions : int, default 72
+        Number of sliding directions, in [8, 100000].
+    tile_lines : int or None, default None
+        File lines per tile, >= 1; None: about 256 MiB of work a tile.
+    client : distributed.Client or None, default None
+        A dask.distributed client whose workers run the tiles, reading the file themselves
+        (a path they can open; a streaming format).
+    other_contact : {"all-faces", "windward"} or None, default None
+        Also the reservoir of that regime (``d.texture.other``).
+    source : LineSource or None, default None
+        The file already opened by ``asperity.surface.tiles.open_scan``.
+
+    Returns
+    -------
+    Derivation
+        As :func:`asperity.derive` returns it; ``texture`` describes the scan (``n_facets``,
+        ``tiling``).
+
+    Raises
+    ------
+    asperity.InputError
+        As for :func:`asperity.load_surface` and :func:`asperity.derive`; a mesh, a map of
+        fewer than 2 x 2 pixels, more than 2e13 facet-directions, or a tile too large for
+        the memory.
+
+    See Also
+    --------
+    asperity.derive, asperity.load_surface, asperity.derive_windows
+
+    Examples
+    --------
+    The 64 x 64 ridged scan in four tiles of 16 lines gives what the whole map gives:
+
+    >>> d = asperity.derive_scan("surfaces/scan-ridges.txt", mu=0.15, tile_lines=16)
+    >>> print(d.texture.tiling["tiles"], "tiles,", d.texture.n_facets, "facets,",
+    ...       f"t_a at {d.principal_direction_deg:.2f} deg, mu_a+ = {d.axes['mu_a_plus']:.6f}")
+    4 tiles, 7938 facets, t_a at 0.32 deg, mu_a+ = 0.157659
+    >>> whole = asperity.derive(asperity.load_surface("surfaces/scan-ridges.txt", mu=0.15))
+    >>> print(f"{whole.axes['mu_a_plus']:.6f}")
+    0.157659
+    """
     from ..surface import quality as Q
     from ..surface.facet_checks import check_options
     from ..surface.facets import DEFAULT_MU, DETREND

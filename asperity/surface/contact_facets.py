@@ -50,17 +50,63 @@ ASSUMPTIONS = ("load shares: the normal force each facet carries in a frictionle
 
 @dataclass(frozen=True)
 class ElasticContact:
-    """Contact-force weighting of a surface's facets.
+    """Contact-force weighting of a surface's facets: the options of the elastic contact.
 
-    E_star         : effective modulus of the elastic half-space, Pa (> 0; see
-                     :func:`asperity.contact.effective_modulus`)
-    pressure       : nominal mean pressure over the map's projected area, Pa (> 0), or a
-                     sequence of them (a family: one law per pressure)
-    boundary       : "periodic", "free", or None (free for files and height maps,
-                     periodic for wedge textures)
-    hardness       : None, or a perfectly plastic cap H, Pa (above every pressure)
-    tol            : relative tolerance of the contact solve
-    max_iterations : iteration limit of the contact solve (None: the solver's)
+    Under a nominal pressure the counter-face touches only the summits, and the elasticity
+    sets how the load shares out between them.  With an ElasticContact the surface is
+    pressed onto an elastic half-space (frictionless normal contact, Polonsky-Keer:
+    :func:`asperity.solve_contact`) and each facet weighs the normal force it carries
+    (SPEC.md section 7); the facet law is unchanged.  The fields are checked when it is made.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus of the elastic half-space, Pa, > 0
+        (:func:`asperity.effective_modulus`).
+    pressure : float or sequence of float
+        Nominal mean pressure over the map's projected area, Pa, > 0; or a sequence of 1 to
+        100 of them (a family: one law per pressure, each solve started from the previous).
+    boundary : {"periodic", "free"} or None, default None
+        ``periodic``: the map is one period (its cells across the edges are facets too);
+        ``free``: a non-periodic scan; None: free for files and height maps, periodic for
+        wedge textures.
+    hardness : float or None, default None
+        A perfectly plastic cap H, Pa, above every pressure.
+    tol : float, default 1e-8
+        Relative tolerance of the contact solve, in [1e-15, 0.1].
+    max_iterations : int or None, default None
+        Iteration limit of the contact solve, in [1, 1e7]; None: the solver's.
+
+    Raises
+    ------
+    asperity.InputError
+        A field that is not a real number or lies outside its range (one line naming it).
+
+    See Also
+    --------
+    asperity.derive, asperity.derive_family, asperity.load_elastic, asperity.solve_contact
+
+    Notes
+    -----
+    The weighting assumes that the normal contact sets the load shares: it stops being right
+    where the pressure reaches the hardness (plastic flow: the cap only clips the pressure)
+    and where sliding redistributes the load (tangential tractions, ploughing, the
+    sliding-induced tilt of the contact are left out).  The load shares are only as good as
+    the contact spots are resolved: give each spot tens of pixels.
+
+    Examples
+    --------
+    The sawtooth of flank slopes 0.1 and 0.5 (mu = 0.15) at p/E* = 1e-2 (area weighting:
+    mu_a+ = 0.15724):
+
+    >>> e = asperity.ElasticContact(E_star=1e9, pressure=1e7)
+    >>> print(e.pressures, e.family)
+    (10000000.0,) False
+    >>> saw = asperity.WedgeTexture(5.71059, 26.5651, 0.15, 0.15)
+    >>> d = asperity.derive(saw, elastic=e)
+    >>> print(f"contact {d.texture.elastic['area_fraction']:.4f}, "
+    ...       f"mu_a+ = {d.axes['mu_a_plus']:.5f}")
+    contact 0.1318, mu_a+ = 0.15737
     """
 
     E_star: float
@@ -214,11 +260,62 @@ def load_elastic(path, elastic: ElasticContact, *, unit=None, pixel_size=None,
                  height_scale=1.0, detrend="slope", mu=None, friction_map=None,
                  despike=None, despike_window=None, max_slope=None,
                  observe=None, grid_step=None) -> list[FacetSurface]:
-    """:func:`.facets.load_surface` with the facets weighted by the contact force: one
-    FacetSurface per pressure of ``elastic`` (boundary ``free`` unless it says otherwise).
-    A height-map or mesh file, read whole (no tiles); ``observe`` as
-    :func:`contact_solutions`'s; ``grid_step`` (m): a mesh's height grid (see
-    :func:`elastic_facets`; None: its default)."""
+    """Read a surface file and weight its facets by the force of an elastic contact.
+
+    :func:`asperity.load_surface` with each facet weighing the normal force it carries when
+    the surface is pressed onto an elastic half-space (:class:`asperity.ElasticContact`):
+    one FacetSurface per pressure.  A height map or a mesh, read whole (no tiles); a mesh is
+    pressed as its upper envelope on a height grid, and each of its triangles weighs the
+    force of the grid nodes it holds.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The height-map or mesh file.
+    elastic : ElasticContact
+        The contact: its pressures, E* and boundary (None: ``free``).
+    unit, pixel_size, height_scale, detrend, mu, friction_map : optional
+        As for :func:`asperity.load_surface`.
+    despike, despike_window, max_slope : optional
+        As for :func:`asperity.load_surface`.
+    observe : callable or None, default None
+        ``observe(result)`` sees each pressure's contact solution first.
+    grid_step : float or None, default None
+        Spacing of a mesh's height grid, m, finite and > 0; None: its default (refused for
+        a height map, which has its own grid).
+
+    Returns
+    -------
+    list of FacetSurface
+        One a pressure, in the order given: the facets in contact, weighted by their normal
+        force (N); ``elastic`` holds the contact's figures (the keys of ``asperity contact
+        --json``: ``area_fraction``, ``max_pressure_Pa``, ``iterations``, ...).
+
+    Raises
+    ------
+    asperity.InputError
+        As for :func:`asperity.load_surface`; a ``grid_step`` for a height map, ``observe``
+        not callable, a periodic boundary for a mesh.
+    asperity.AsperityError
+        ``ContactNotConverged`` when a solve reaches its iteration limit.
+
+    See Also
+    --------
+    asperity.load_surface, asperity.ElasticContact, asperity.derive_family
+
+    Examples
+    --------
+    The ridged 64 x 64 scan at two pressures: the contact grows with the load, and the facets
+    in contact with it:
+
+    >>> surfaces = asperity.load_elastic("surfaces/scan-ridges.txt",
+    ...                                  asperity.ElasticContact(1e9, [1e6, 1e7]), mu=0.15)
+    >>> for s in surfaces:
+    ...     print(f"{s.elastic['pressure_Pa']:g} Pa: {s.n_facets} facets, "
+    ...           f"contact {s.elastic['area_fraction']:.4f}")
+    1e+06 Pa: 237 facets, contact 0.0171
+    1e+07 Pa: 1521 facets, contact 0.1343
+    """
     from ..contact.elastic import BYTES_PER_PIXEL
     elastic = check_elastic(elastic)
     if grid_step is not None:

@@ -62,13 +62,66 @@ PRESSURE_BYTES_PER_PIXEL = 40
 class FacetSurface:
     """The facets of a surface, ready for the facet homogenisation.
 
-    gx, gy   : (n,) float, facet gradients (only facets that carry load)
-    mu       : float (uniform) or (n,) float, local friction
-    weight   : (n,) float, projected area x contact weight, m^2 (> 0); with a pressure
-               field the normal force each facet carries, N
-    info     : what it came from and what was skipped (see :meth:`to_dict`)
-    preview  : small (nx, ny) height array (m) and its physical size, for plots
-    quality  : data-quality figures (:func:`asperity.surface.quality.quality_stats`)
+    Every plane triangle of a mesh or of a triangulated height map is a face of the
+    homogenisation (SPEC.md section 2), in the surface's own frame (x, y of the file: a
+    sliding direction ``psi`` is measured from +x towards +y).  Made by
+    :func:`asperity.load_surface` (or :func:`asperity.load_elastic`), or from a caller's own
+    arrays; the fields are checked when it is made.
+
+    Parameters
+    ----------
+    gx, gy : (n,) array_like of float
+        Facet gradients dz/dx and dz/dy (finite), only facets that carry load; n >= 1.
+    mu : float or (n,) array_like of float
+        Local friction coefficient, uniform or one a facet, in [0, 100].
+    weight : (n,) array_like of float
+        Projected area x contact weight, m^2, finite, >= 0 and not all zero; with a pressure
+        field, the normal force each facet carries, N.
+    info : dict
+        What the facets came from and what was skipped (``source``, ``kind``, ``grid``,
+        ``n_undefined``, ...: the keys of ``to_dict()``).
+    preview : (nx, ny) array_like of float or None, default None
+        A small height array, m (NaN where undefined), for plots.
+    extent : (float, float) or None, default None
+        Physical size (m) of ``preview``, two lengths > 0.
+    quality : dict or None, default None
+        Data-quality figures (spikes, undefined pixels, steep facets; the README's *Data
+        quality*).
+    elastic : dict or None, default None
+        The contact's figures (the keys of ``asperity contact --json``) when the weights are
+        the contact forces of an elastic contact.
+
+    Raises
+    ------
+    asperity.InputError
+        A field of the wrong shape, a non-finite gradient or weight, weights all zero, or a
+        friction coefficient out of range (one line naming the field).
+
+    See Also
+    --------
+    asperity.load_surface, asperity.load_elastic, asperity.derive, asperity.compute_reservoir
+
+    Notes
+    -----
+    A height map ``heights[i, j] = z(x_i, y_j)`` is triangulated cell by cell, each cell
+    split along its (i+1, j)-(i, j+1) diagonal into two triangles of area ``dx dy / 2``; a
+    triangle touching an undefined pixel is skipped.  A mesh's triangles are taken as they
+    are: vertical triangles and triangles facing down while most face up (undersides of
+    overhangs) are skipped and counted.  With a spring rest level ``z0`` a facet weighs
+    ``area x max(z_centroid - z0, 0)``; without, its projected area.
+
+    Examples
+    --------
+    One period of the SPEC.md wedge as two facets, weighted by their horizontal lengths:
+
+    >>> ta, tb = np.tan(np.radians([30.0, 10.0]))
+    >>> s = asperity.FacetSurface(gx=np.array([ta, -tb]), gy=np.zeros(2),
+    ...                           mu=np.array([0.1, 0.2]), weight=np.array([tb, ta]),
+    ...                           info={"source": "one wedge"})
+    >>> s.n_facets
+    2
+    >>> round(asperity.compute_axis_coefficients(s)["mu_a_plus"], 6)
+    0.185697
     """
 
     gx: np.ndarray
@@ -102,7 +155,7 @@ class FacetSurface:
         return int(self.info.get("n_undefined", 0))
 
     def faces(self) -> Faces:
-        """The facets as :class:`~asperity.friction.reservoir.Faces` (views, no copies)."""
+        """The facets as the homogenisation's ``Faces`` (views, no copies)."""
         n = self.gx.size
         mu = np.broadcast_to(np.asarray(self.mu, dtype=float), (n,))
         return Faces(gradient=grid.columns(self.gx, self.gy), mu=mu, weight=self.weight,
@@ -371,17 +424,74 @@ def surface_facets(surface, **kwargs) -> FacetSurface:
 def load_surface(path, *, unit=None, pixel_size=None, height_scale=1.0, detrend="slope",
                  mu=None, friction_map=None, rest_level=None, bearing_fraction=None,
                  despike=None, despike_window=None, max_slope=None) -> FacetSurface:
-    """Read a mesh or height-map file and return its facets.
+    """Read a mesh or height-map file and return its facets, ready for :func:`asperity.derive`.
 
-    detrend: one of :data:`DETREND`: "slope" (default) removes the mean facet gradient
-    (zero mean slope, exact for periodic textures over whole periods); "mean", "plane",
-    "poly2", "poly3" subtract a least-squares polynomial of that degree (form removal)
-    before triangulation; "none" keeps the heights as read.  friction_map: a file (read by
-    :func:`asperity.surface.friction_map.read_friction_map`) or an array.  rest_level (m,
-    from the detrended mean plane) or bearing_fraction (share of the projected area in
-    contact) select the spring rest level; neither: uniform preload.  despike (threshold,
-    with despike_window) marks spikes undefined before the form is removed, max_slope
-    (deg) drops steeper facets (:mod:`asperity.surface.quality`; figures in ``quality``).
+    The file is read by :func:`asperity.read_surface`; spikes are marked undefined, the form
+    removed, and every triangle becomes a facet (:class:`asperity.FacetSurface`, whose Notes
+    say how).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; formats by suffix as for :func:`asperity.read_surface`.
+    unit : str or None, default None
+        Length unit of the file's numbers (m, mm, um, nm, ...), as for ``read_surface``.
+    pixel_size : float or (float, float) or None, default None
+        Grid spacing of a height map in ``unit``, as for ``read_surface``.
+    height_scale : float, default 1.0
+        Factor on the heights after conversion to metres, in [1e-6, 1e6].
+    detrend : {"slope", "none", "mean", "plane", "poly2", "poly3"}, default "slope"
+        "slope" removes the mean facet gradient (zero mean slope, exact for periodic
+        textures over whole periods); "mean", "plane", "poly2", "poly3" subtract a
+        least-squares polynomial of that degree (form removal) before triangulation; "none"
+        keeps the heights as read.
+    mu : float or None, default None
+        Uniform local friction coefficient, in [0, 100]; None: 0.1 (or the friction map).
+    friction_map : str, os.PathLike, array_like or None, default None
+        Local friction per pixel (height map) or per triangle (mesh): a file or an array;
+        not with ``mu``.
+    rest_level : float or None, default None
+        Spring rest level, m from the detrended mean plane: only facets above it touch,
+        each weighing ``area x (z_centroid - rest_level)``; not with ``bearing_fraction``.
+    bearing_fraction : float or None, default None
+        Share of the projected area in contact, in (0, 1], which sets the rest level.
+        Neither: a uniform preload, every facet weighing its projected area.
+    despike : float or None, default None
+        Threshold of the spike filter, robust standard deviations, in [2, 1e6]: pixels that
+        far from the median of their neighbourhood become undefined (height maps only).
+    despike_window : int or None, default None
+        Odd side of the spike filter's window, pixels, in [3, 15] (default 5); needs
+        ``despike``.
+    max_slope : float or None, default None
+        Drop the facets steeper than this, degrees, in (0, 90), after the form removal.
+
+    Returns
+    -------
+    FacetSurface
+        The facets that carry load, with ``info`` (source, grid, what was skipped) and
+        ``quality`` (the data-quality figures).
+
+    Raises
+    ------
+    asperity.InputError
+        A missing or malformed file, an option out of range or given with one it excludes,
+        no facet left, or a surface too large for the memory (one line).
+
+    See Also
+    --------
+    asperity.read_surface, asperity.derive, asperity.derive_scan, asperity.load_elastic
+
+    Examples
+    --------
+    A mesh (micrometres) of four periods of the SPEC.md wedge with one friction value per
+    triangle, and a 64 x 64 height map (two facets a cell):
+
+    >>> s = asperity.load_surface("surfaces/wedge-30-10.stl", unit="um",
+    ...                           friction_map="surfaces/wedge-30-10-friction.txt")
+    >>> print(s.n_facets, f"mu_a+ = {asperity.derive(s).axes['mu_a_plus']:.6f}")
+    16 mu_a+ = 0.185697
+    >>> asperity.load_surface("surfaces/scan-ridges.txt", mu=0.15).n_facets
+    7938
     """
     despike, max_slope = check_surface_options(detrend=detrend, mu=mu, despike=despike,
                                                despike_window=despike_window,

@@ -18,13 +18,57 @@ from ..friction.reservoir import LOCK_TOL
 
 
 def compute_H(x, y):
-    """Tangential/normal force ratio of a tip climbing a face of signed slope angle y.
+    r"""Tangential/normal force ratio of a tip climbing a face of signed slope angle y.
 
-    H(x, y) = (x + tan y) / (1 - x tan y)   (Antoni et al. eq. 8)
+    Parameters
+    ----------
+    x : float or array_like
+        Local friction coefficient of the face, in [0, 100].
+    y : float or array_like
+        Signed slope angle of the face, radians, in (-pi/2, pi/2): positive when the tip
+        climbs, negative when it descends.  ``x`` and ``y`` have one shape, or one of them
+        is a number.
 
-    x : local friction coefficient in [0, 100]; y : signed slope angle in radians, in
-    (-pi/2, pi/2), positive when the tip climbs (numbers or arrays of one shape, or one of
-    them a number).  Returns ``inf`` where ``x tan y >= 1`` (self-locking), never NaN.
+    Returns
+    -------
+    float or numpy.ndarray
+        :math:`H(x, y)`, dimensionless, of the broadcast shape of ``x`` and ``y`` (a NumPy
+        float for two numbers); ``inf`` where :math:`x \tan y \ge 1` (self-locking: the tip
+        cannot climb), never NaN.
+
+    Raises
+    ------
+    asperity.InputError
+        A value outside its range, NaN, or shapes that do not broadcast.
+
+    See Also
+    --------
+    asperity.compute_axis_coefficients : The wedge's mu_a+, mu_a-, mu_b+, mu_b- from it.
+    asperity.WedgeTexture : The texture whose faces it describes.
+
+    Notes
+    -----
+    Antoni et al. eq. 8 (SPEC.md section 2):
+
+    .. math:: H(x, y) = \frac{x + \tan y}{1 - x \tan y}
+
+    Averaged over one wedge period with the faces' horizontal lengths as weights it gives
+    :math:`\mu_{a+} = (H(\mu_\alpha, \alpha)\tan\beta + H(\mu_\beta, -\beta)\tan\alpha) /
+    (\tan\alpha + \tan\beta)` and :math:`\mu_{a-}` likewise, independent of the wedge
+    height and of the springs' stiffness.
+
+    Examples
+    --------
+    A tip climbing a 30 deg face with local friction 0.1, then descending it:
+
+    >>> print(f"{asperity.compute_H(0.1, np.radians(30.0)):.6f}")
+    0.718853
+    >>> print(f"{asperity.compute_H(0.1, np.radians(-30.0)):.6f}")
+    -0.451295
+    >>> print(asperity.compute_H(0.3, np.radians(80.0)))  # 0.3 tan 80 deg > 1: self-locking
+    inf
+    >>> asperity.compute_H(0.2, np.radians([-10.0, 0.0, 10.0])).round(6)
+    array([0.022867, 0.2     , 0.390083])
     """
     x = _check_values("x (local friction)", x, 0.0, 100.0)
     yv = _check_values("y (slope angle)", y, -0.5 * math.pi, 0.5 * math.pi, open_ends=True,

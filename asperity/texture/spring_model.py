@@ -45,16 +45,54 @@ _STATUS_TEXT = {
 
 @dataclass(frozen=True)
 class SpringModel:
-    """Springs carried by the sliding body (see module docstring); ranges in :data:`LIMITS`.
+    """The springs carried by the sliding body in the spring-on-wedge simulation.
 
-    k_n      : N/m, normal stiffness of one spring, [1e-6, 1e12]
-    k_f      : N/m, flexural (tangential) stiffness of one spring, [1e-6, 1e12] or inf
-               (rigid), with k_f/k_n in [1e-6, 1e12]
-    density  : springs per m^2, [1, 1e20]; stresses = density x mean spring force
-    preload  : N, force of a spring whose tip is at z = 0, [-1e6, 1e6]; rest level
-               z_r = -preload/k_n (it must lie below the texture's highest point)
-    n_springs: springs per wedge pitch (stratified along t_a), [1, 1e6]
-    steps_per_period : samples per wedge pitch of travel along t_a, [1, 1e8]
+    Springs of normal stiffness ``k_n`` and flexural stiffness ``k_f``, uniformly spread
+    (``density`` per unit area) and preloaded, with the numerics of the simulation (springs
+    per wedge pitch, samples per pitch).  Ranges are in ``asperity.texture.spring_model.LIMITS``.
+
+    Parameters
+    ----------
+    k_n : float, default 1e3
+        Normal stiffness of one spring, N/m, in [1e-6, 1e12].
+    k_f : float, default inf
+        Flexural (tangential) stiffness of one spring, N/m, in [1e-6, 1e12] with ``k_f/k_n``
+        in [1e-6, 1e12], or ``inf`` (the string "inf" in a file): rigid springs whose tips
+        follow their bases, the limit the closed form describes.
+    density : float, default 1e10
+        Springs per m^2, in [1, 1e20]; stresses are ``density`` x the mean spring force.
+    preload : float, default 0
+        Force of a spring whose tip is at z = 0, N, in [-1e6, 1e6]; the rest level
+        ``z_r = -preload / k_n`` must lie below the texture's highest point.
+    n_springs : int, default 64
+        Springs per wedge pitch (stratified along ``t_a``), in [1, 1e6].
+    steps_per_period : int, default 8000
+        Samples per wedge pitch of travel along ``t_a``, in [1, 1e8].
+
+    Raises
+    ------
+    asperity.InputError
+        A field that is not a real number or lies outside its range (one line naming it).
+
+    See Also
+    --------
+    asperity.simulate_sliding, asperity.simulate_reservoir, asperity.simulate_loading_curve
+
+    Notes
+    -----
+    The friction depends only on ``k_f/k_n`` and ``preload/(k_n h)``.  Before sliding the
+    springs bend: ``k_t`` = ``density`` x ``k_f`` (Pa/m) is the tangential stiffness per unit
+    area of Antoni et al. eq. 10-12 (SPEC.md section 2); ``rigid`` is True when ``k_f`` is
+    infinite.
+
+    Examples
+    --------
+    >>> model = asperity.SpringModel(k_f=1e5, preload=1e-3)
+    >>> z_r = -model.preload / model.k_n
+    >>> print(model.rigid, f"k_t = {model.k_t:.3g} Pa/m, rest level {z_r:g} m")
+    False k_t = 1e+15 Pa/m, rest level -1e-06 m
+    >>> asperity.SpringModel().rigid
+    True
     """
 
     k_n: float = 1.0e3

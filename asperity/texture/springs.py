@@ -122,12 +122,55 @@ LOADING_BYTES_PER_STEP = 200
 
 def simulate_sliding(texture, psi: float, model: SpringModel = SpringModel(),
                      contact: str = "all-faces") -> SlidingResult:
-    """Steady quasi-static sliding in direction psi (radians from t_a towards t_b).
+    """Steady quasi-static sliding of the spring model over a wedge texture in one direction.
 
-    Returns the averaged reservoir point p = -lambda_T/lambda_N (eq. 2 of the module
-    docstring) and its tangential/lateral parts; ``locked`` (p = inf) if a tip
-    self-locks.  Raises InputError for bad input or a kernel failure other than locking,
-    ResourceError (before any work) for a request beyond spring_model.MAX_UPDATES.
+    The micro-model behind the closed form (SPEC.md section 2; the docstring of
+    ``asperity.texture.springs`` gives the model, the Coulomb law per tip and the
+    sampling): the reservoir point is
+    ``p = -lambda_T / lambda_N`` from the spring forces summed over a window of steady
+    sliding (eq. 2 there).
+
+    Parameters
+    ----------
+    texture : WedgeTexture or GaussianWedgeTexture
+        The texture the springs slide over (its ``profile()``).
+    psi : float
+        Sliding direction, radians from ``t_a`` towards ``t_b``, within +-1000.
+    model : SpringModel, default SpringModel()
+        The springs and the numerics.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Every face can carry load, or only the faces the motion climbs.
+
+    Returns
+    -------
+    SlidingResult
+        ``p`` (2,), the averaged ``-lambda_T / lambda_N`` in (t_a, t_b); ``tangential`` and
+        ``lateral``, ``p . s`` and ``p . s_perp``; ``normal_stress``, Pa (``density`` x the
+        mean vertical spring force); ``sliding_fraction`` of the tip-steps in contact;
+        ``locked`` (``p`` = inf, ``locked_face``) if a tip self-locks; ``set_valued``.
+
+    Raises
+    ------
+    asperity.InputError
+        Bad input, a sampling too coarse for the texture, or a kernel failure other than
+        self-locking; a ``ResourceError`` (before any work) for more spring-tip updates than
+        ``asperity.texture.spring_model.MAX_UPDATES``.
+
+    See Also
+    --------
+    asperity.simulate_reservoir, asperity.compute_reservoir, asperity.SpringModel
+
+    Examples
+    --------
+    Rigid springs on the SPEC.md wedge give the closed form's mu_a+ = 0.185697 to the
+    sampling's resolution; with no preload the mean spring force is ``k_n h / 2``:
+
+    >>> tex = asperity.WedgeTexture(30.0, 10.0, 0.1, 0.2)
+    >>> res = asperity.simulate_sliding(tex, 0.0, asperity.SpringModel(n_springs=16,
+    ...                                                              steps_per_period=1000))
+    >>> print(f"T = {res.tangential:.4f}, L = {res.lateral:.4f}, "
+    ...       f"normal stress {res.normal_stress / 1e6:.4f} MPa, locked {res.locked}")
+    T = 0.1859, L = 0.0000, normal stress 5.0000 MPa, locked False
     """
     psi = _check_psi(psi)
     model = _check_model(model)
@@ -164,11 +207,50 @@ def _slide(st, psi, model, N, m, ds, n_steps, tracker) -> SlidingResult:
 
 def simulate_reservoir(texture, psi, model: SpringModel = SpringModel(),
                        contact: str = "all-faces") -> Reservoir:
-    """Reservoir points p(psi) from the spring simulation, as a friction.reservoir.Reservoir.
+    """Reservoir points p(psi) of a wedge texture from the spring simulation.
 
-    psi : (m,) radians.  Self-locking rows hold inf; ``set_valued`` as in the closed form
-    (windward regime, sliding exactly along the ridges).  The work of all directions is
-    checked before the first runs (ResourceError); progress is reported per piece.
+    :func:`asperity.simulate_sliding` for each direction, returned as the closed form's
+    result is (:func:`asperity.compute_reservoir`).  The work of all directions is checked
+    before the first runs; progress is reported per piece.
+
+    Parameters
+    ----------
+    texture : WedgeTexture or GaussianWedgeTexture
+        The texture the springs slide over.
+    psi : float or array_like
+        Sliding directions, radians from ``t_a`` towards ``t_b``: a number or a 1-d array
+        of at most 1e6 angles within +-1000.
+    model : SpringModel, default SpringModel()
+        The springs and the numerics.
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+
+    Returns
+    -------
+    Reservoir
+        ``psi``, ``p`` (m, 2) (``inf`` rows where self-locking), ``locked``,
+        ``locked_face``, ``set_valued`` (windward, sliding exactly along the ridges, as in
+        the closed form), ``contact``; ``tangential`` and ``lateral`` as properties.
+
+    Raises
+    ------
+    asperity.InputError
+        As for :func:`asperity.simulate_sliding` (a ``ResourceError`` for too much work,
+        before any run).
+
+    See Also
+    --------
+    asperity.simulate_sliding, asperity.compute_reservoir, asperity.derive
+
+    Examples
+    --------
+    Along ``+t_a``, ``+t_b`` and ``-t_a`` (closed form: 0.1857, 0.1826, 0.1932):
+
+    >>> tex = asperity.WedgeTexture(30.0, 10.0, 0.1, 0.2)
+    >>> model = asperity.SpringModel(n_springs=16, steps_per_period=1000)
+    >>> r = asperity.simulate_reservoir(tex, np.radians([0.0, 90.0, 180.0]), model)
+    >>> print(" ".join(f"{t:.4f}" for t in r.tangential))
+    0.1859 0.1826 0.1929
     """
     psi = np.array([_check_psi(psi)]) if isinstance(psi, (numbers.Real, bool)) else \
         check_array("psi", psi, ndim=1, min_size=1)
@@ -192,18 +274,67 @@ def simulate_reservoir(texture, psi, model: SpringModel = SpringModel(),
 
 def simulate_loading_curve(texture, psi: float, model: SpringModel, distance: float | None = None,
                            n_steps: int = 2000, contact: str = "all-faces") -> LoadingCurve:
-    """Tangential force-displacement curve from rest to full sliding (finite k_f only).
+    """Tangential force-displacement curve from rest to full sliding (finite ``k_f`` only).
 
     The body starts at rest (step 0: every tip lands under its base and relaxes into its
-    cone, so tips on faces steeper than their friction angle slide down first); then it
-    moves by ``distance`` along s(psi) in ``n_steps`` steps: n_steps//2 equal steps over
-    the first 3 elastic slip lengths (stick to full sliding), the rest equal steps over
-    the remaining distance (uniform steps if the distance is shorter than 6 slip lengths).  While every tip in
-    contact sticks, d sigma_t / d u = density k_f x (fraction of tips in contact): the
-    model's k_t = density k_f when all tips touch (preload > 0).  Default distance:
-    3 elastic slip lengths (module docstring) plus one period of the profile along t_a
-    (L/|cos psi|, at most 10 L), over which ``mu_steady`` is averaged; a distance is at
-    most 1e6 profile periods.
+    cone, so tips on faces steeper than their friction angle slide down first); then it moves
+    by ``distance`` along s(psi) in ``n_steps`` steps: half of them over the first 3 elastic
+    slip lengths (stick to full sliding), the rest over the remaining distance (uniform steps
+    if the distance is shorter than 6 slip lengths).
+
+    Parameters
+    ----------
+    texture : WedgeTexture or GaussianWedgeTexture
+        The texture the springs slide over.
+    psi : float
+        Sliding direction, radians from ``t_a`` towards ``t_b``, within +-1000.
+    model : SpringModel
+        The springs; ``k_f`` must be finite (``inf`` has no elastic stage).
+    distance : float or None, default None
+        Travel, m, in (0, 1e6 profile periods]; None: 3 elastic slip lengths
+        ``(1 + max|p_f| + max mu) k_n (z_max - z_r) / k_f`` plus one period of the profile
+        along ``t_a`` (``L/|cos psi|``, at most 10 L).
+    n_steps : int, default 2000
+        Steps of the motion, in [2, 1e8].
+    contact : {"all-faces", "windward"}, default "all-faces"
+        Contact regime, as for :func:`asperity.compute_reservoir`.
+
+    Returns
+    -------
+    LoadingCurve
+        ``displacement`` (n_steps + 1,), m; ``tangential_stress``, ``lateral_stress``,
+        ``normal_stress``, Pa, and ``sliding_fraction`` at each; ``k_t`` (the model's
+        ``density k_f``, Pa/m) and ``k_t_measured`` (the first step's slope); ``mu_steady``,
+        the travel-weighted ratio of tangential to normal stress over the last period;
+        ``locked`` and ``locked_face``.
+
+    Raises
+    ------
+    asperity.InputError
+        Bad input, ``k_f`` infinite, or a default distance beyond 1e6 periods; a
+        ``ResourceError`` for too many steps for the memory or the work limit.
+
+    See Also
+    --------
+    asperity.SpringModel, asperity.simulate_sliding
+
+    Notes
+    -----
+    While every tip in contact sticks, ``d sigma_t / d u = density k_f`` x the fraction of
+    tips in contact: the model's ``k_t`` when all tips touch (preload > 0), Antoni et al.
+    eq. 10-12 (SPEC.md section 2).
+
+    Examples
+    --------
+    A gentle wedge (5 deg faces, mu = 0.3 > tan 5 deg: every tip sticks at first) with every
+    tip preloaded: the initial slope is ``k_t``, the steady friction the closed form's 0.3025
+    to within ``k_n/k_f``:
+
+    >>> tex = asperity.WedgeTexture(5.0, 5.0, 0.3, 0.3)
+    >>> model = asperity.SpringModel(k_f=1e5, preload=1e-3, n_springs=16)
+    >>> c = asperity.simulate_loading_curve(tex, 0.0, model, n_steps=200)
+    >>> print(f"k_t measured / k_t = {c.k_t_measured / c.k_t:.4f}, mu = {c.mu_steady:.4f}")
+    k_t measured / k_t = 1.0000, mu = 0.3024
     """
     psi = _check_psi(psi)
     model = _check_model(model)

@@ -5,15 +5,10 @@ heights z above the wedges' common base line (the mean line, z = 0).  One wedge 
 face of slope angle ``alpha`` rising towards ``+t_a`` with local friction ``mu_alpha``
 and a face of slope angle ``beta`` falling towards ``+t_a`` with ``mu_beta``.
 
-A texture gives two things:
+A texture gives :meth:`faces` (gradient, friction, horizontal-area weight: all the closed
+form needs) and :meth:`profile` (z(x) over one period, which the springs slide over).
 
-* :meth:`faces` -- the distinct faces as (gradient, friction, horizontal-area weight),
-  all that the closed form needs;
-* :meth:`profile` -- the actual piecewise-linear height profile z(x) over one period of
-  the texture (nodes ``x``, ``z``, period ``L``), which the spring simulation slides over.
-
-Angles are in degrees at the interface (files, CLI) and in radians inside.  Lengths in
-metres.
+Angles in degrees at the interface (files, CLI), in radians inside; lengths in metres.
 """
 from __future__ import annotations
 
@@ -86,11 +81,41 @@ def _check_length(name: str, value, allow_zero: bool = False) -> float:
 
 @dataclass(frozen=True)
 class WedgeTexture:
-    """Periodic sawtooth of identical wedges (Antoni et al. section 3.1).
+    r"""Periodic sawtooth of identical wedges (Antoni et al. section 3.1, SPEC.md section 2).
 
-    alpha_deg, beta_deg : face slope angles in (0, 90) deg
-    mu_alpha, mu_beta   : local friction of the alpha and beta faces, >= 0
-    height              : wedge height h in metres (> 0); the friction does not depend on it
+    Ridges run along ``t_b``; across them a wedge of height ``h`` has a face of slope angle
+    ``alpha`` rising towards ``+t_a`` (local friction ``mu_alpha``) and one of slope angle
+    ``beta`` falling towards ``+t_a`` (``mu_beta``); the period is :math:`h(\cot\alpha +
+    \cot\beta)`.  ``faces()`` gives the two faces (gradients ``(tan alpha, 0)`` and
+    ``(-tan beta, 0)``, weighted by their horizontal lengths), ``profile()`` the height
+    profile z(x) over one period (m) that the springs slide over.
+
+    Parameters
+    ----------
+    alpha_deg, beta_deg : float
+        Slope angles of the alpha and beta faces, degrees, in [1e-6, 90).
+    mu_alpha, mu_beta : float
+        Local (isotropic) friction coefficients of the alpha and beta faces, in [0, 100].
+    height : float, default 1e-6
+        Wedge height ``h``, m, in [1e-10, 100]; the homogenised friction does not depend on it.
+
+    Raises
+    ------
+    asperity.InputError
+        A field that is not a real number or lies outside its range (one line naming it).
+
+    See Also
+    --------
+    asperity.GaussianWedgeTexture, asperity.load_texture, asperity.compute_axis_coefficients
+
+    Examples
+    --------
+    >>> tex = asperity.WedgeTexture(alpha_deg=30.0, beta_deg=10.0, mu_alpha=0.1, mu_beta=0.2)
+    >>> mu = asperity.compute_axis_coefficients(tex)
+    >>> print(f"mu_a+ = {mu['mu_a_plus']:.6f}, mu_a- = {mu['mu_a_minus']:.6f}")
+    mu_a+ = 0.185697, mu_a- = 0.193238
+    >>> print(f"period {tex.profile().period * 1e6:.4f} um for h = {tex.height * 1e6:g} um")
+    period 7.4033 um for h = 1 um
     """
 
     alpha_deg: float
@@ -148,14 +173,39 @@ class GaussianWedgeTexture:
     The wedges stand on one base line (z = 0) at random positions: consecutive wedges are
     separated by flat gaps drawn from an exponential distribution of mean ``mean_gap``.
     Heights are drawn from N(height_mean, height_std) truncated to positive values
-    (non-positive draws are drawn again).  The profile repeats with the total length.
+    (non-positive draws are drawn again).  The profile repeats with the total length.  The
+    closed form is the periodic :class:`asperity.WedgeTexture`'s (SPEC.md section 2).
 
-    alpha_deg, beta_deg, mu_alpha, mu_beta : as for :class:`WedgeTexture`
-    height_mean : mean wedge height, m (> 0)
-    height_std  : standard deviation of the heights, m (>= 0)
-    n_wedges    : number of wedges in one period of the texture (>= 1)
-    seed        : random seed (>= 0), so a texture file always gives the same profile
-    mean_gap    : mean flat gap between wedges, m (>= 0); default: half the mean base width
+    Parameters
+    ----------
+    alpha_deg, beta_deg, mu_alpha, mu_beta : float
+        As for :class:`asperity.WedgeTexture`.
+    height_mean : float
+        Mean wedge height, m, in [1e-10, 100].
+    height_std : float
+        Standard deviation of the heights, m, in [0, 3 ``height_mean``].
+    n_wedges : int, default 200
+        Number of wedges in one period of the texture, in [1, 1e7].
+    seed : int, default 0
+        Random seed (>= 0), so that a texture file always gives the same profile.
+    mean_gap : float or None, default None
+        Mean flat gap between wedges, m, in [0, 100 mean base widths]; None: half the mean
+        base width ``height_mean (cot alpha + cot beta)``.
+
+    Raises
+    ------
+    asperity.InputError
+        A field that is not a real number or lies outside its range (one line naming it).
+
+    Examples
+    --------
+    >>> tex = asperity.GaussianWedgeTexture(30.0, 10.0, 0.1, 0.2, height_mean=5e-6,
+    ...                                     height_std=1.5e-6, n_wedges=100, seed=7)
+    >>> h = tex.heights()
+    >>> print(h.size, bool((h > 0).all()), f"mean gap {tex.mean_gap * 1e6:.4f} um")
+    100 True mean gap 18.5083 um
+    >>> round(asperity.compute_axis_coefficients(tex)["mu_a_plus"], 6)
+    0.185697
     """
 
     alpha_deg: float
@@ -320,5 +370,31 @@ def load_texture_file(path: str | Path) -> TextureFile:
 
 
 def load_texture(path: str | Path) -> Texture:
-    """Read the texture of a TOML texture file."""
+    """Read the texture of a TOML texture file (format: the README's *Texture file format*).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file: a ``[texture]`` table (``kind`` "wedge" or "gaussian-wedge" and the fields
+        of that texture), optional ``name`` and ``description``, and an optional ``[springs]``
+        table (the fields of :class:`asperity.SpringModel`), which is checked too.
+
+    Returns
+    -------
+    WedgeTexture or GaussianWedgeTexture
+        The texture of the ``[texture]`` table.
+
+    Raises
+    ------
+    asperity.InputError
+        A missing or unreadable file, a key missing, unknown or out of range (one line).
+
+    Examples
+    --------
+    >>> tex = asperity.load_texture("surfaces/wedge-asymmetric.toml")
+    >>> tex
+    WedgeTexture(alpha_deg=30.0, beta_deg=10.0, mu_alpha=0.1, mu_beta=0.2, height=5e-06)
+    >>> round(asperity.compute_axis_coefficients(tex)["mu_a_minus"], 6)
+    0.193238
+    """
     return load_texture_file(path).texture

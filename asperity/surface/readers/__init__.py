@@ -111,27 +111,68 @@ def reader_for(path) -> tuple[Reader, str, bool]:
 
 def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0,
                  point_bytes: float = 0.0) -> HeightMap | TriangleMesh:
-    """Read a mesh or height-map file (format by suffix, see the module docstring).
+    """Read a mesh or height-map file, in metres (the format chosen by the file's suffix).
 
-    unit         : length unit of the numbers in the file, one of m, mm, um/µm, nm (long
-                   names such as 'micrometre' too).  Required for meshes, ``.npy``/``.npz``
-                   and text matrices without a value unit in their header; for a text
-                   matrix with a header it overrides the header's height unit.  Files
-                   in instrument formats (x3p too) state their own unit and pixel size;
-                   ``unit`` then reads their numbers in that unit instead (a file written
-                   in another unit than it states), and is required with ``pixel_size``
-                   (both are required when the file lacks them).
-    pixel_size   : grid spacing of a height map in ``unit``, a number or (dx, dy).
-                   Required for ``.npy``/``.npz`` and headerless text matrices; overrides
-                   a header's or an instrument file's sizes (and then needs ``unit``).
-    height_scale : factor in [1e-6, 1e6] applied to the heights (z) after conversion to
-                   metres, e.g. to make nanometre-high AFM relief steep enough for friction
-                   work.
-    point_bytes  : memory per grid point the caller needs beyond reading (load_surface:
-                   the facets); a file whose grid cannot fit is refused before its data is
-                   expanded.
+    Formats (a trailing ``.gz`` is decompressed first, for every format): meshes ``.stl
+    .obj .ply`` (read by trimesh; vertices merged, degenerate triangles dropped and
+    counted); NumPy height maps ``.npy .npz``; ASCII matrices ``.txt .asc .csv .dat`` (one
+    line per y, one column per x, ``nan`` undefined, a Gwyddion-style or ``key=value``
+    header read when present); ISO 25178-72 ``.x3p`` (built-in reader); instrument formats
+    (``.mi .sur .opd .datx .plu .nms`` ...) through SurfaceTopography (the ``metrology``
+    extra).  The README's *Surface files* gives the details.
 
-    Returns a :class:`HeightMap` or a :class:`TriangleMesh`, in metres.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    unit : str or None, default None
+        Length unit of the numbers in the file: m, mm, um/µm, nm (long names such as
+        "micrometre" too).  Required for meshes, ``.npy``/``.npz`` and text matrices without
+        a value unit in their header; for a text matrix with a header it overrides the
+        header's height unit.  Files in instrument formats (x3p too) state their own unit
+        and pixel size; ``unit`` then reads their numbers in that unit instead (a file
+        written in another unit than it states), and is required with ``pixel_size``.
+    pixel_size : float or (float, float) or None, default None
+        Grid spacing of a height map in ``unit``, one number or (dx, dy).  Required for
+        ``.npy``/``.npz`` and headerless text matrices; overrides a header's or an
+        instrument file's sizes (and then needs ``unit``); refused for a mesh.
+    height_scale : float, default 1.0
+        Factor in [1e-6, 1e6] applied to the heights (z) after conversion to metres, e.g. to
+        make nanometre-high AFM relief steep enough for friction work.
+    point_bytes : float, default 0.0
+        Memory per grid point the caller needs beyond reading (``load_surface``: the
+        facets), bytes, in [0, 1e6]; a file whose grid cannot fit is refused before its data
+        is expanded.
+
+    Returns
+    -------
+    HeightMap or TriangleMesh
+        A height map ``heights[i, j] = z(x_i, y_j)`` (m, first index along x, NaN where
+        undefined) with its spacings ``dx``, ``dy`` (m); or a mesh's ``vertices`` (m) and
+        ``faces`` (vertex indices of each triangle).
+
+    Raises
+    ------
+    asperity.InputError
+        A missing file, an unknown suffix or unit, a malformed header or matrix, a pixel
+        size or height outside the physical ranges, or a file too large for the memory (one
+        line naming the file).
+
+    See Also
+    --------
+    asperity.load_surface : The file's facets, ready for the friction.
+    asperity.solve_contact : The elastic contact of a height map.
+
+    Examples
+    --------
+    A 64 x 64 text matrix whose Gwyddion header gives the sizes, and a mesh in micrometres:
+
+    >>> hm = asperity.read_surface("surfaces/scan-ridges.txt")
+    >>> print(hm.heights.shape, f"pixel {hm.dx * 1e6:g} x {hm.dy * 1e6:g} um")
+    (64, 64) pixel 1 x 1 um
+    >>> mesh = asperity.read_surface("surfaces/wedge-30-10.stl", unit="um")
+    >>> print(len(mesh.vertices), "vertices,", len(mesh.faces), "triangles")
+    18 vertices, 16 triangles
     """
     p = surface_path(path)
     hs = check_height_scale(height_scale)
