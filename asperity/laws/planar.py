@@ -200,7 +200,7 @@ class PlanarLaw:
         return float(np.min(np.einsum("ij,ij->i", self.force(psi), unit(psi))))
 
     def axes(self) -> dict:
-        """|p| for sliding along +t_a, -t_a, +t_b, -t_b."""
+        """``|p|`` for sliding along +t_a, -t_a, +t_b, -t_b."""
         f = self.force(np.array([0.0, math.pi, 0.5 * math.pi, 1.5 * math.pi]))
         r = np.hypot(f[:, 0], f[:, 1])
         return {"mu_a_plus": float(r[0]), "mu_a_minus": float(r[1]),
