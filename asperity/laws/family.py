@@ -144,7 +144,8 @@ class GaugeFamily:
     >>> gf.at(2e8)
     Traceback (most recent call last):
     ...
-    asperity.errors.InputError: pressure 2e+08 Pa is outside the law family's pressures ...
+    asperity.errors.InputError: pressure 2e+08 Pa is outside the law family's pressures
+    [1e+07, 1e+08] Pa: no extrapolation; refit the family with a wider --pressure range
     """
 
     pressures: tuple
