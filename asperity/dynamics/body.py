@@ -230,8 +230,9 @@ def simulate_body(points, weights, law: PlanarLaw, *, mass: float, inertia: floa
     Moreau's midpoint scheme (SPEC.md 4 and 8) for ``(x, y, theta)``; every point obeys
     one law, fixed to the support with its t_a axis at ``texture_angle_deg`` from x, and
     carries its share of the weight (no lift-off).  Stick of the whole body is exact
-    (``u = 0`` bit for bit); for a star-shaped C the limit set of the footprint is the sum
-    of the hulls (within ``sqrt(3) max_i w_i`` of it, O(1/N)).
+    (``u = 0`` bit for bit); for a star-shaped C the footprint's limit set is taken as the
+    sum of the hulls of C (Shapley-Folkman-Starr: off by at most
+    ``sqrt(3) max_i w_i m g dt rad(C)``, O(1/N)).
 
     Parameters
     ----------

@@ -330,10 +330,11 @@ def fit_derivation(d, kind: str = "star", holdout: bool = True) -> GaugeLaw:
     ``"truncated-ellipse"``: the 4 semi-axes, least squares on the relative radial error
     ``(rho_E(angle p_k) - |p_k|) / |p_k|`` (associated law, C = D).  ``"star"``: C the
     polygon through the reservoir points, D integrated from the sliding rule
-    ``d ln h_D / d psi = tan(angle(p) - psi)`` (its closure residual spread evenly and
-    reported).  The set-valued directions are resolved by evaluating the texture beside
-    them (closed form); with ``holdout`` the law is compared with the texture at the
-    directions midway between the fitted ones (not used in the fit).
+    ``d ln h_D / d psi = tan(angle(p) - psi)`` (a closure residual is removed by turning
+    every boundary point of D by the same small angle, both reported).  The set-valued
+    directions are resolved by evaluating the texture beside them (closed form); with
+    ``holdout`` the law is compared with the texture at the directions midway between the
+    fitted ones (not used in the fit).
 
     Parameters
     ----------

@@ -244,6 +244,8 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
         memory or time (``ResourceError``).
     SlideOffError
         If the tangential load exceeds what the sliders hold (a physical outcome).
+    SolverError
+        If a load segment's march does not settle or overflows (a numerical failure).
 
     See Also
     --------
