@@ -343,9 +343,72 @@ def simulate(body: Body, u0, *, dt: float, t_end: float, q0=None, force: Force |
 def slide(law: PlanarLaw, u0: float, angle_deg: float, *, mass: float = 1.0, g: float = 9.81,
           dt: float = 1e-4, t_end: float | None = None, record_every: int = 1,
           settings: Settings = Settings()) -> Result:
-    """A point mass launched from the origin at speed u0 (m/s) in direction angle_deg (from
-    t_a towards t_b), sliding until it sticks.  t_end None: until rest (horizon
-    1.5 u0 / (g min_psi p.s) + 10 dt, enough for any admissible law)."""
+    """A point mass launched on a friction law, sliding until it sticks (SPEC.md 4).
+
+    Moreau's midpoint time-stepping with the law's implicit proximal equation, solved by
+    fixed-point iteration; stick is exact (the velocity is set to 0, no drift).  The mass
+    starts at the origin; positions and velocities are in the frame of the law (t_a = x,
+    t_b = y), SI units.
+
+    Parameters
+    ----------
+    law : PlanarLaw
+        The friction law (:func:`~asperity.coulomb_law`, ...).
+    u0 : float
+        Launch speed, m/s, in [0, 1e4].
+    angle_deg : float
+        Launch direction, deg from t_a towards t_b, in [-360, 360].
+    mass : float, optional
+        kg, in [1e-9, 1e9]; default 1 (the motion does not depend on it).
+    g : float, optional
+        Gravity, m/s^2, in [1e-6, 1e4]; default 9.81.
+    dt : float, optional
+        Time step, s, in [1e-9, 1]; default 1e-4.
+    t_end : float, optional
+        End time, s (at least one step).  None (default): until rest, within the horizon
+        ``1.5 u0 / (g min_psi p.s) + 10 dt``, enough for any admissible law.
+    record_every : int, optional
+        Record every this many steps (the first and last state always); default 1.
+    settings : Settings, optional
+        The fixed-point iteration's ``relax`` (in (0, 2)), ``tol`` and ``max_iterations``.
+
+    Returns
+    -------
+    Result
+        ``t`` (k,), ``q`` (k, 2) and ``u`` (k, 2): the recorded times (s), positions (m)
+        and velocities (m/s); ``q_final``, ``u_final``; ``stop_time`` (s, None if still
+        moving); ``steps``; ``status`` (``"ok"``, ``"not-converged"`` or
+        ``"non-finite"``, never silent: see ``status_message()``); ``energy`` (J);
+        iteration counts.
+
+    Raises
+    ------
+    InputError
+        If a number is out of its range or ``law`` is not a PlanarLaw.
+
+    See Also
+    --------
+    asperity.deflection_deg : the angle by which the path bends.
+    asperity.simulate_body : a rigid body with a footprint that slides and spins.
+
+    Notes
+    -----
+    Over a step ``dt``: ``q_M = q_A + dt/2 u_A``, ``M (u_E - u_A) = W Lambda`` (no
+    external force), ``q_E = q_M + dt/2 u_E``.  With isotropic Coulomb friction the mass
+    stops after ``u0 / (mu g)`` s and ``u0^2 / (2 mu g)`` m, along a principal axis of an
+    orthotropic law the same with that axis's coefficient; off-axis the path bends
+    towards the low-friction axis.
+
+    Examples
+    --------
+    Coulomb, mu = 0.3, 1 m/s: ``u0 / (mu g)`` = 0.33979 s, ``u0^2 / (2 mu g)`` = 0.16989 m.
+
+    >>> r = asperity.slide(asperity.coulomb_law(0.3), 1.0, 0.0, dt=1e-4)
+    >>> r.status
+    'ok'
+    >>> print(f"{r.stop_time:.4f} s, {r.q_final[0]:.5f} m")
+    0.3398 s, 0.16989 m
+    """
     check_instance("law", law, PlanarLaw)
     u0 = check_range("u0", u0, *LIMITS["u0"], unit="m/s")
     ang = math.radians(check_range("angle", angle_deg, -360.0, 360.0, unit="deg"))
@@ -360,8 +423,42 @@ def slide(law: PlanarLaw, u0: float, angle_deg: float, *, mass: float = 1.0, g: 
 
 
 def deflection_deg(u0_angle_deg: float, rest) -> float:
-    """Signed angle (deg, in (-180, 180]) from the initial velocity to the line from the start
-    (origin) to the rest point; positive counter-clockwise (towards t_b from t_a)."""
+    """Signed angle by which a slide's path bends: from the launch direction to the rest point.
+
+    Parameters
+    ----------
+    u0_angle_deg : float
+        Launch direction, deg from t_a towards t_b, in [-3600, 3600].
+    rest : array_like, shape (2,)
+        Rest point (m) of a slide that started at the origin (e.g. ``Result.q_final``).
+
+    Returns
+    -------
+    float
+        The angle (deg, in (-180, 180]) from the initial velocity to the line from the
+        origin to ``rest``; positive counter-clockwise (towards t_b from t_a); 0 if the
+        rest point is the origin.
+
+    Raises
+    ------
+    InputError
+        If ``u0_angle_deg`` is out of range or ``rest`` is not two finite numbers.
+
+    See Also
+    --------
+    asperity.slide : the slide whose rest point this measures.
+
+    Examples
+    --------
+    On the ellipse ``mu1 = 0.2`` (t_a), ``mu2 = 0.4`` (t_b), a launch at 45 deg bends
+    towards the low-friction axis t_a:
+
+    >>> r = asperity.slide(asperity.ellipse_law(0.2, 0.4), 1.0, 45.0, dt=1e-4)
+    >>> round(asperity.deflection_deg(45.0, r.q_final), 2)
+    -19.33
+    >>> asperity.deflection_deg(0.0, (1.0, 1.0))
+    45.0
+    """
     a = math.radians(check_range("u0_angle_deg", u0_angle_deg, -3600.0, 3600.0, unit="deg"))
     x, y = (float(v) for v in check_array("rest", rest, shape=(2,)))
     if x == 0.0 and y == 0.0:

@@ -35,21 +35,67 @@ def coulomb_stop_distance(u0: float, mu: float, g: float = 9.81) -> float:
 
 def ratchet_drift_square(F0: float, mass: float, period: float, mu_plus: float,
                          mu_minus: float, g: float = 9.81) -> float:
-    """Drift per cycle (m, along +t_a) of a block on an asymmetric law under the square wave
-    f(t) = +F0 (first half period), -F0 (second half), zero mean.
+    """Drift per cycle of a block on an asymmetric law under a zero-mean square-wave force.
 
-    With mu_minus m g < F0 <= mu_plus m g (the block sticks while pushed towards +t_a and
-    slides when pulled towards -t_a; mu_minus resists motion towards -t_a): starting at rest
-    with the +F0 half, every cycle the block sticks through the first half; in the second it
-    accelerates at a1 = F0/m - mu_minus g for tau = period/2, reaching v1 = a1 tau after
-    a1 tau^2 / 2; in the next +F0 half it decelerates at a2 = F0/m + mu_minus g and stops
-    after v1 / a2 < tau, having moved v1^2 / (2 a2), then sticks again.  Drift per cycle:
+    The force is ``f(t) = +F0`` in the first half period, ``-F0`` in the second; the
+    block starts at rest with the ``+F0`` half.  A closed form beside the Moreau solver.
 
-        -(a1 tau^2 / 2) (1 + a1 / a2)
+    Parameters
+    ----------
+    F0 : float
+        Force amplitude, N, in [0, 1e12].
+    mass : float
+        kg, in [1e-9, 1e9].
+    period : float
+        Period of the square wave, s, in [1e-9, 1e9].
+    mu_plus : float
+        Coefficient resisting motion towards +t_a, in [1e-6, 100].
+    mu_minus : float
+        Coefficient resisting motion towards -t_a, in [1e-6, 100].
+    g : float, optional
+        Gravity, m/s^2, in [1e-6, 1e4]; default 9.81.
 
-    Mirror case mu_plus m g < F0 <= mu_minus m g: +(...) with mu_plus, the block slipping
-    during the +F0 half and stopping in the -F0 half.  F0 below both thresholds: 0.  The
-    formula is refused when F0 exceeds both (slip both ways: no closed form here).
+    Returns
+    -------
+    float
+        Drift per cycle, m, along +t_a (negative: towards -t_a); 0 when ``F0`` is below
+        both slip thresholds.
+
+    Raises
+    ------
+    InputError
+        If a number is out of range, or ``F0`` exceeds both thresholds ``mu_plus m g`` and
+        ``mu_minus m g`` (the block slips both ways: no closed form here).
+
+    See Also
+    --------
+    asperity.truncated_ellipse_law : an asymmetric law.
+    asperity.simulate_microslip : ratcheting of an assembly under thermal cycles.
+
+    Notes
+    -----
+    With ``mu_minus m g < F0 <= mu_plus m g`` the block sticks while pushed towards +t_a
+    and slides when pulled towards -t_a.  Every cycle it sticks through the first half; in
+    the second it accelerates at ``a1 = F0/m - mu_minus g`` for ``tau = period/2``,
+    reaching ``v1 = a1 tau`` after ``a1 tau^2 / 2``; in the next ``+F0`` half it
+    decelerates at ``a2 = F0/m + mu_minus g`` and stops after ``v1 / a2 < tau``, having
+    moved ``v1^2 / (2 a2)``, then sticks again.  Drift per cycle:
+
+    .. math:: d = -\\frac{a_1 \\tau^2}{2} \\left(1 + \\frac{a_1}{a_2}\\right)
+
+    Mirror case ``mu_plus m g < F0 <= mu_minus m g``: ``+d`` with ``mu_plus``, the block
+    slipping during the ``+F0`` half and stopping in the ``-F0`` half.
+
+    Examples
+    --------
+    1 kg, 1.5 N, 1 s, mu+ = 0.2 and mu- = 0.1 (thresholds 1.962 and 0.981 N):
+
+    >>> print(f"{asperity.ratchet_drift_square(1.5, 1.0, 1.0, 0.2, 0.1):.6f}")
+    -0.078446
+    >>> print(f"{asperity.ratchet_drift_square(1.5, 1.0, 1.0, 0.1, 0.2):.6f}")
+    0.078446
+    >>> asperity.ratchet_drift_square(0.5, 1.0, 1.0, 0.2, 0.1)
+    0.0
     """
     F0 = check_range("F0", F0, 0.0, 1e12, unit="N")
     mass = check_range("mass", mass, *LIMITS["mass"], unit="kg")

@@ -98,9 +98,55 @@ def _sides(data: ReservoirData):
 
 @dataclass(frozen=True)
 class GaugeFamily:
-    """pressures: nominal pressures (Pa, strictly increasing); members: a GaugeLaw at each
-    (one kind, one source but for each member's ``source["elastic_contact"]``, fitted at
-    the same sliding directions)."""
+    """A law family: one fitted law per nominal pressure of an elastic contact.
+
+    What ``asperity fit --elastic E --pressure P1 P2 ...`` fits and a version-2 gauge file
+    holds.  ``at(p)`` gives the law at any pressure in [first, last]: a member's own law at
+    its pressure; in between, linear in ``ln p`` (the weight
+    ``w = ln(p / p_k) / ln(p_k+1 / p_k)``) -- a truncated ellipse's semi-axes and
+    direction t_a, or a star law refitted through the interpolated reservoir points;
+    outside, refused (no extrapolation).
+
+    Parameters
+    ----------
+    pressures : sequence of float
+        Nominal pressures (Pa, > 0, strictly increasing), one per member.
+    members : tuple of GaugeLaw
+        1 to 100 fitted laws (:func:`~asperity.fit_derivation`), one a pressure: one kind,
+        one source but for each member's ``source["elastic_contact"]`` (whose pressure is
+        the member's), fitted at the same sliding directions.
+
+    Raises
+    ------
+    InputError
+        If the pressures are not positive and strictly increasing, or the members do not
+        match them or one another (kind, source, contact, sliding directions).
+
+    See Also
+    --------
+    asperity.derive_family : the derivations at each pressure.
+    asperity.write_gauge, asperity.read_gauge : the version-2 gauge file.
+    asperity.ElasticContact : the contact options.
+
+    Examples
+    --------
+    The SPEC.md wedge pressed onto E* = 1 GPa at 10 and 100 MPa:
+
+    >>> tex = asperity.load_texture("surfaces/wedge-asymmetric.toml")
+    >>> fam = asperity.derive_family(tex, asperity.ElasticContact(1e9, [1e7, 1e8]))
+    >>> laws = tuple(asperity.fit_derivation(d, "truncated-ellipse") for d in fam.members)
+    >>> gf = asperity.GaugeFamily(fam.pressures, laws)
+    >>> [round(m.law.C.mu_a_plus, 5) for m in gf.members]
+    [0.1855, 0.18527]
+    >>> gl = gf.at(3e7)
+    >>> print(f"{gl.law.C.mu_a_plus:.5f}", round(gl.source["elastic_contact"]["weight"], 4))
+    0.18539 0.4771
+    >>> gf.at(2e8)
+    Traceback (most recent call last):
+    ...
+    asperity.errors.InputError: pressure 2e+08 Pa is outside the law family's pressures
+    [1e+07, 1e+08] Pa: no extrapolation; refit the family with a wider --pressure range
+    """
 
     pressures: tuple
     members: tuple

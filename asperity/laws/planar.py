@@ -97,10 +97,48 @@ def scale_set(S, c: float):
 class PlanarLaw:
     """A friction law of the solver: a Walker-Leine pair (C, D) with a name.
 
-    name : one of LAW_NAMES
-    law  : the WalkerLeineLaw (C reservoir, D sliding set); ``law.force(psi)`` is the
-           sliding force per unit normal load
-    description : one line saying what the law is
+    Forces are per unit normal load, in the frame of the law (``t_a`` = x, ``t_b`` = y).
+    Inside the solver a non-associated law's D is shrunk to the largest copy that fits in
+    C (D matters only up to scale, SPEC.md 3), so that ``alpha <= 1``.
+
+    Parameters
+    ----------
+    name : str
+        One of ``"coulomb"``, ``"ellipse"``, ``"truncated-ellipse"``, ``"collinear"``,
+        ``"componentwise"``, ``"star"``.
+    law : WalkerLeineLaw
+        C the reservoir, D the (convex) sliding set; ``law.force(psi)`` is the sliding
+        force per unit normal load.
+    description : str, optional
+        One line saying what the law is (at most 1000 characters).
+
+    Attributes
+    ----------
+    associated : bool
+        C and D are the same set (the solver's prox is onto C alone).
+
+    Raises
+    ------
+    InputError
+        If ``name`` is not one of these, ``law`` not a WalkerLeineLaw or its D not convex.
+
+    See Also
+    --------
+    asperity.coulomb_law, asperity.law_from_gauge : built-in laws (and those they list).
+    asperity.slide : a point mass sliding on a law.
+
+    Examples
+    --------
+    Antoni et al.'s figure 7 ellipse (SPEC.md 3) as an associated law:
+
+    >>> C = asperity.TruncatedEllipse(0.2, 0.08, 0.12, 0.15)
+    >>> law = asperity.PlanarLaw("truncated-ellipse", asperity.WalkerLeineLaw(C, C))
+    >>> law.associated
+    True
+    >>> {k: round(v, 4) for k, v in law.axes().items()}
+    {'mu_a_plus': 0.2, 'mu_a_minus': 0.08, 'mu_b_plus': 0.12, 'mu_b_minus': 0.15}
+    >>> print(f"{law.min_tangential():.4f}")
+    0.0800
     """
 
     name: str
@@ -159,7 +197,7 @@ class PlanarLaw:
         return float(np.min(np.einsum("ij,ij->i", self.force(psi), unit(psi))))
 
     def axes(self) -> dict:
-        """|p| for sliding along +t_a, -t_a, +t_b, -t_b."""
+        """``|p|`` for sliding along +t_a, -t_a, +t_b, -t_b."""
         f = self.force(np.array([0.0, math.pi, 0.5 * math.pi, 1.5 * math.pi]))
         r = np.hypot(f[:, 0], f[:, 1])
         return {"mu_a_plus": float(r[0]), "mu_a_minus": float(r[1]),
@@ -174,13 +212,79 @@ def _mu(name, v) -> float:
 
 
 def coulomb_law(mu: float) -> PlanarLaw:
-    """Isotropic Coulomb friction of coefficient mu."""
+    """Isotropic Coulomb friction of coefficient ``mu``.
+
+    C = D = the disc of radius ``mu`` (associated): the force opposes the slip with
+    magnitude ``mu`` per unit normal load in every direction.
+
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient, in [1e-6, 100].
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"coulomb"``.
+
+    Raises
+    ------
+    InputError
+        If ``mu`` is not a number in [1e-6, 100].
+
+    See Also
+    --------
+    asperity.ellipse_law, asperity.truncated_ellipse_law, asperity.collinear_law,
+    asperity.componentwise_law, asperity.star_law : the other built-in laws.
+    asperity.slide : a point mass on the law; it stops after ``u0 / (mu g)`` s.
+
+    Examples
+    --------
+    >>> law = asperity.coulomb_law(0.3)
+    >>> print(np.round(law.force(np.radians([0.0, 90.0])), 6))
+    [[0.3 0. ]
+     [0.  0.3]]
+    >>> asperity.coulomb_law(-1)
+    Traceback (most recent call last):
+    ...
+    asperity.errors.InputError: mu must be in [1e-06, 100], got -1
+    """
     d = Disc(_mu("mu", mu))
     return PlanarLaw("coulomb", WalkerLeineLaw(d, d), f"isotropic Coulomb, mu = {mu:g}")
 
 
 def ellipse_law(mu1: float, mu2: float) -> PlanarLaw:
-    """Associated orthotropic ellipse: semi-axis mu1 along t_a, mu2 along t_b."""
+    """Associated orthotropic ellipse: semi-axis ``mu1`` along t_a, ``mu2`` along t_b.
+
+    C = D = the ellipse (normal sliding rule, maximum dissipation): for the unit slip
+    ``s = (cos psi, sin psi)`` the force is
+    :math:`p = (\\mu_1^2 s_a, \\mu_2^2 s_b) / \\sqrt{\\mu_1^2 s_a^2 + \\mu_2^2 s_b^2}`,
+    not parallel to ``s`` off the axes.
+
+    Parameters
+    ----------
+    mu1, mu2 : float
+        Friction coefficients along +-t_a and +-t_b, in [1e-6, 100].
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"ellipse"``.
+
+    See Also
+    --------
+    asperity.truncated_ellipse_law : four semi-axes (asymmetric friction).
+    asperity.collinear_law : the same magnitudes, force along the slip.
+
+    Examples
+    --------
+    Sliding at 45 deg, the force leans towards the high-friction axis t_b:
+
+    >>> law = asperity.ellipse_law(0.2, 0.4)
+    >>> p = law.force(np.radians([45.0]))[0]
+    >>> print(np.round(p, 4), round(float(np.degrees(np.arctan2(p[1], p[0]))), 2))
+    [0.0894 0.3578] 75.96
+    """
     mu1, mu2 = _mu("mu1", mu1), _mu("mu2", mu2)
     e = TruncatedEllipse(mu1, mu1, mu2, mu2)
     return PlanarLaw("ellipse", associated(e),
@@ -189,7 +293,46 @@ def ellipse_law(mu1: float, mu2: float) -> PlanarLaw:
 
 def truncated_ellipse_law(mu_a_plus, mu_a_minus, mu_b_plus, mu_b_minus,
                           theta: float = 0.0) -> PlanarLaw:
-    """Associated truncated ellipse (Antoni et al. eq. 18), asymmetric in general."""
+    """Associated truncated ellipse (Antoni et al. eq. 18), asymmetric in general.
+
+    Four quarter ellipses: the gauge is
+    :math:`k(x) = \\sqrt{(x_a/\\mu_a^\\pm)^2 + (x_b/\\mu_b^\\pm)^2}`, the sign of ``x_a``
+    picking ``mu_a+`` or ``mu_a-`` and that of ``x_b`` ``mu_b+`` or ``mu_b-`` (SPEC.md 3).
+    C = D (normal sliding rule); with ``mu_a+ != mu_a-`` the law ratchets.
+
+    Parameters
+    ----------
+    mu_a_plus, mu_a_minus : float
+        Coefficients for sliding along +t_a and -t_a, in [1e-6, 100].
+    mu_b_plus, mu_b_minus : float
+        Coefficients for sliding along +t_b and -t_b, in [1e-6, 100].
+    theta : float, optional
+        Angle (rad) of t_a in the frame of the forces, in [-4 pi, 4 pi]; default 0.
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"truncated-ellipse"``.
+
+    Raises
+    ------
+    InputError
+        If a coefficient is not in [1e-6, 100] or ``theta`` out of range.
+
+    See Also
+    --------
+    asperity.TruncatedEllipse : the set itself.
+    asperity.fit_derivation : such a law fitted to a texture.
+
+    Examples
+    --------
+    The SPEC.md wedge (alpha = 30, beta = 10 deg, mu = 0.1 / 0.2): a point mass launched
+    at 1 m/s along +t_a stops after ``1 / (mu_a+ g)`` = 0.549 s, along -t_a after 0.528 s.
+
+    >>> law = asperity.truncated_ellipse_law(0.185697, 0.193238, 0.182587, 0.182587)
+    >>> [asperity.slide(law, 1.0, a, dt=1e-3).stop_time for a in (0.0, 180.0)]
+    [0.549, 0.528]
+    """
     e = TruncatedEllipse(_mu("mu_a_plus", mu_a_plus), _mu("mu_a_minus", mu_a_minus),
                          _mu("mu_b_plus", mu_b_plus), _mu("mu_b_minus", mu_b_minus),
                          theta=as_number("theta", theta))
@@ -199,11 +342,43 @@ def truncated_ellipse_law(mu_a_plus, mu_a_minus, mu_b_plus, mu_b_minus,
 
 
 def collinear_law(C=None, mu1: float | None = None, mu2: float | None = None) -> PlanarLaw:
-    """Collinear law: the force is parallel to the sliding direction, |p| = rho_C(psi).
+    """Collinear law: the force is parallel to the sliding direction, ``|p| = rho_C(psi)``.
 
-    C: the set whose radial function gives the magnitude (default: the ellipse mu1, mu2).
-    D is a disc: its normal cone at y is the ray of y, so the force p (on the ray of y)
-    points along the sliding direction."""
+    D is a disc: its normal cone at ``y`` is the ray of ``y``, so the force ``p`` (on the
+    ray of ``y``) points along the sliding direction, with the magnitude of C's radial
+    function there.
+
+    Parameters
+    ----------
+    C : Disc, TruncatedEllipse, StarSet or ConvexSet, optional
+        The set whose radial function gives the magnitude.  Default: the orthotropic
+        ellipse of ``mu1``, ``mu2``.
+    mu1, mu2 : float, optional
+        Semi-axes along t_a and t_b of the default C, in [1e-6, 100]; both needed
+        without C (ignored with it).
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"collinear"`` (not associated).
+
+    Raises
+    ------
+    InputError
+        If neither C nor both ``mu1`` and ``mu2`` are given, or a value is out of range.
+
+    See Also
+    --------
+    asperity.ellipse_law : the associated law of the same ellipse.
+    asperity.law_from_gauge : the collinear variant of a gauge file's law.
+
+    Examples
+    --------
+    >>> law = asperity.collinear_law(mu1=0.2, mu2=0.4)
+    >>> p = law.force(np.radians([45.0]))[0]
+    >>> print(np.round(p, 4), round(float(np.hypot(*p)), 4))
+    [0.1789 0.1789] 0.253
+    """
     if C is None:
         if mu1 is None or mu2 is None:
             raise InputError("collinear_law needs C or both mu1 and mu2")
@@ -220,12 +395,37 @@ def collinear_law(C=None, mu1: float | None = None, mu2: float | None = None) ->
 
 
 def componentwise_law(mu_f: float, mu_b: float, mu_t: float) -> PlanarLaw:
-    """Componentwise rule (Hu, Nirody, Scott and Shelley, PNAS 2009): for the unit slip
-    u = (cos psi, sin psi), p = (mu_{f|b} u_x, mu_t u_y) (mu_f where u_x >= 0; the force on
-    the body is -p N).  The Walker-Leine law with C the truncated ellipse (mu_f, mu_b, mu_t)
-    and D the one of semi-axes sqrt(mu_f), sqrt(mu_b), sqrt(mu_t) times sqrt(min mu) (inside
-    C, touching it): D's boundary point of normal u lies on the ray of (mu_{f|b} u_x,
-    mu_t u_y), which is on C."""
+    """Componentwise rule (Hu, Nirody, Scott and Shelley, PNAS 2009).
+
+    For the unit slip ``u = (cos psi, sin psi)``, ``p = (mu_{f|b} u_x, mu_t u_y)``
+    (``mu_f`` where ``u_x >= 0``; the force on the body is ``-p N``).  The Walker-Leine
+    law with C the truncated ellipse ``(mu_f, mu_b, mu_t, mu_t)`` and D the one of
+    semi-axes ``sqrt(mu_f)``, ``sqrt(mu_b)``, ``sqrt(mu_t)`` times ``sqrt(min mu)`` (inside
+    C, touching it): D's boundary point of normal ``u`` lies on the ray of
+    ``(mu_{f|b} u_x, mu_t u_y)``, which is on C (SPEC.md 9).
+
+    Parameters
+    ----------
+    mu_f, mu_b, mu_t : float
+        Forward (sliding along +t_a), backward (-t_a) and transverse (+-t_b) coefficients,
+        each in [1e-6, 100].
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"componentwise"``.
+
+    See Also
+    --------
+    asperity.crawl : a crawling body on such a law.
+
+    Examples
+    --------
+    >>> law = asperity.componentwise_law(0.1, 0.15, 0.2)
+    >>> print(np.round(law.force(np.radians([45.0, 135.0])), 4))
+    [[ 0.0707  0.1414]
+     [-0.1061  0.1414]]
+    """
     from .componentwise import componentwise_pair
     law = componentwise_pair(mu_f, mu_b, mu_t)
     f, b, t = law.C.mu_a_plus, law.C.mu_a_minus, law.C.mu_b_plus
@@ -252,8 +452,47 @@ def _windward_fit(alpha_deg: float, beta_deg: float, mu_alpha: float, mu_beta: f
 
 def windward_star_law(alpha_deg: float = 30.0, beta_deg: float = 30.0, mu_alpha: float = 0.3,
                       mu_beta: float = 0.3, directions: int = 360) -> PlanarLaw:
-    """The star-shaped Walker-Leine law fitted to a windward (rigid-asperity) wedge texture
-    (non-convex C, convex D with a flat edge: set-valued along the ridges)."""
+    """The star-shaped Walker-Leine law fitted to a windward (rigid-asperity) wedge texture.
+
+    Only the faces facing the motion touch (SPEC.md 2): C is non-convex and D convex with
+    a flat edge, so the force is set-valued when sliding exactly along the ridges (t_b).
+    The law is derived in closed form at ``directions`` sliding directions and fitted as
+    ``asperity fit --contact windward`` fits it (C through the points, D from their
+    sliding rule).
+
+    Parameters
+    ----------
+    alpha_deg, beta_deg : float, optional
+        Slope angles (deg) of the rising and falling faces; default 30.
+    mu_alpha, mu_beta : float, optional
+        Local friction coefficients of the two faces; default 0.3.
+    directions : int, optional
+        Sliding directions of the fit, in [8, 100000]; default 360.
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"star"``.
+
+    Raises
+    ------
+    InputError
+        If a parameter is out of range (those of :class:`~asperity.WedgeTexture`) or the
+        texture self-locks (no finite law).
+
+    See Also
+    --------
+    asperity.star_law : the same law stretched to given axis coefficients.
+
+    Examples
+    --------
+    SPEC.md's check values: ``|p| = 1.061`` at psi = 0, ``p = (0.585, 0.348)`` at 89 deg:
+
+    >>> law = asperity.windward_star_law()
+    >>> print(np.round(law.force(np.radians([0.0, 89.0])), 3))
+    [[1.061 0.   ]
+     [0.585 0.348]]
+    """
     from ..texture.wedges import WedgeTexture
     t = WedgeTexture(alpha_deg, beta_deg, mu_alpha, mu_beta)          # checks the numbers
     gl = _windward_fit(t.alpha_deg, t.beta_deg, t.mu_alpha, t.mu_beta, _directions(directions))
@@ -263,12 +502,36 @@ def windward_star_law(alpha_deg: float = 30.0, beta_deg: float = 30.0, mu_alpha:
 
 
 def star_law(mu1: float, mu2: float, directions: int = 360) -> PlanarLaw:
-    """Built-in star-shaped law with |p| = mu1 along +-t_a and mu2 along +-t_b: the windward
-    wedge law (30 deg, mu = 0.3) mapped by S = diag(mu1/rho(0), mu2/rho(90 deg)).
+    """Built-in star-shaped law with ``|p| = mu1`` along +-t_a and ``mu2`` along +-t_b.
 
-    The map keeps C star-shaped (non-convex) and D convex; forces map by S and sliding
-    directions (normals of D) by S^-1, and the law is refitted through the mapped data
-    (fit_star: C the polygon, D integrated from the mapped sliding rule)."""
+    The windward wedge law (30 deg, mu = 0.3, :func:`~asperity.windward_star_law`)
+    mapped by ``S = diag(mu1 / rho(0), mu2 / rho(90 deg))``.  The map keeps C star-shaped
+    (non-convex) and D convex; forces map by ``S`` and sliding directions (normals of D)
+    by ``S^-1``, and the law is refitted through the mapped data (C the polygon, D
+    integrated from the mapped sliding rule).
+
+    Parameters
+    ----------
+    mu1, mu2 : float
+        Coefficients along +-t_a and +-t_b, in [1e-6, 100].
+    directions : int, optional
+        Sliding directions of the underlying fit, in [8, 100000]; default 360.
+
+    Returns
+    -------
+    PlanarLaw
+        The law named ``"star"``.
+
+    See Also
+    --------
+    asperity.windward_star_law : the unstretched law.
+
+    Examples
+    --------
+    >>> law = asperity.star_law(0.2, 0.4)
+    >>> {k: round(v, 6) for k, v in law.axes().items()}
+    {'mu_a_plus': 0.2, 'mu_a_minus': 0.2, 'mu_b_plus': 0.4, 'mu_b_minus': 0.4}
+    """
     from .fitting import ReservoirData, fit_star
     mu1, mu2 = _mu("mu1", mu1), _mu("mu2", mu2)
     gl = _windward_fit(30.0, 30.0, 0.3, 0.3, _directions(directions))
@@ -288,10 +551,44 @@ def star_law(mu1: float, mu2: float, directions: int = 360) -> PlanarLaw:
 
 
 def from_gauge(gauge, kind: str | None = None) -> PlanarLaw:
-    """The law of a gauge file (path or GaugeLaw).
+    """The law of a gauge file, for the solver.
 
-    kind: None or the file's own law ("ellipse" for a truncated-ellipse file, "star" or
-    "componentwise" for such a file), or "collinear" (force along the sliding direction, |p| from the file's C)."""
+    Parameters
+    ----------
+    gauge : str, pathlib.Path or GaugeLaw
+        A gauge file written by ``asperity fit`` (or :func:`~asperity.write_gauge`), or
+        the fitted law itself (:func:`~asperity.fit_derivation`, :func:`~asperity.read_gauge`).
+    kind : str, optional
+        None (default) or the file's own law: ``"ellipse"`` for a truncated-ellipse file,
+        ``"star"`` or ``"componentwise"`` for such a file; or ``"collinear"`` (force along
+        the sliding direction, ``|p|`` from the file's C).
+
+    Returns
+    -------
+    PlanarLaw
+        A ``"truncated-ellipse"``, ``"star"``, ``"componentwise"`` or ``"collinear"`` law.
+
+    Raises
+    ------
+    InputError
+        If the file cannot be read (one line naming the field), ``kind`` is another law,
+        or the file holds a law family over the pressure (take ``GaugeFamily.at`` first).
+
+    See Also
+    --------
+    asperity.read_gauge, asperity.write_gauge : gauge files.
+    asperity.collinear_law : the collinear variant.
+
+    Examples
+    --------
+    >>> d = asperity.derive(asperity.load_texture("surfaces/wedge-asymmetric.toml"))
+    >>> gl = asperity.fit_derivation(d, "truncated-ellipse")
+    >>> law = asperity.law_from_gauge(gl)
+    >>> law.name, law.associated
+    ('truncated-ellipse', True)
+    >>> asperity.law_from_gauge(gl, "collinear").associated
+    False
+    """
     from .family import GaugeFamily
     from .fitting import GaugeLaw
     if not isinstance(gauge, (GaugeLaw, GaugeFamily)):

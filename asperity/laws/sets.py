@@ -55,12 +55,44 @@ class Disc:
 
 @dataclass(frozen=True)
 class TruncatedEllipse:
-    """Antoni et al. eq. 18: ``k(x) = sqrt((x_a/mu_a+-)^2 + (x_b/mu_b+-)^2)``.
+    """The truncated ellipse of Antoni et al. (eq. 18): four quarter ellipses.
 
-    The sign of ``x_a`` (component along ``t_a``) picks ``mu_a+`` or ``mu_a-``, that of
-    ``x_b`` picks ``mu_b+`` or ``mu_b-``.  ``theta``: angle (rad) of ``t_a`` in the frame of
-    the vectors (0 for wedge textures).  Convex and C1: the quarter ellipses meet on the
-    axes with a common tangent.
+    The gauge is ``k(x) = sqrt((x_a/mu_a+-)^2 + (x_b/mu_b+-)^2)``: the sign of ``x_a``
+    (component along ``t_a``) picks ``mu_a+`` or ``mu_a-``, that of ``x_b`` picks ``mu_b+``
+    or ``mu_b-``.  Convex and C1: the quarter ellipses meet on the axes with a common
+    tangent.  The friction criterion is ``g = k(tau) - sigma_n`` (``criterion``; stick
+    where ``g <= 0``), the associated sliding rule along ``grad g`` (SPEC.md 3).
+
+    Parameters
+    ----------
+    mu_a_plus, mu_a_minus : float
+        Semi-axes along +t_a and -t_a (the coefficients for sliding that way), in
+        [1e-6, 100].
+    mu_b_plus, mu_b_minus : float
+        Semi-axes along +t_b and -t_b, in [1e-6, 100].
+    theta : float, optional
+        Angle (rad) of ``t_a`` in the frame of the vectors, in [-4 pi, 4 pi]; default 0
+        (wedge textures).
+
+    Raises
+    ------
+    InputError
+        If a semi-axis is not in [1e-6, 100] or ``theta`` is out of range.
+
+    See Also
+    --------
+    asperity.truncated_ellipse_law : the associated law of this set.
+    asperity.WalkerLeineLaw : a law made of such sets.
+
+    Examples
+    --------
+    Antoni et al.'s figure 7 example (SPEC.md 3):
+
+    >>> E = asperity.TruncatedEllipse(0.2, 0.08, 0.12, 0.15)
+    >>> print(E.radial(np.radians([0.0, 90.0, 180.0, 270.0])).round(4))
+    [0.2  0.12 0.08 0.15]
+    >>> print(E.criterion([[0.1, 0.0], [-0.1, 0.0]], 1.0))
+    [-0.5   0.25]
     """
 
     mu_a_plus: float

@@ -58,11 +58,45 @@ class LawForce:
 
 @dataclass(frozen=True)
 class WalkerLeineLaw:
-    """``-lambda_T in lambda_N C``, ``gamma_T in N_D(-alpha lambda_T)``,
-    ``alpha = 1/(k_D(-lambda_T) - k_C(-lambda_T) + 1)`` (Walker & Leine; SPEC.md 3).
+    """The Walker-Leine friction law: a star-shaped reservoir C and a convex sliding set D.
 
-    C: any set with ``radial``/``gauge`` (star-shaped); D: a convex set with ``gauge`` and
-    ``normal_point``.  While sliding k_C = 1 and alpha p lies on the boundary of D.
+    ``-lambda_T in lambda_N C`` and ``gamma_T in N_D(-alpha lambda_T)`` with
+    ``alpha = 1/(k_D(-lambda_T) - k_C(-lambda_T) + 1)`` (Walker & Leine; SPEC.md 3),
+    forces per unit normal load.  For a sliding direction ``s`` the law takes the point
+    ``y`` of the boundary of D with outward normal ``s``; the force
+    ``p = -lambda_T / lambda_N`` is the point of the boundary of C on the ray of ``y``.
+    While sliding ``k_C(p) = 1`` and ``alpha p`` lies on the boundary of D; D matters only
+    up to scale.  C = D = a disc is Coulomb, C = D = a truncated ellipse the associated
+    (normal-rule) law.
+
+    Parameters
+    ----------
+    C : Disc, TruncatedEllipse, StarSet or ConvexSet
+        The reservoir: any star-shaped set with ``radial`` and ``gauge`` (possibly
+        non-convex).
+    D : Disc, TruncatedEllipse or ConvexSet
+        The sliding set: a convex set with ``gauge`` and ``normal_point``.
+
+    Raises
+    ------
+    InputError
+        If C or D is not one of these sets.
+
+    See Also
+    --------
+    asperity.PlanarLaw : a law with a name, as the solver takes it.
+    asperity.fit_derivation : C and D fitted to a texture.
+
+    Examples
+    --------
+    C an orthotropic ellipse, D a disc: a collinear law (the force along the slip).  While
+    sliding, ``alpha = 1 / k_D(p) = 1 / |p|``:
+
+    >>> C = asperity.TruncatedEllipse(0.2, 0.2, 0.4, 0.4)
+    >>> D = asperity.TruncatedEllipse(1.0, 1.0, 1.0, 1.0)
+    >>> f = asperity.WalkerLeineLaw(C, D).force(np.radians([45.0]))
+    >>> print(np.round(f.p, 4), np.round(f.alpha, 4))
+    [[0.1789 0.1789]] [3.9528]
     """
 
     C: object

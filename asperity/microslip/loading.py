@@ -14,12 +14,56 @@ from .limits import HISTORY_POINTS, POINTS_PER_CYCLE, check_dT, check_force, che
 
 @dataclass(frozen=True)
 class Loading:
-    """One load cycle, repeated: temperature change ``dT`` (K) and external tangential
-    force ``F`` (N; strip: N per m of width) at breakpoints, linear in between.
+    """One load cycle of an assembly, repeated: temperature change and tangential force.
 
-    The assembly starts stress-free at dT = 0, F = 0 and is first brought to the cycle's
-    first point; each cycle then runs through the breakpoints and ends where it started
-    (``dT[-1] == dT[0]``, ``F[-1] == F[0]``).  ``substeps`` load increments per segment.
+    Breakpoints of the temperature change ``dT`` (K, from the assembly temperature) and
+    the external tangential force ``F``, linear in between.  The assembly starts
+    stress-free at ``dT = 0``, ``F = 0`` and is first brought to the cycle's first point;
+    each cycle then runs through the breakpoints and ends where it started.
+    ``Loading.cycles_between(dT_min, dT_max, force_min=0, force_max=None, substeps=1)``
+    builds the cycle ``dT_min -> dT_max -> dT_min`` (the force in phase).
+
+    Parameters
+    ----------
+    dT : array_like
+        2 to 10000 breakpoints, K, each in [-5000, 5000]; ``dT[-1] == dT[0]`` (a closed
+        cycle).
+    F : float or array_like
+        External tangential force, N (strip: N per m of width), each in [-1e12, 1e12]: one
+        value (constant) or one per breakpoint, ``F[-1] == F[0]``.
+    substeps : int, optional
+        Load increments per segment, in [1, 1e5] (at most 1e7 load points a cycle);
+        default 1.  They only add points to the trace (the march is exact).
+
+    Attributes
+    ----------
+    dT_range : float
+        ``max(dT) - min(dT)``, K.
+    points_per_cycle : int
+        Load points of one cycle.
+
+    Raises
+    ------
+    InputError
+        If a value is out of range, a series is not a flat list of numbers, or the cycle
+        does not close.
+
+    See Also
+    --------
+    asperity.simulate_microslip, asperity.assess : the assembly under these cycles.
+
+    Examples
+    --------
+    >>> ld = asperity.Loading([0.0, 125.0, 0.0], [0.0, 5.0, 0.0], substeps=4)
+    >>> ld.dT_range, ld.points_per_cycle
+    (125.0, 8)
+    >>> asperity.Loading.cycles_between(0.0, 125.0).dT
+    array([  0., 125.,   0.])
+    >>> asperity.Loading([0.0, 10.0, 5.0], 0.0)
+    Traceback (most recent call last):
+    ...
+    asperity.errors.InputError: loading.history must end where it starts (a closed cycle),
+    got 0 K ... 5 K
     """
 
     dT: np.ndarray

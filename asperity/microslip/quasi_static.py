@@ -207,13 +207,74 @@ def check_march(chain: Chain, loading: Loading, cycles: int, n_record: int,
 def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=None,
              until_stable: bool = True, min_cycles: int = 2,
              tol: MicroslipTolerances = TOL) -> MicroslipResult:
-    """March the loading cycles quasi-statically (exact solution, event by event).
+    """March the load cycles of a slider chain quasi-statically (SPEC.md 5).
 
-    Stops after ``cycles`` cycles, or (``until_stable``) as soon as the cycle is stabilised
-    and at least ``min_cycles`` were marched.  ``record_nodes``: node indices whose
-    displacement is kept at every load point (default: the two ends).
-    The memory and work are estimated first (ResourceError if they cannot fit); the kernel
-    runs in pieces of about 0.1 s, so Ctrl-C is honoured and progress reported.
+    The exact solution of the rate-independent chain, event by event: every slider's start
+    and stop is located exactly along each linear load segment.  The cycle is stabilised
+    when the contact forces at the ends of two consecutive cycles agree (the state repeats
+    up to a translation); its drift then repeats every cycle.  The memory and work are
+    estimated first; the kernel runs in pieces of about 0.1 s (Ctrl-C is honoured,
+    progress reported).
+
+    Parameters
+    ----------
+    chain : Chain
+        The assembly: :func:`~asperity.two_node_chain` or :func:`~asperity.strip_chain`.
+    loading : Loading
+        The load cycle (temperature change and tangential force), repeated.
+    cycles : int, optional
+        Most cycles to march, in [1, 1e8]; default 50.
+    record_nodes : sequence of int, optional
+        Node indices (in [0, n - 1]) whose displacement is kept at every load point;
+        default the two ends.
+    until_stable : bool, optional
+        Stop as soon as the cycle is stabilised (and ``min_cycles`` were marched); default
+        True.
+    min_cycles : int, optional
+        Fewest cycles to march with ``until_stable``, in [1, 1e8]; default 2.
+    tol : MicroslipTolerances, optional
+        The tolerances of the stabilisation and no-drift tests and of the march.
+
+    Returns
+    -------
+    MicroslipResult
+        ``cycles_run``; ``mean_u`` (cycles_run + 1,): the assembly displacement (m,
+        weighted mean of the nodes) at the start and at the end of every cycle; ``u_end``
+        (cycles_run + 1, n): the nodes'; ``drift_per_cycle`` (m, from the last cycle,
+        negative towards -x); ``stabilised_at`` (the first stabilised cycle, None if not
+        reached); ``regime`` (``"ratchet"``, ``"alternating slip (no net drift)"`` or
+        ``"shakedown"``); ``trace`` (the recorded nodes at every load point);
+        ``drift_after(cycles)`` and ``cycles_to(tolerance)``.
+
+    Raises
+    ------
+    InputError
+        If an argument is out of range, the temperature range is beyond the margin the
+        solvers resolve (``dT range / (2 dT_c)`` above 1e4), or the march cannot fit in
+        memory or time (``ResourceError``).
+    SlideOffError
+        If the tangential load exceeds what the sliders hold (a physical outcome).
+    SolverError
+        If a load segment's march does not settle or overflows (a numerical failure).
+
+    See Also
+    --------
+    asperity.long_life : march until stabilised, then extrapolate.
+    asperity.assess : the verdict over a number of cycles.
+
+    Examples
+    --------
+    SPEC.md's two-node check: ``dT_c = 41.67`` K, cycles over [0, 3 dT_c] drift by
+    ``-alpha_T l0 (dT_max - dT_min - 2 dT_c)`` = -5.0e-5 m per cycle once stabilised (the
+    first cycle from the stress-free state differs):
+
+    >>> ch = asperity.two_node_chain(k=1e6, l0=0.1, alpha_T=1.2e-5, k_t=5e5, N=100.0,
+    ...                              mu_plus=0.2, mu_minus=0.1)
+    >>> r = asperity.simulate_microslip(ch, asperity.Loading.cycles_between(0.0, 125.0))
+    >>> r.regime, r.stabilised_at, r.cycles_run
+    ('ratchet', 2, 2)
+    >>> print(r.mean_u.round(7), f"{r.drift_per_cycle:.2e}")
+    [ 0.00e+00 -7.50e-05 -1.25e-04] -5.00e-05
     """
     from ..progress import report
     from ._chain_kernels import STATUS_NON_FINITE, STATUS_OK, STATUS_SLIDE_OFF
@@ -334,8 +395,55 @@ def simulate(chain: Chain, loading: Loading, cycles: int = 50, *, record_nodes=N
 
 def long_life(chain: Chain, loading: Loading, cycles: float, *, max_marched: int = 200,
               record_nodes=None, tol: MicroslipTolerances = TOL) -> MicroslipResult:
-    """Simulate until the cycle is stabilised (at most ``max_marched`` cycles, and never
-    more than ``cycles``); :meth:`MicroslipResult.drift_after` then extrapolates exactly."""
+    """March a chain until its cycle is stabilised, for a life of many cycles.
+
+    At most ``max_marched`` cycles are marched, and never more than ``cycles``; the
+    result's ``drift_after(cycles)`` then extrapolates exactly from the stabilised cycle
+    (its state repeats up to a translation), and ``cycles_to(tolerance)`` counts the
+    cycles until the walk reaches a tolerance.
+
+    Parameters
+    ----------
+    chain : Chain
+        The assembly: :func:`~asperity.two_node_chain` or :func:`~asperity.strip_chain`.
+    loading : Loading
+        The load cycle, repeated.
+    cycles : float
+        The life to assess, in cycles, in [1, 1e15].
+    max_marched : int, optional
+        Most cycles to march, in [2, 1e6]; default 200.
+    record_nodes : sequence of int, optional
+        Node indices to record at every load point; default the two ends.
+    tol : MicroslipTolerances, optional
+        The tolerances of the march.
+
+    Returns
+    -------
+    MicroslipResult
+        As :func:`~asperity.simulate_microslip`; ``drift_after(cycles)`` gives the
+        assembly's displacement (m) after the whole life.
+
+    Raises
+    ------
+    InputError
+        If an argument is out of range (see :func:`~asperity.simulate_microslip`).
+    SlideOffError
+        If the tangential load exceeds what the sliders hold.
+
+    See Also
+    --------
+    asperity.assess : the verdict, with these figures, as a JSON-ready dict.
+
+    Examples
+    --------
+    >>> ch = asperity.two_node_chain(k=1e6, l0=0.1, alpha_T=1.2e-5, k_t=5e5, N=100.0,
+    ...                              mu_plus=0.2, mu_minus=0.1)
+    >>> r = asperity.long_life(ch, asperity.Loading.cycles_between(0.0, 125.0), 1000)
+    >>> r.cycles_run, r.cycles_to(1e-3)
+    (2, 20)
+    >>> print(f"{r.drift_after(1000):.6f} m")
+    -0.050025 m
+    """
     c = check_cycles("cycles", cycles)
     max_marched = check_int("max_marched", max_marched, 2, 1_000_000)
     return simulate(chain, loading, int(min(max_marched, math.ceil(c))), record_nodes=record_nodes,

@@ -44,15 +44,79 @@ def verdict_of(result) -> str:
 def assess(chain: Chain, loading: Loading, cycles: float = 1e6, tolerance: float | None = None,
            *, dT_c_closed_form: float | None = None, max_marched: int = 200,
            tol: MicroslipTolerances = TOL) -> dict:
-    """The ratchet verdict of an assembly over ``cycles`` load cycles (JSON-ready dict).
+    """The ratchet verdict of an assembly over a number of load cycles (what ``asperity risk`` prints).
 
-    verdict (:data:`VERDICTS`): "ratchet" if the stabilised cycle drifts, else
-    "alternating-slip" if sliders still slip in it, else "shakedown"; "slides-off" if the
-    tangential load exceeds what the sliders hold (a physical outcome, with the reason).
-    dT_c: the elastic limit of the model (heating from the stress-free state, no external
-    force); margin = dT range / (2 dT_c) (for the two-node model ratcheting iff margin > 1;
-    for the strip margin > 1 is necessary, not sufficient: its ends can slip back and forth
-    while its middle sticks)."""
+    The verdict is ``"ratchet"`` if the stabilised cycle drifts (the assembly walks a fixed
+    distance per cycle), else ``"alternating-slip"`` if sliders still slip in it (fretting:
+    wear, no walk), else ``"shakedown"``; ``"slides-off"`` if the tangential load exceeds
+    what the sliders hold (a physical outcome, with the reason).  Sign convention: ``x`` is
+    the slip axis, displacements positive towards +x; ``mu+`` resists sliding towards +x,
+    ``mu-`` towards -x; with ``mu+ > mu-`` the assembly creeps towards -x.
+
+    Parameters
+    ----------
+    chain : Chain
+        The assembly: :func:`~asperity.two_node_chain` or :func:`~asperity.strip_chain`.
+    loading : Loading
+        The load cycle, repeated.
+    cycles : float, optional
+        The life to assess, in cycles, in [1, 1e15]; default 1e6.
+    tolerance : float, optional
+        Displacement (m, in [1e-9, 1e3]) the design tolerates: the cycles until the walk
+        reaches it are counted.
+    dT_c_closed_form : float, optional
+        A closed-form elastic limit (K, > 0 or inf) reported beside the model's.
+    max_marched : int, optional
+        Most cycles to march before extrapolating, in [2, 1e6]; default 200.
+    tol : MicroslipTolerances, optional
+        The tolerances of the march.
+
+    Returns
+    -------
+    dict
+        JSON-ready (but for ``"_result"``, the MicroslipResult): ``verdict``, ``regime``,
+        ``dT_c_K`` (the elastic limit: heating from the stress-free state, no external
+        force), ``margin`` (``dT range / (2 dT_c)``), ``drift_per_cycle_m``,
+        ``drift_direction``, ``drift_after_cycles_m``, ``cycles_to_tolerance`` (None if
+        never), ``stabilised_at_cycle``, ``cycles_marched``, ``mu_plus``, ``mu_minus``,
+        ``asymmetry``, ``sign_convention``, and ``reason`` when it slides off.
+
+    Raises
+    ------
+    InputError
+        If an argument is out of range (see :func:`~asperity.simulate_microslip`).
+
+    See Also
+    --------
+    asperity.assess_assembly : the verdict of an assembly file with a texture.
+    asperity.long_life : the march behind it.
+
+    Notes
+    -----
+    For the two-node model the assembly ratchets iff ``margin > 1``; for the strip
+    ``margin > 1`` is necessary, not sufficient: its ends can slip back and forth while
+    its middle sticks (SPEC.md 5).
+
+    Examples
+    --------
+    SPEC.md's two-node check over [0, 3 dT_c], then a tangential force beyond what the
+    sliders hold (``mu+ sum N`` = 40 N):
+
+    >>> ch = asperity.two_node_chain(k=1e6, l0=0.1, alpha_T=1.2e-5, k_t=5e5, N=100.0,
+    ...                              mu_plus=0.2, mu_minus=0.1)
+    >>> v = asperity.assess(ch, asperity.Loading.cycles_between(0.0, 125.0), 1e6,
+    ...                     tolerance=1e-3)
+    >>> v["verdict"], round(v["dT_c_K"], 2), v["margin"], v["cycles_to_tolerance"]
+    ('ratchet', 41.67, 1.5, 20)
+    >>> print(f"{v['drift_per_cycle_m']:.2e} m per cycle towards {v['drift_direction']}")
+    -5.00e-05 m per cycle towards -x
+    >>> asperity.assess(ch, asperity.Loading.cycles_between(0.0, 80.0))["verdict"]
+    'shakedown'
+    >>> v = asperity.assess(ch, asperity.Loading.cycles_between(0.0, 125.0, 0.0, 50.0))
+    >>> print(v["verdict"], "--", v["reason"])
+    slides-off -- the assembly slides off towards +x: the tangential load reaches 50 N,
+    the sliders hold at most mu+ sum N = 40 N
+    """
     check_inputs(chain, loading, tol)
     cycles = check_cycles("cycles", cycles)
     if tolerance is not None:
