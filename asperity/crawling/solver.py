@@ -179,11 +179,29 @@ def law_rule(law: PlanarLaw) -> str:
 
 @dataclass(frozen=True)
 class CrawlResult:
-    """A crawl: recorded states t (k,), q (k, 3) = (x, y, theta), u (k, 3) = (vx, vy, omega)
-    of the centre of mass and the mean tangent angle (SI, world frame), work (k,) of the gait
-    against friction and dissipated (k,) by friction so far (J); per period (one value each):
-    ``speed_per_period`` (body lengths, the centre's displacement over the period projected on
-    its mean heading, head-ward positive) and ``drift_per_period`` (rad)."""
+    """A crawl: the recorded motion of the body's centre and the friction's work.
+
+    Attributes
+    ----------
+    t : ndarray, shape (k,)
+        Recorded times, s.
+    q, u : ndarray, shape (k, 3)
+        ``(x, y, theta)`` and ``(vx, vy, omega)`` of the centre of mass and the mean tangent
+        angle (SI, world frame).
+    work, dissipated : ndarray, shape (k,)
+        Work of the gait against friction and energy dissipated by friction so far, J.
+    speed_per_period : ndarray
+        One value a period: the centre's displacement over the period projected on its mean
+        heading, head-ward positive, in body lengths.
+    drift_per_period : ndarray
+        One value a period: the heading's change, rad.
+    transient_periods, periods, steps_per_period, points : int
+        Periods left out as the transient, periods run, steps a period, contact points.
+    dt : float
+        Time step, s.
+    quasi_static : bool
+        Whether the crawl was quasi-static (no inertia).
+    """
 
     t: np.ndarray
     q: np.ndarray

@@ -36,9 +36,19 @@ CSV_COLUMNS = "t_s,x_m,y_m,theta_rad,vx_m_s,vy_m_s,omega_rad_s"
 
 @dataclass(frozen=True)
 class BodySlide:
-    """A slide of a rigid body: the body (:class:`asperity.bodies.body_file.Body`), the law,
-    the solver's result (:class:`~asperity.dynamics.body.BodyResult`) and ``summary``, the
-    JSON object of ``asperity slide --body ... --json``."""
+    """A slide of a rigid body, as ``asperity slide --body`` runs it.
+
+    Attributes
+    ----------
+    body : asperity.bodies.body_file.Body
+        The body (footprint, mass, inertia).
+    law : asperity.PlanarLaw
+        The friction law it slid on.
+    result : asperity.dynamics.body.BodyResult
+        The solver's result (recorded states, stop times, status).
+    summary : dict
+        The JSON object of ``asperity slide --body FILE --json``.
+    """
 
     body: object
     law: object

@@ -33,6 +33,38 @@ METHODS = ("closed-form", "springs")
 
 @dataclass(frozen=True)
 class Derivation:
+    """The directional friction of a texture or surface (what :func:`asperity.derive`
+    returns; ``asperity derive --json`` prints it).
+
+    Attributes
+    ----------
+    texture : object
+        The texture or surface derived.
+    contact, method : str
+        The contact regime (``"all-faces"``, ``"windward"``) and the method
+        (``"closed-form"``, ``"springs"``).
+    reservoir : asperity.friction.reservoir.Reservoir
+        The reservoir points p(psi) at every sliding direction.
+    axes : dict
+        ``mu_a_plus``, ``mu_a_minus``, ``mu_b_plus``, ``mu_b_minus`` (None where
+        self-locking).
+    self_locking : list
+        The self-locking directions and faces.
+    admissibility, associativity : object
+        The diagnostics: ``p.s >= 0`` for every direction (and its minimum); the largest
+        ``|L - dT/dpsi|`` and ``|L|``.
+    springs : dict or None
+        The spring model and its agreement with the closed form (``method="springs"``).
+    closed_form : asperity.friction.reservoir.Reservoir or None
+        The closed form's reservoir beside the springs' one.
+    principal_direction_deg : float
+        t_a in the x-y frame, deg (surfaces: found from the friction).
+    anisotropy : float
+        (max T - min T) / mean T over the directions.
+    locking_share : float
+        Largest load share on faces that cannot be climbed.
+    """
+
     texture: object
     contact: str
     method: str

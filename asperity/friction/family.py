@@ -22,8 +22,17 @@ from .axes import AXES, REFERENCE_WORDS, align_rows
 
 @dataclass(frozen=True)
 class LawFamily:
-    """pressures: the nominal pressures (Pa, as given); members: the Derivation at each;
-    elastic: the ElasticContact."""
+    """A law family's derivations: one a nominal pressure.
+
+    Attributes
+    ----------
+    pressures : tuple of float
+        The nominal pressures, Pa, as given.
+    members : tuple of asperity.friction.derive.Derivation
+        The derivation at each pressure.
+    elastic : asperity.ElasticContact
+        The elastic contact settings.
+    """
 
     pressures: tuple
     members: tuple
