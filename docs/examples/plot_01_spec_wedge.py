@@ -60,7 +60,7 @@ assert diff < 1e-12
 # springs touch every face) the reservoir is convex and close to a circle; in the
 # ``windward`` regime (rigid asperities touch only the faces the motion climbs) it is
 # star-shaped, and sliding exactly along the ridges is set-valued.
-fig, ax = plt.subplots(figsize=(5.5, 5.5))
+fig, ax = plt.subplots(figsize=(7, 3.8))
 for contact, style in (("all-faces", "-"), ("windward", "--")):
     d = asperity.derive(texture, contact=contact, n_directions=360)
     p = d.reservoir.p
@@ -73,7 +73,8 @@ ax.set_aspect("equal")
 ax.set_xlabel("p along $t_a$")
 ax.set_ylabel("p along $t_b$")
 ax.set_title("reservoir $p(\\psi)$ of the 30/10 deg wedge")
-ax.legend()
+ax.legend(loc="upper right", fontsize=8)
+fig.tight_layout()
 plt.show()
 
 # %%
@@ -90,6 +91,7 @@ ax.set_xlabel("sliding direction $\\psi$ (deg from $t_a$)")
 ax.set_ylabel("force / normal load")
 ax.set_xlim(0, 360)
 ax.legend()
+fig.tight_layout()
 plt.show()
 
 # %%

@@ -80,9 +80,11 @@ print("the law's axis coefficients:",
 # %%
 # The map and the law
 # -------------------
-# Left: the heights with :math:`t_a` (across the ridges). Right: the surface's reservoir
-# points and the law's force for 720 directions, in the principal frame.
-fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(10, 4.5))
+# Left: the heights with :math:`t_a` (across the ridges). Right: the friction resisting
+# the slip, :math:`T = p \cdot s`, of the surface at the 72 fitted directions and of the
+# law at 720, against the sliding direction from :math:`t_a`: a variation of a few per
+# cent around 0.156.
+fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 4.2))
 extent = (0, hm.nx * hm.dx * 1e6, 0, hm.ny * hm.dy * 1e6)
 im = ax0.imshow(hm.heights.T * 1e6, origin="lower", extent=extent, cmap="viridis")
 fig.colorbar(im, ax=ax0, label="height (um)")
@@ -95,19 +97,27 @@ ax0.set_xlabel("x (um)")
 ax0.set_ylabel("y (um)")
 
 psi = np.linspace(0, 2 * np.pi, 721)
-f = law.force(psi)
-ax1.plot(f[:, 0], f[:, 1], label="star law")
-ax1.plot(gauge.data.p[:, 0], gauge.data.p[:, 1], ".", label="surface (72 directions)")
-ax1.set_aspect("equal")
-ax1.set_xlabel("p along $t_a$")
-ax1.set_ylabel("p along $t_b$")
-ax1.legend(loc="center")
+T_law = np.einsum("ij,ij->i", law.force(psi), np.column_stack([np.cos(psi), np.sin(psi)]))
+data = gauge.data
+T_data = np.einsum("ij,ij->i", data.p, np.column_stack([np.cos(data.psi), np.sin(data.psi)]))
+ax1.plot(np.degrees(psi), T_law, label="star law")
+ax1.plot(np.degrees(data.psi), T_data, ".", label="surface (72 directions)")
+ax1.set_xlim(0, 360)
+ax1.set_xlabel("sliding direction $\\psi$ (deg from $t_a$)")
+ax1.set_ylabel("T = p.s")
+ax1.legend()
 fig.tight_layout()
 plt.show()
 
 # %%
-# The coefficients differ by well under one per cent: fine roughness on ridges of gentle
-# slopes gives a nearly isotropic law. Steeper relief, a larger local friction, or load
+# The scallops between the fitted directions are the law's: its C is the polygon through
+# the 72 points, so between them the force is a little smaller than the surface's (the
+# ``holdout`` error printed above). More directions make them smaller: ``asperity fit``
+# fits 720 by default.
+#
+# :math:`\mu_a^+` and :math:`\mu_a^-` differ by well under one per cent, :math:`\mu_a` and
+# :math:`\mu_b` by a few: fine roughness on ridges of gentle slopes gives a nearly isotropic
+# law. Steeper relief, a larger local friction, or load
 # shares from an elastic contact (see the elastic-contact example) change that. The
 # command-line twin is ``asperity fit surfaces/scan-ridges.txt --mu 0.15 -o law.json``
 # (:doc:`/tutorials/measured-scan`).

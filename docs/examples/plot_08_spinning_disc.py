@@ -68,7 +68,7 @@ moving = (speed > 1e-3) & (np.abs(res.u[:, 2]) > 1e-3 / R)
 ax1.plot(res.t[moving], speed[moving] / (R * np.abs(res.u[moving, 2])), label="body solver")
 ax1.plot(ref.t, ref.v / (R * np.maximum(ref.omega, 1e-300)), "k:", label="closed forms")
 ax1.axhline(eps0, color="0.5", lw=0.8)
-ax1.set_ylim(0, 0.8)
+ax1.set_ylim(0.6, 1.05)
 ax1.set_xlabel("t (s)")
 ax1.set_ylabel("v / (R $\\omega$)")
 ax1.legend()
@@ -100,19 +100,25 @@ x, y = spin.summary["rest"]
 print(f"rest at ({x * 1e3:+.2f}, {y * 1e3:+.3f}) mm after {spin.summary['stop_time']:.4f} s")
 assert np.linalg.norm(first - predicted) < 1e-2 * np.linalg.norm(predicted)
 
-q = spin.result.q
-fig, ax = plt.subplots(figsize=(7, 3))
-ax.plot(q[:, 0] * 1e3, q[:, 1] * 1e3, "C0")
+t, q = spin.result.t, spin.result.q
+fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 3.8))
+ax0.plot(t, q[:, 0] * 1e3, label="body solver")
+early = t < 0.1
+ax0.plot(t[early], 0.5 * predicted[0] * t[early] ** 2 * 1e3, "k:",
+         label="$a t^2 / 2$, a from spin_drift_force")
+ax0.set_xlabel("t (s)")
+ax0.set_ylabel("x of the centre (mm)")
+ax0.legend()
 circle = np.linspace(0, 2 * np.pi, 100)
-for k in np.linspace(0, len(q) - 1, 5).astype(int):
-    ax.plot((q[k, 0] + R * np.cos(circle)) * 1e3, (q[k, 1] + R * np.sin(circle)) * 1e3,
-            color="0.6", lw=0.8)
-    ax.plot([q[k, 0] * 1e3, (q[k, 0] + R * np.cos(q[k, 2])) * 1e3],
-            [q[k, 1] * 1e3, (q[k, 1] + R * np.sin(q[k, 2])) * 1e3], color="0.4", lw=0.8)
-ax.set_aspect("equal")
-ax.set_xlabel("x along $t_a$ (mm)")
-ax.set_ylabel("y (mm)")
-ax.set_title("disc spun at 40 rad/s from rest: outline at five instants")
+for k, style in ((0, ":"), (-1, "-")):
+    ax1.plot((q[k, 0] + R * np.cos(circle)) * 1e3, (q[k, 1] + R * np.sin(circle)) * 1e3,
+             style, color="0.4")
+ax1.annotate("", xy=(q[-1, 0] * 1e3, 0), xytext=(0, 0),
+             arrowprops={"arrowstyle": "->", "color": "C0", "lw": 2})
+ax1.set_aspect("equal")
+ax1.set_xlabel("x along $t_a$ (mm)")
+ax1.set_ylabel("y (mm)")
+ax1.set_title("start (dotted) and rest (solid)")
 fig.tight_layout()
 plt.show()
 

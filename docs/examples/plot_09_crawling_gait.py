@@ -87,22 +87,31 @@ def body_shape(t, n=201):
     return z - z.mean()
 
 
-fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 4.5), width_ratios=(1.4, 1))
-ax0.plot(run.q[:, 0], run.q[:, 1], "k", lw=0.8, label="centre of mass")
-for i in range(0, len(run.t), run.records_per_period // 2):
+fig, (ax0, ax1, ax2) = plt.subplots(1, 3, figsize=(13, 4.5), width_ratios=(1, 1.2, 1.2))
+for j, phase in enumerate((0.0, 0.25, 0.5, 0.75)):
+    z = body_shape(phase) - 0.5j * j
+    ax0.plot(z.real, z.imag, color=f"C{j}")
+    ax0.plot(z.real[-1], z.imag[-1], "o", color=f"C{j}", ms=4)
+    ax0.text(0.6, -0.5 * j, f"t = {phase:g} T", va="center")
+ax0.set_aspect("equal")
+ax0.set_xlim(-0.6, 0.9)
+ax0.set_axis_off()
+ax0.set_title("the gait in the body frame (dot: head)")
+ax1.plot(run.q[:, 0], run.q[:, 1], "k", lw=0.8, label="centre of mass")
+for i, colour in ((0, "C0"), (len(run.t) - 1, "C1")):
     x, y, theta = run.q[i]
     z = x + 1j * y + np.exp(1j * theta) * body_shape(run.t[i])
-    ax0.plot(z.real, z.imag, color=plt.cm.viridis(i / len(run.t)), lw=1)
-    ax0.plot(z.real[-1], z.imag[-1], "o", color=plt.cm.viridis(i / len(run.t)), ms=3)
-ax0.set_aspect("equal")
-ax0.set_xlabel("x (m)")
-ax0.set_ylabel("y (m)")
-ax0.set_title("the body every half period (dot: head)")
-ax1.plot(np.arange(1, run.periods + 1), run.speed_per_period, "o-", label="dynamic")
-ax1.axhline(qs.speed_body_lengths_per_period, color="k", ls=":", label="quasi-static")
-ax1.set_xlabel("period")
-ax1.set_ylabel("speed (body lengths a period)")
-ax1.legend()
+    ax1.plot(z.real, z.imag, color=colour, label=f"body at t = {run.t[i]:g} s")
+    ax1.plot(z.real[-1], z.imag[-1], "o", color=colour, ms=4)
+ax1.set_aspect("equal")
+ax1.set_xlabel("x (m)")
+ax1.set_ylabel("y (m)")
+ax1.legend(fontsize=8, loc="upper right")
+ax2.plot(np.arange(1, run.periods + 1), run.speed_per_period, "o-", label="dynamic")
+ax2.axhline(qs.speed_body_lengths_per_period, color="k", ls=":", label="quasi-static")
+ax2.set_xlabel("period")
+ax2.set_ylabel("speed (body lengths a period)")
+ax2.legend()
 fig.tight_layout()
 plt.show()
 
