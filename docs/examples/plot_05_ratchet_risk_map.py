@@ -10,6 +10,7 @@ N = 100 N, :math:`\mu^+ = 0.2`, :math:`\mu^- = 0.1`) -- checks its elastic limit
 per cycle against the closed forms, and then draws which wedge textures make the shipped
 bushing (``surfaces/bushing-strip-mild.toml``) ratchet, with :func:`asperity.risk_map`.
 """
+# sphinx_gallery_thumbnail_number = 2
 from pathlib import Path
 
 import matplotlib.pyplot as plt

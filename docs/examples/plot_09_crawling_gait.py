@@ -10,6 +10,7 @@ SPEC.md section 9). This example crawls the default gait -- the curvature wave
 the speed under the three rules that turn three coefficients into a law, the tube limit
 the speed tends to as :math:`\mu_t / \mu_f` grows, and a dynamic run from rest.
 """
+# sphinx_gallery_thumbnail_number = 2
 import matplotlib.pyplot as plt
 import numpy as np
 from scipy.special import j0
