@@ -10,7 +10,7 @@ N = 100 N, :math:`\mu^+ = 0.2`, :math:`\mu^- = 0.1`) -- checks its elastic limit
 per cycle against the closed forms, and then draws which wedge textures make the shipped
 bushing (``surfaces/bushing-strip-mild.toml``) ratchet, with :func:`asperity.risk_map`.
 """
-# sphinx_gallery_thumbnail_number = 2
+# sphinx_gallery_thumbnail_number = 3
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -49,6 +49,20 @@ print(f"largest difference from the closed form: {np.max(np.abs(drift - closed))
       f"cycle (drift up to {np.max(np.abs(closed)):.1e})")
 print("verdicts:", {v: verdicts.count(v) for v in sorted(set(verdicts))})
 assert np.allclose(drift, closed, rtol=1e-9, atol=1e-15)
+
+fig, ax = plt.subplots(figsize=(6, 3.8))
+fine = np.linspace(ranges[0], ranges[-1], 400)
+ax.plot(fine, np.where(fine > 2 * dT_c, -alpha_T * l0 * (fine - 2 * dT_c), 0.0) * 1e6, "k:",
+        label="closed form")
+for v, marker in (("shakedown", "s"), ("ratchet", "o")):
+    sel = np.array(verdicts) == v
+    ax.plot(ranges[sel], drift[sel] * 1e6, marker, ms=4, label=f"solver: {v}")
+ax.axvline(2 * dT_c, color="0.6", lw=0.8)
+ax.set_xlabel("temperature range (K)")
+ax.set_ylabel("drift per cycle (um)")
+ax.legend()
+fig.tight_layout()
+plt.show()
 
 # %%
 # Cycles from the stress-free state
