@@ -76,8 +76,9 @@ fig.tight_layout()
 plt.show()
 
 # %%
-# Both stop together; the ratio rises towards 0.653 but reaches it only slowly (it falls
-# like a power of the speed), so the last steps show it within a few per cent. Fewer
+# Both stop together. The ratio falls from 1 towards 0.653 but approaches it only slowly
+# (its distance from 0.653 falls like a power of the speed), so a run to rest at one step
+# size ends within a few per cent of it. Fewer
 # contact points are faster and less accurate: the force error falls as 1/N.
 #
 # Spun from rest on an asymmetric law
