@@ -79,8 +79,9 @@ plt.show()
 
 # %%
 # The force is not opposite to the slip: the lateral part :math:`L = p \cdot s_\perp`
-# deflects a sliding body (see the point-mass example). Its size against the tangential
-# part :math:`T = p \cdot s`:
+# deflects a sliding body (see
+# :ref:`the point-mass example <sphx_glr_gallery_plot_05_deflection.py>`). Its size
+# against the tangential part :math:`T = p \cdot s`:
 d = asperity.derive(texture, n_directions=360)
 psi = np.degrees(d.reservoir.psi)
 fig, ax = plt.subplots(figsize=(7, 3.5))

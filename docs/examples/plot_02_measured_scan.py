@@ -116,8 +116,8 @@ plt.show()
 # fits 720 by default.
 #
 # :math:`\mu_a^+` and :math:`\mu_a^-` differ by well under one per cent, :math:`\mu_a` and
-# :math:`\mu_b` by a few: fine roughness on ridges of gentle slopes gives a nearly isotropic
-# law. Steeper relief, a larger local friction, or load
-# shares from an elastic contact (see the elastic-contact example) change that. The
-# command-line twin is ``asperity fit surfaces/scan-ridges.txt --mu 0.15 -o law.json``
-# (:doc:`/tutorials/measured-scan`).
+# :math:`\mu_b` by a few: fine roughness on ridges of gentle slopes gives a nearly
+# isotropic law. Steeper relief, a larger local friction, or load shares from an elastic
+# contact (:ref:`the next example <sphx_glr_gallery_plot_03_elastic_family.py>`) change
+# that. The command-line twin is ``asperity fit surfaces/scan-ridges.txt --mu 0.15 -o
+# law.json`` (:doc:`/tutorials/measured-scan`).
