@@ -69,6 +69,7 @@ sphinx_gallery_conf = {
     "examples_dirs": "examples",
     "gallery_dirs": "gallery",
     "filename_pattern": r".*\.py$",      # execute them all
+    "within_subsection_order": "FileNameSortKey",   # plot_01 ... plot_09: the pipeline's order
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
     "download_all_examples": False,
