@@ -26,8 +26,9 @@ exclude_patterns = ["_build", "_run"]
 """
 
 
-def build(tmp_path: Path, index: str, *, complete: bool = False) -> tuple[int, str, Path]:
-    """Build a one-page project (text) with -W; (status, warnings, output folder).
+def build(tmp_path: Path, index: str, *, complete: bool = False,
+          builder: str = "text") -> tuple[int, str, Path]:
+    """Build a one-page project with -W; (status, warnings, output folder).
     ``complete``: check that every public name and command is documented."""
     src = tmp_path / "src"
     src.mkdir(exist_ok=True)
@@ -35,7 +36,7 @@ def build(tmp_path: Path, index: str, *, complete: bool = False) -> tuple[int, s
     (src / "index.rst").write_text(index)
     out = tmp_path / "out"
     proc = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-E", "-q",
-                           "-b", "text", str(src), str(out)], capture_output=True, text=True,
+                           "-b", builder, str(src), str(out)], capture_output=True, text=True,
                           timeout=600, check=False)
     return proc.returncode, proc.stderr, out
 
@@ -164,3 +165,19 @@ def test_a_command_without_reference_and_names_without_api_page_fail(tmp_path):
         missing = f"asperity.{name} is public (asperity.__all__) but no API page documents it"
         assert (missing in warnings) == (name != "__version__"), name
     assert "asperity risk` has no reference" not in warnings
+
+
+def test_every_flag_has_its_anchor_in_html(tmp_path):
+    """``commands.md#asperity-derive-json`` leads to the flag: an id per flag in the HTML."""
+    from asperity.cli.main import build_parser
+    status, warnings, out = build(tmp_path, "X\n=\n\n.. asperity-command:: derive\n\n"
+                                  ".. asperity-command:: risk\n", builder="html")
+    assert status == 0, warnings
+    page = (out / "index.html").read_text()
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction))
+    for name in ("derive", "risk"):
+        for action in sub.choices[name]._actions:
+            if action.option_strings:
+                flag = max(action.option_strings, key=len).lstrip("-")
+                assert f'id="asperity-{name}-{flag}"' in page, (name, flag)

@@ -100,9 +100,9 @@ class CommandReference(SphinxDirective):
                 invocation = formatter._format_action_invocation(action)
                 flag = max(action.option_strings, key=len) if action.option_strings \
                     else action.dest
-                item = nodes.definition_list_item(
-                    ids=[nodes.make_id(f"asperity-{name}-{flag.lstrip('-')}")])
-                term = nodes.term()
+                item = nodes.definition_list_item()
+                # the anchor (commands.md#asperity-derive-json) on the term: HTML keeps it there
+                term = nodes.term(ids=[nodes.make_id(f"asperity-{name}-{flag.lstrip('-')}")])
                 term += nodes.literal(invocation, invocation)
                 item += term
                 definition = nodes.definition()
