@@ -283,7 +283,7 @@ def _num(x: float) -> float | None:
 
 
 def to_json(d: Derivation) -> dict:
-    """The JSON object printed by ``asperity derive --json`` (keys documented in README)."""
+    """The JSON object printed by ``asperity derive --json`` (keys in the file formats' outputs)."""
     r = d.reservoir
     T, L = r.tangential, r.lateral
     dirs = []

@@ -285,7 +285,7 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
     Returns
     -------
     dict
-        The JSON object of ``asperity derive --window`` (README): ``estimate`` (what it is),
+        The JSON object of ``asperity derive --window`` (formats: outputs): ``estimate`` (what it is),
         ``windows`` (asked, solved, used, skipped, redrawn), and for ``area_fraction``,
         ``mu_a_plus``, ``mu_a_minus``, ``mu_b_plus``, ``mu_b_minus`` the ``mean``, ``sd``,
         ``min``, ``max`` and ``n`` over the windows; ``directions`` the same per direction.
@@ -323,7 +323,7 @@ def contact_windows(path, elastic, *, window, windows=8, placement="grid", seed=
                     despike=None, despike_window=None, client=None, source=None) -> dict:
     """The elastic contact of a height-map file estimated from windows (as
     :func:`derive_windows`, the contact figures only): the JSON object of ``asperity
-    contact --window`` (README)."""
+    contact --window`` (file formats, outputs)."""
     from .window_summary import contact_summary
     plan, results = _run(path, elastic, False, window, windows, placement, seed, unit,
                          pixel_size, height_scale, detrend, None, None, despike,

@@ -137,7 +137,7 @@ def summary_rows(fam: LawFamily) -> tuple[list[dict], float]:
 
 
 def family_json(fam: LawFamily) -> dict:
-    """The JSON object of ``asperity derive --pressure P1 P2 ... --json`` (README)."""
+    """The JSON object of ``asperity derive --pressure P1 P2 ... --json`` (formats: outputs)."""
     from .derive import to_json
     e = fam.elastic
     c = fam.members[0].texture.elastic

@@ -29,7 +29,7 @@ def spread(values) -> dict:
 
 
 def summarise(plan, results: list, placement: str, seed: int) -> dict:
-    """The JSON object of ``asperity derive --window`` (README)."""
+    """The JSON object of ``asperity derive --window`` (the file formats' outputs)."""
     from .reservoir import directions
     src, w, e = plan.heights, plan.window, plan.elastic
     used = [r for r in results if "skipped" not in r]

@@ -4,7 +4,7 @@ the Moreau cross-check.  The risk map over two wedge parameters is a grid study:
 :func:`asperity.study.maps.risk_map`.
 
 The results are the JSON objects that ``asperity risk --json`` prints (keys documented in
-README); :mod:`asperity.microslip.risk_text` turns them into the terminal text.
+the file formats' outputs); :mod:`asperity.microslip.risk_text` turns them into the terminal text.
 """
 from __future__ import annotations
 
@@ -173,7 +173,7 @@ def assess_assembly(asm: Assembly, friction: Friction, *, cycles: float | None =
         ``dT_c_K`` and ``dT_c_closed_form_K`` (the elastic limit, K), ``margin``,
         ``drift_per_cycle_m`` (m, positive towards +x), ``drift_after_cycles_m``,
         ``cycles_to_tolerance``, the ``assembly``, ``loading`` and ``friction`` it was
-        given and the ``sign_convention``; keys documented in the README.  The private
+        given and the ``sign_convention``; keys in the file formats' outputs.  The private
         key ``_chain`` holds the slider chain (for plots): drop the keys starting with
         ``_`` before writing JSON.
 

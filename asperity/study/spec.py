@@ -1,4 +1,4 @@
-"""Study files: what to compute over which cases (the TOML format is documented in README).
+"""Study files: what to compute over which cases (TOML: the file formats, study files).
 
 ::
 

@@ -85,8 +85,8 @@ class FacetSurface:
     extent : (float, float) or None, default None
         Physical size (m) of ``preview``, two lengths > 0.
     quality : dict or None, default None
-        Data-quality figures (spikes, undefined pixels, steep facets; the README's *Data
-        quality*).
+        Data-quality figures (spikes, undefined pixels, steep facets; the measured-scan
+        tutorial's *Data quality*).
     elastic : dict or None, default None
         The contact's figures (the keys of ``asperity contact --json``) when the weights are
         the contact forces of an elastic contact.

@@ -349,7 +349,7 @@ class TextureFile:
 
 
 def load_texture_file(path: str | Path) -> TextureFile:
-    """Read a TOML texture file (format documented in README.md); its ``[springs]`` table,
+    """Read a TOML texture file (the file formats: texture files); its ``[springs]`` table,
     if any, is checked too (keys and ranges of :class:`~.spring_model.SpringModel`)."""
     from .spring_model import SpringModel
     p = Path(check_instance("path", path, (str, PathLike), "file name (text or a Path)"))
@@ -370,7 +370,7 @@ def load_texture_file(path: str | Path) -> TextureFile:
 
 
 def load_texture(path: str | Path) -> Texture:
-    """Read the texture of a TOML texture file (format: the README's *Texture file format*).
+    """Read the texture of a TOML texture file (format: the file-format reference, texture files).
 
     Parameters
     ----------

@@ -91,7 +91,9 @@ class CommandReference(SphinxDirective):
         out: list[nodes.Node] = []
         if parser.description:
             out.append(nodes.paragraph(text=parser.description))
-        usage = parser.format_usage().removeprefix("usage: ").strip()
+        # argparse indents the usage's continuation lines under "usage: ": drop that prefix
+        usage = "\n".join(line.removeprefix("usage: ").removeprefix(" " * len("usage: "))
+                          for line in parser.format_usage().strip().splitlines())
         out.append(nodes.literal_block(usage, usage, language="text"))
         for group in parser._action_groups:
             actions = [a for a in group._group_actions if a.help != argparse.SUPPRESS]

@@ -79,7 +79,7 @@ class Reader:
     format: str
     suffixes: tuple[str, ...]     # () claims every suffix (the last reader, a catch-all)
     module: str                   # module of this package holding ``read``
-    sizes: str                    # where the lengths come from (README's table)
+    sizes: str                    # where the lengths come from (the file-format reference's table)
     takes_pixel_size: bool = True
 
     def can_read(self, suffix: str) -> bool:
@@ -119,7 +119,7 @@ def read_surface(path, *, unit=None, pixel_size=None, height_scale=1.0,
     line per y, one column per x, ``nan`` undefined, a Gwyddion-style or ``key=value``
     header read when present); ISO 25178-72 ``.x3p`` (built-in reader); instrument formats
     (``.mi .sur .opd .datx .plu .nms`` ...) through SurfaceTopography (the ``metrology``
-    extra).  The README's *Surface files* gives the details.
+    extra).  The file-format reference (surface files) gives the details.
 
     Parameters
     ----------
