@@ -285,8 +285,8 @@ def derive_windows(path, elastic, *, window, windows=8, placement="grid", seed=0
     Returns
     -------
     dict
-        The JSON object of ``asperity derive --window`` (formats: outputs): ``estimate`` (what it is),
-        ``windows`` (asked, solved, used, skipped, redrawn), and for ``area_fraction``,
+        The JSON object of ``asperity derive --window`` (formats: outputs): ``estimate``
+        (what it is), ``windows`` (asked, solved, used, skipped, redrawn), and for ``area_fraction``,
         ``mu_a_plus``, ``mu_a_minus``, ``mu_b_plus``, ``mu_b_minus`` the ``mean``, ``sd``,
         ``min``, ``max`` and ``n`` over the windows; ``directions`` the same per direction.
 
