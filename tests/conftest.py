@@ -3,7 +3,12 @@ that fails half-way, pytest stopped with Ctrl-C or killed with SIGKILL): each ch
 ``subprocess`` starts asks the kernel for SIGKILL when its parent dies (Linux
 ``PR_SET_PDEATHSIG``; a servers' own workers then die with it, see asperity.lifeline).
 The signal follows the thread that started the child, so tests start long-lived children
-from the test's own thread."""
+from the test's own thread.
+
+Each child also starts with Ctrl-C's default action: a suite started in the background of
+a non-interactive shell (``pytest ... &``) has SIGINT ignored, which a child would keep
+through exec, and the tests of what a command does on Ctrl-C would see it run on as if
+nothing had been pressed."""
 from __future__ import annotations
 
 import ctypes
@@ -34,6 +39,7 @@ def _init(self, *args, preexec_fn=None, **kwargs):
         if user is not None:                 # e.g. a change of user, which would clear
             user()                           # the signal asked before it
         _die_with_parent()
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
     _popen_init(self, *args, preexec_fn=preexec, **kwargs)
 
 
