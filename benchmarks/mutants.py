@@ -110,6 +110,15 @@ class Mutant:
 
 
 MUTANTS = [
+    # ---- risk: --contact on the assembly file's texture (issue 29's review)
+    Mutant("risk-contact-dropped-for-file-texture", "microslip/risk.py",
+           "        asm = replace(asm, friction_table=dict(fr, contact=contact))\n",
+           "", ("test_risk_cli.py",),
+           "--contact silently ignored when the texture comes from the assembly file"),
+    Mutant("risk-contact-refusal-dropped", "microslip/risk.py",
+           "        if \"texture\" not in fr:\n            raise InputError(",
+           "        if False:\n            raise InputError(", ("test_risk_cli.py",),
+           "--contact accepted (and ignored) with explicit mu_plus/mu_minus"),
     # ---- the Motion page's body (issue 20, item 5)
     Mutant("web-body-texture-angle-dropped", "web/tasks_body.py",
            "texture_angle_deg=spec.get(\"texture_angle_deg\", 0.0))",

@@ -141,6 +141,35 @@ def test_slip_axis_and_textured_face_swap_the_coefficients(capsys, tmp_path):
     assert d["verdict"] == "alternating-slip" and d["drift_per_cycle_m"] == 0
 
 
+@pytest.mark.parametrize("contact", ["windward", "all-faces"])
+def test_contact_applies_to_the_file_s_texture_as_to_a_texture_given(capsys, tmp_path,
+                                                                     contact):
+    """--contact is not dropped when the texture comes from the assembly file: the file's
+    texture under --contact gives what the same texture given on the command line gives."""
+    asm = SURF / "bushing-strip.toml"
+    from_file = risk_json(capsys, asm, "--contact", contact)
+    given = risk_json(capsys, SURF / "wedge-asymmetric.toml", asm, "--contact", contact)
+    for key in ("mu_plus", "mu_minus", "dT_c_K", "drift_per_cycle_m"):
+        assert from_file[key] == pytest.approx(given[key], rel=1e-12), key
+    assert from_file["friction"]["contact"] == contact
+    # without the flag the file's own contact (none given: all-faces) applies
+    if contact == "all-faces":
+        assert risk_json(capsys, asm)["mu_plus"] == pytest.approx(from_file["mu_plus"],
+                                                                  rel=1e-12)
+    else:                               # windward differs on this wedge: the flag counted
+        assert from_file["mu_plus"] != pytest.approx(risk_json(capsys, asm)["mu_plus"],
+                                                     rel=1e-6)
+
+
+def test_contact_without_a_texture_is_refused(capsys, tmp_path):
+    a = write(tmp_path, TWO_NODE + "[friction]\nmu_plus = 0.2\nmu_minus = 0.1\n"
+              "[loading]\ndT_min = 0\ndT_max = 400\n")
+    code, out, err = run(capsys, "risk", str(a), "--contact", "windward")
+    assert code == 1 and not out
+    assert err.strip().endswith("a contact regime (--contact) applies to a texture; the "
+                                "assembly's friction is given as mu_plus/mu_minus"), err
+
+
 def test_friction_from_a_gauge_file(capsys, tmp_path):
     g = tmp_path / "g.json"
     assert main(["fit", str(SURF / "wedge-asymmetric.toml"), "--directions", "360", "-o",

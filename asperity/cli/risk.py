@@ -80,6 +80,12 @@ def add_parser(sub) -> None:
     p.add_argument("--plot", metavar="FILE.png",
                    help="node displacement against cycles (and the strip's profiles), or the "
                         "risk map with --map")
+    # --contact given or not: without a texture on the command line, the file's texture
+    # takes the file's contact unless the flag says otherwise (all-faces for a texture given)
+    p.set_defaults(contact=None)
+    contact = next(a for a in p._actions if a.dest == "contact")
+    contact.help += (" (default: the assembly file's [friction] contact for its texture, else "
+                     "all-faces; refused when the file's friction is a gauge or mu_plus/mu_minus)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True)],
                    inputs=["texture", "assembly", "friction_map"])
 
@@ -132,7 +138,7 @@ def run(args) -> dict:
             raise InputError(f"--map needs two different parameters, got {x[0]} twice")
         from ..study.maps import risk_map
         workers = whole_flag("--workers", args.workers, 0, 4096)
-        return risk_map(asm, x, y, texture, contact=args.contact if texture else None,
+        return risk_map(asm, x, y, texture, contact=args.contact,
                         slip_axis_deg=args.slip_axis, textured=args.textured, cycles=cycles,
                         max_marched=mm, workers=0 if workers is None and not args.scheduler
                         else workers, scheduler=args.scheduler)

@@ -42,7 +42,7 @@ def check_axis_and_face(slip_axis_deg, textured):
 
 
 def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
-                      contact: str = "all-faces", slip_axis_deg: float | None = None,
+                      contact: str | None = None, slip_axis_deg: float | None = None,
                       textured: str | None = None) -> Friction:
     """The friction coefficients mu+ and mu- along an assembly's slip axis.
 
@@ -58,9 +58,12 @@ def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
         or a texture file).
     texture_name : str, optional
         The texture's name in the result's ``detail`` (default: its kind).
-    contact : str, optional
-        Contact regime of ``texture``: "all-faces" (default) or "windward".  It applies to
-        ``texture`` only; a texture file of the table takes the table's ``contact``.
+    contact : str or None, optional
+        Contact regime of the texture: "all-faces" or "windward".  It applies to
+        ``texture``, or else to the texture file of the table (in place of the table's
+        ``contact``); a table with a gauge or explicit coefficients refuses it.  None
+        (default): the table's ``contact`` for its texture file, "all-faces" for
+        ``texture``.
     slip_axis_deg : float or None, optional
         The assembly's +x in the texture's (or gauge's) frame, deg, in [-360, 360]; None:
         the table's, else the principal direction t_a.  Not with explicit coefficients.
@@ -107,17 +110,25 @@ def assembly_friction(asm: Assembly, texture=None, *, texture_name: str = "",
     check_instance("asm", asm, Assembly, "parsed assembly (load_assembly)")
     check_risk_texture(texture)
     check_text("texture_name", texture_name, 4096)
-    check_choice("contact", contact, CONTACTS)
+    if contact is not None:
+        check_choice("contact", contact, CONTACTS)
     slip_axis_deg, textured = check_axis_and_face(slip_axis_deg, textured)
     fr = asm.friction_table
     axis = slip_axis_deg if slip_axis_deg is not None else fr.get("slip_axis_deg")
     face = textured or fr.get("textured", "support")
     if texture is not None:
-        f = friction_from_texture(texture, contact, axis, face, texture_name)
+        f = friction_from_texture(texture, contact or "all-faces", axis, face, texture_name)
         if fr:
             f.detail["note"] = ("texture from the command line instead of the file's friction "
                                 "source; its slip_axis_deg and textured still apply")
         return f
+    if contact is not None:
+        if "texture" not in fr:
+            raise InputError("a contact regime (--contact) applies to a texture; the assembly's "
+                             "friction is " + ("a gauge file" if "gauge" in fr else
+                                               "given as mu_plus/mu_minus"))
+        asm = replace(asm, friction_table=dict(fr, contact=contact))
+        fr = asm.friction_table
     if slip_axis_deg is not None or textured is not None:
         if "mu_plus" in fr:
             raise InputError("a slip axis or textured face (--slip-axis, --textured) applies "
