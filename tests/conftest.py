@@ -5,10 +5,11 @@ that fails half-way, pytest stopped with Ctrl-C or killed with SIGKILL): each ch
 The signal follows the thread that started the child, so tests start long-lived children
 from the test's own thread.
 
-Each child also starts with Ctrl-C's default action: a suite started in the background of
-a non-interactive shell (``pytest ... &``) has SIGINT ignored, which a child would keep
-through exec, and the tests of what a command does on Ctrl-C would see it run on as if
-nothing had been pressed."""
+A suite started in the background of a non-interactive shell (``pytest ... &``) inherits
+SIGINT ignored, which every child would keep through exec: the tests of what a command
+does on Ctrl-C would see it run on as if nothing had been pressed. The suite then takes
+Ctrl-C's usual handler back, as a foreground run has it (children started while the
+package itself ignores SIGINT, such as a starting cluster's, still inherit that)."""
 from __future__ import annotations
 
 import ctypes
@@ -22,6 +23,8 @@ PR_SET_PDEATHSIG = 1
 # a test reads on stderr must not depend on how long a run took on a loaded machine; the
 # tests of those lines ask for them (tests/test_cli_signals.py)
 os.environ["ASPERITY_PROGRESS_EVERY"] = "0"
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:       # started in the background
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 _popen_init = subprocess.Popen.__init__
 
 
@@ -39,7 +42,6 @@ def _init(self, *args, preexec_fn=None, **kwargs):
         if user is not None:                 # e.g. a change of user, which would clear
             user()                           # the signal asked before it
         _die_with_parent()
-        signal.signal(signal.SIGINT, signal.SIG_DFL)
     _popen_init(self, *args, preexec_fn=preexec, **kwargs)
 
 
