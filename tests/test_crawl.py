@@ -313,3 +313,17 @@ def test_without_friction_the_gait_turns_the_body_keeping_its_angular_momentum()
     np.testing.assert_allclose(L[1:], kin.spin[0], atol=1e-5 * np.abs(kin.spin).max())
     assert np.abs(res.q[:, :2]).max() < 1e-6
     assert np.abs(res.q[:, 2]).max() > 0.01                  # and the body turns
+
+
+@pytest.mark.parametrize("rule", ["componentwise", "associated", "colinear"])
+@pytest.mark.parametrize("which", [0, 1, 2])
+@pytest.mark.parametrize("bad, says", [(-1.0, "must be in [1e-06, 100], got -1"),
+                                       (math.nan, "must be in [1e-06, 100], got NaN")])
+def test_a_bad_coefficient_is_named_as_given_whatever_the_rule(rule, which, bad, says):
+    """mu_f, mu_b, mu_t by their own names, not by the ellipse's axes they become."""
+    from asperity.errors import InputError
+    mus = [0.1, 0.15, 0.2]
+    mus[which] = bad
+    with pytest.raises(InputError) as exc:
+        coefficient_law(*mus, rule=rule)
+    assert str(exc.value) == f"{('mu_f', 'mu_b', 'mu_t')[which]} {says}"

@@ -139,10 +139,14 @@ def coefficient_law(mu_f: float, mu_b: float, mu_t: float, rule: str = "componen
     associated [0.053, 0.1752]
     colinear [0.0964, 0.0964]
     """
+    from ..laws.geometry import check_mu_law
     from ..laws.planar import collinear_law, componentwise_law, truncated_ellipse_law
     rule = check_choice("rule", rule, RULES)
     if rule == "componentwise":
         return componentwise_law(mu_f, mu_b, mu_t)
+    # the coefficients named as given (not as the ellipse's mu_a+, mu_a-, mu_b+- they become)
+    mu_f, mu_b, mu_t = (check_mu_law(n, v) for n, v in zip(("mu_f", "mu_b", "mu_t"),
+                                                             (mu_f, mu_b, mu_t)))
     law = truncated_ellipse_law(mu_f, mu_b, mu_t, mu_t)
     if rule == "associated":
         return law
