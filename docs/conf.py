@@ -18,6 +18,7 @@ ROOT = HERE.parent
 sys.path[:0] = [str(ROOT), str(HERE / "_ext")]
 
 import asperity
+from asperity_docs import NUMPYDOC_CHECKS  # the same checks as tests/test_api_docs.py
 
 project = "asperity"
 author = "the asperity developers"
@@ -55,7 +56,6 @@ autodoc_typehints = "none"           # the numpydoc Parameters section gives the
 autodoc_member_order = "bysource"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
-from asperity_docs import NUMPYDOC_CHECKS  # the same checks as tests/test_api_docs.py
 
 # ASPERITY_DOCS_QUICK=1: no numpydoc validation and no gallery run (a draft build of the
 # prose pages; CI builds without it)

@@ -37,7 +37,11 @@ def add_parser(sub) -> None:
                     "gauge file holding a law family ([friction] gauge) is taken at that pressure.  --map P=LO:HI:N P=LO:HI:N draws the verdict over a grid "
                     "of two wedge parameters (alpha, beta, mu_alpha, mu_beta).",
         formatter_class=DefaultsHelpFormatter)
-    add_source_arguments(p)
+    # --contact not given: the file's texture takes the file's contact (all-faces for a
+    # texture given on the command line)
+    add_source_arguments(p, contact_default=None, contact_note=(
+        " (default: the assembly file's [friction] contact for its texture, else all-faces; "
+        "refused when the file's friction is a gauge or mu_plus/mu_minus)"))
     add_elastic_arguments(p)
     p.add_argument("assembly", metavar="ASSEMBLY.toml", help="assembly file (see the documentation's file formats)")
     p.add_argument("--cycles", type=float, default=None, metavar="N",
@@ -80,12 +84,6 @@ def add_parser(sub) -> None:
     p.add_argument("--plot", metavar="FILE.png",
                    help="node displacement against cycles (and the strip's profiles), or the "
                         "risk map with --map")
-    # --contact given or not: without a texture on the command line, the file's texture
-    # takes the file's contact unless the flag says otherwise (all-faces for a texture given)
-    p.set_defaults(contact=None)
-    contact = next(a for a in p._actions if a.dest == "contact")
-    contact.help += (" (default: the assembly file's [friction] contact for its texture, else "
-                     "all-faces; refused when the file's friction is a gauge or mu_plus/mu_minus)")
     p.set_defaults(func=main, outputs=[("--plot", "plot", True)],
                    inputs=["texture", "assembly", "friction_map"])
 

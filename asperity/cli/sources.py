@@ -197,10 +197,13 @@ def check_pressures(E: float, pressures) -> None:
         check_range("--pressure / --elastic", p / E, *PRESSURE_OVER_E)
 
 
-def add_source_arguments(p, friction: bool = True) -> None:
+def add_source_arguments(p, friction: bool = True, contact_default: str | None = "all-faces",
+                         contact_note: str = "") -> None:
     """The texture/surface arguments and --contact, shared by every command that reads one
     (``friction`` False: without the friction and load-model flags, which then read as
-    not given: --mu, --friction-map, --rest-level, --bearing-fraction, --contact)."""
+    not given: --mu, --friction-map, --rest-level, --bearing-fraction, --contact).
+    ``contact_default`` None: --contact not given reads as None (the command decides),
+    ``contact_note`` then says in its help what that means."""
     p.add_argument("texture", nargs="?", metavar="TEXTURE_OR_SURFACE",
                    help="texture file (.toml) or surface file (mesh, height map, instrument file)")
     g = p.add_argument_group("wedge texture given by flags (instead of a file)")
@@ -255,9 +258,9 @@ def add_source_arguments(p, friction: bool = True) -> None:
     load.add_argument("--bearing-fraction", type=float, metavar="F",
                       help="rest level put where a share F in (0, 1] of the projected area is "
                            "in contact (the load level, as a bearing-area fraction)")
-    p.add_argument("--contact", choices=["all-faces", "windward"], default="all-faces",
+    p.add_argument("--contact", choices=["all-faces", "windward"], default=contact_default,
                    help="all-faces: compliant springs touch every face; windward: rigid asperities, "
-                        "only faces facing the motion")
+                        "only faces facing the motion" + contact_note)
 
 
 def texture_from_args(args, several: bool = False):

@@ -27,6 +27,7 @@ which the build (``-W``) turns into a failure.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import re
@@ -52,7 +53,9 @@ NUMPYDOC_CHECKS = ("GL08", "SS01", "PR01", "PR02", "RT01", "EX01")
 logger = logging.getLogger(__name__)
 
 
+@functools.cache
 def _subparsers():
+    """The commands' parsers (built once a build: every command's reference reads them)."""
     from asperity.cli.main import build_parser
     parser = build_parser()
     return next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
@@ -80,6 +83,7 @@ class CommandReference(SphinxDirective):
     required_arguments = 1
 
     def run(self):
+        from asperity.cli.parsing import flag_of
         name = self.arguments[0]
         sub = _subparsers()
         if name not in sub.choices:
@@ -105,8 +109,7 @@ class CommandReference(SphinxDirective):
             dl = nodes.definition_list()
             for action in actions:
                 invocation = formatter._format_action_invocation(action)
-                flag = max(action.option_strings, key=len) if action.option_strings \
-                    else action.dest
+                flag = flag_of(action)
                 item = nodes.definition_list_item()
                 # the anchor (commands.md#asperity-derive-json) on the term: HTML keeps it there
                 term = nodes.term(ids=[nodes.make_id(f"asperity-{name}-{flag.lstrip('-')}")])
@@ -138,9 +141,9 @@ class Run(SphinxDirective):
     """``.. asperity-run::`` with the command line as content."""
 
     has_content = True
-    option_spec: ClassVar[dict] = {"name": directives.unchanged_required, "returncode": int,
-                   "stderr": directives.flag, "hide": directives.flag,
-                   "image": directives.unchanged_required, "timeout": int}
+    option_spec: ClassVar[dict] = {
+        "name": directives.unchanged_required, "returncode": int, "stderr": directives.flag,
+        "hide": directives.flag, "image": directives.unchanged_required, "timeout": int}
 
     def run(self):
         line = " ".join(part.rstrip("\\").strip() for part in self.content).strip()
@@ -155,8 +158,8 @@ class Run(SphinxDirective):
         env = dict(os.environ, MPLBACKEND="Agg", COLUMNS="100",
                    PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
         try:
-            proc = subprocess.run(argv, check=False, cwd=folder, env=env, capture_output=True, text=True,
-                                  timeout=self.options.get("timeout", 600))
+            proc = subprocess.run(argv, check=False, cwd=folder, env=env, capture_output=True,
+                                  text=True, timeout=self.options.get("timeout", 600))
         except subprocess.TimeoutExpired:
             raise self.error(f"asperity-run: `{line}` did not finish in time") from None
         expected = self.options.get("returncode", 0)
@@ -207,7 +210,7 @@ class Value(SphinxRole):
             else:
                 key, _, spec = rest.partition(":")
                 value = format(_lookup(json.loads(output), key), spec)
-        except (LookupError, ValueError, TypeError, IndexError) as exc:
+        except (LookupError, ValueError, TypeError) as exc:
             msg = self.inliner.reporter.error(f"asperity-value `{self.text}`: {exc}",
                                               line=self.lineno)
             return [self.inliner.problematic(self.rawtext, self.rawtext, msg)], [msg]
@@ -241,7 +244,7 @@ def _check_complete(app, env):
         if name != "__version__" and f"asperity.{name}" not in objects:
             logger.warning(f"asperity.{name} is public (asperity.__all__) but no API page "
                            f"documents it", type="asperity", subtype="undocumented")
-    documented = set().union(set(), *_commands(env).values())
+    documented = set().union(*_commands(env).values())
     for name in COMMANDS:
         if name not in documented:
             logger.warning(f"`asperity {name}` has no reference (.. asperity-command:: {name})",
